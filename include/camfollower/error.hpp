@@ -1,0 +1,55 @@
+// Error types and argument checks shared by every header.
+//
+// Bad input throws std::invalid_argument (pybind11 maps it to Python's ValueError) with a message
+// that names the parameter and the allowed range. A solver that cannot converge throws
+// ConvergenceError (a std::runtime_error, RuntimeError in Python).
+#pragma once
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace camfollower {
+
+class ConvergenceError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+namespace detail {
+
+template <class... Parts>
+std::string concat(const Parts&... parts) {
+    std::ostringstream out;
+    out.precision(10);
+    (out << ... << parts);
+    return out.str();
+}
+
+template <class... Parts>
+[[noreturn]] void fail(const Parts&... parts) {
+    throw std::invalid_argument(concat(parts...));
+}
+
+inline void require_finite(double value, const char* name) {
+    if (!std::isfinite(value)) fail(name, " must be finite, got ", value);
+}
+
+inline void require_positive(double value, const char* name, const char* unit = "") {
+    if (!(std::isfinite(value) && value > 0.0))
+        fail(name, " must be finite and > 0 ", unit, ", got ", value);
+}
+
+inline void require_non_negative(double value, const char* name, const char* unit = "") {
+    if (!(std::isfinite(value) && value >= 0.0))
+        fail(name, " must be finite and >= 0 ", unit, ", got ", value);
+}
+
+inline void require_in_range(double value, double lo, double hi, const char* name) {
+    if (!(std::isfinite(value) && value >= lo && value <= hi))
+        fail(name, " must be in [", lo, ", ", hi, "], got ", value);
+}
+
+}  // namespace detail
+}  // namespace camfollower

@@ -1,0 +1,15 @@
+"""camfollower: dynamics of flexible cam-follower mechanisms.
+
+SI units throughout (m, kg, s, N, rad). The compiled core lives in ``camfollower._core``; this
+package re-exports it and adds the Python-side analysis and the paper study.
+
+>>> import camfollower as cf
+>>> cam = cf.DiskCam()                       # the paper's cam (Table 1-2 defaults)
+>>> round(cam.profile(0.1)["R"], 6)          # roller-centre distance on the base circle (m)
+0.036661
+"""
+
+from ._core import DiskCam, MotionLaw, MotionProgram, PeakCoefficients, Segment
+
+__all__ = ["DiskCam", "MotionLaw", "MotionProgram", "PeakCoefficients", "Segment"]
+__version__ = "0.1.0"

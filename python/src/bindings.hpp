@@ -1,0 +1,46 @@
+// Shared helpers for the binding files: one vectorizer used by every area.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <string>
+#include <utility>
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+namespace camfollower::python {
+
+namespace py = pybind11;
+using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+// Evaluate f(x) -> std::array<double, K> at every element of x; return a dict {name: array of
+// x's shape} (plain floats when x is a scalar). The loop runs without the GIL.
+template <std::size_t K, class F>
+py::dict map_to_dict(const DoubleArray& x, const std::array<const char*, K>& names, F&& f) {
+    const py::ssize_t n = x.size();
+    std::array<py::array_t<double>, K> out;
+    std::vector<py::ssize_t> shape(x.shape(), x.shape() + x.ndim());
+    for (auto& a : out) a = py::array_t<double>(shape);
+    std::array<double*, K> dst;
+    for (std::size_t k = 0; k < K; ++k) dst[k] = out[k].mutable_data();
+    const double* src = x.data();
+    {
+        py::gil_scoped_release release;
+        for (py::ssize_t i = 0; i < n; ++i) {
+            const std::array<double, K> v = f(src[i]);
+            for (std::size_t k = 0; k < K; ++k) dst[k][i] = v[k];
+        }
+    }
+    py::dict d;
+    for (std::size_t k = 0; k < K; ++k) {
+        if (x.ndim() == 0) d[names[k]] = py::float_(dst[k][0]);
+        else d[names[k]] = out[k];
+    }
+    return d;
+}
+
+void bind_motion(py::module_& m);
+void bind_geometry(py::module_& m);
+
+}  // namespace camfollower::python

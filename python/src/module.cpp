@@ -1,0 +1,8 @@
+// camfollower._core: the compiled half of the Python package.
+#include "bindings.hpp"
+
+PYBIND11_MODULE(_core, m) {
+    m.doc() = "camfollower compiled core (use the camfollower package, not this module directly)";
+    camfollower::python::bind_motion(m);
+    camfollower::python::bind_geometry(m);
+}

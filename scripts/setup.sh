@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Install what this machine lacks, then build and install the Python package into .venv.
+# Used by scripts/study.sh and scripts/test.sh; safe to run again (it skips what is done).
+#   Debian packages: compilers, CMake, Ninja, Eigen 3.4, SuiteSparse, Catch2 v2, Google Benchmark.
+#   PyPI (into .venv): numpy, scipy, matplotlib, pytest, sympy, pybind11, scikit-build-core.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+apt_packages=(build-essential cmake ninja-build libeigen3-dev libsuitesparse-dev catch2 libbenchmark-dev
+              python3 python3-dev python3-venv)
+missing=()
+for p in "${apt_packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup: installing Debian packages: ${missing[*]}"
+  sudo=""; [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}" >/dev/null
+fi
+
+python=${PYTHON:-python3}
+if [ ! -x .venv/bin/python ]; then
+  echo "setup: creating .venv with $($python --version)"
+  $python -m venv .venv
+fi
+export PIP_DISABLE_PIP_VERSION_CHECK=1
+pip_packages=(numpy scipy matplotlib pytest sympy "pybind11>=2.12" "scikit-build-core>=0.10")
+if ! .venv/bin/python -c "import numpy, scipy, matplotlib, pytest, sympy, pybind11, scikit_build_core" 2>/dev/null; then
+  echo "setup: installing Python packages into .venv"
+  .venv/bin/python -m pip install -q "${pip_packages[@]}"
+fi
+
+# Rebuild the package only when its sources changed.
+stamp=$(cat pyproject.toml CMakeLists.txt cmake/* $(find include python -type f \( -name '*.hpp' -o -name '*.cpp' -o -name '*.py' -o -name '*.txt' -o -name '*.pyi' \) | sort) | sha256sum | cut -c1-16)
+if [ "$(cat .venv/.camfollower-stamp 2>/dev/null)" != "$stamp" ]; then
+  echo "setup: building and installing the camfollower Python package"
+  .venv/bin/python -m pip install -q --no-build-isolation .
+  echo "$stamp" > .venv/.camfollower-stamp
+fi

@@ -1,0 +1,122 @@
+// Motion program: paper Table 1, continuity at every boundary, periodicity, validation.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "camfollower/motion/program.hpp"
+
+using namespace camfollower;
+
+namespace {
+const double deg = pi / 180.0;
+
+// Left and right limits of h and its derivatives at theta.
+std::pair<FollowerMotion, FollowerMotion> limits(const MotionProgram& p, double theta, double eps = 1e-11) {
+    return {p.evaluate(theta - eps), p.evaluate(theta + eps)};
+}
+}  // namespace
+
+TEST_CASE("paper Table 1 program: levels, lifts and the rise acceleration peak") {
+    const MotionProgram p = MotionProgram::paper_default();
+    REQUIRE(p.segments().size() == 4);
+    CHECK(p.evaluate(15 * deg).h == 0.0);
+    CHECK(p.evaluate(195 * deg).h == Approx(0.010).epsilon(1e-14));
+    CHECK(p.evaluate(105 * deg).h == Approx(0.005).epsilon(1e-13));  // symmetric law: half lift at mid-rise
+    CHECK(p.evaluate(285 * deg).h == Approx(0.005).epsilon(1e-13));
+    // Modified trapezoid rise over 150 deg: peak h'' = 10 mm * (8 pi / (pi + 2)) / beta^2,
+    // reached at x = 1/8..3/8, i.e. theta = 48.75..86.25 deg.
+    const double beta = 150 * deg;
+    const double expected = 0.010 * (8 * pi / (pi + 2)) / (beta * beta);
+    CHECK(p.evaluate(60 * deg).d2h == Approx(expected).epsilon(1e-12));
+    CHECK(p.max_lift() == 0.010);
+    CHECK(p.min_lift() == 0.0);
+}
+
+TEST_CASE("paper program is C2: h, h' and h'' continuous at every segment boundary") {
+    const MotionProgram p = MotionProgram::paper_default();
+    for (double b : {0.0, 30 * deg, 180 * deg, 210 * deg, 360 * deg}) {
+        INFO("boundary at " << b / deg << " deg");
+        const auto [l, r] = limits(p, b);
+        CHECK(std::abs(l.h - r.h) < 1e-12);
+        CHECK(std::abs(l.dh - r.dh) < 1e-10);
+        CHECK(std::abs(l.d2h - r.d2h) < 1e-8);
+    }
+}
+
+TEST_CASE("constant acceleration program: h'' jumps by the documented 4 dh / beta^2") {
+    const double lift = 0.02, beta = 120 * deg;
+    const MotionProgram p({{MotionLaw::constant_acceleration(), 0.0, beta, 0.0, lift},
+                           {MotionLaw::dwell(), beta, 180 * deg, lift, lift},
+                           {MotionLaw::cycloidal(), 180 * deg, 2 * pi, lift, 0.0}});
+    const auto [l, r] = limits(p, 0.0);
+    CHECK(std::abs(l.dh - r.dh) < 1e-10);  // velocity still continuous
+    CHECK(r.d2h - l.d2h == Approx(4 * lift / (beta * beta)).epsilon(1e-9));
+    const auto [ml, mr] = limits(p, beta / 2);
+    CHECK(ml.d2h - mr.d2h == Approx(8 * lift / (beta * beta)).epsilon(1e-9));
+}
+
+TEST_CASE("derivatives of h against central differences over a whole revolution") {
+    const MotionProgram p = MotionProgram::paper_default();
+    const double h = 1e-6;
+    for (int k = 0; k < 720; ++k) {
+        const double t = (k + 0.29) * 0.5 * deg;
+        const auto lo = p.evaluate(t - h), mid = p.evaluate(t), hi = p.evaluate(t + h);
+        INFO("theta = " << t / deg << " deg");
+        CHECK((hi.h - lo.h) / (2 * h) == Approx(mid.dh).margin(1e-9));
+        CHECK((hi.dh - lo.dh) / (2 * h) == Approx(mid.d2h).margin(1e-8));
+    }
+}
+
+TEST_CASE("the program is periodic in theta") {
+    const MotionProgram p = MotionProgram::paper_default();
+    for (double t : {0.1, 1.0, 3.0, 5.5}) {
+        for (int k : {-3, -1, 1, 10, 1000}) {
+            const auto a = p.evaluate(t), b = p.evaluate(t + 2 * pi * k);
+            CHECK(b.h == Approx(a.h).margin(1e-12));
+            CHECK(b.d2h == Approx(a.d2h).margin(1e-9));
+        }
+    }
+    CHECK(p.segment_index(-1e-3) == 3);
+    CHECK(p.segment_index(2 * pi) == 0);
+}
+
+TEST_CASE("invalid programs are rejected with the parameter named") {
+    const MotionLaw mt = MotionLaw::modified_trapezoid(), dw = MotionLaw::dwell();
+    SECTION("gap") {
+        CHECK_THROWS_WITH(MotionProgram({{dw, 0.0, 30 * deg, 0, 0}, {mt, 40 * deg, 2 * pi, 0, 0}}),
+                          Catch::Contains("segments[1].theta_start") && Catch::Contains("gap"));
+    }
+    SECTION("overlap") {
+        CHECK_THROWS_WITH(MotionProgram({{dw, 0.0, 30 * deg, 0, 0}, {mt, 20 * deg, 2 * pi, 0, 0}}),
+                          Catch::Contains("overlaps"));
+    }
+    SECTION("does not start at 0") {
+        CHECK_THROWS_WITH(MotionProgram({{mt, 1 * deg, 2 * pi, 0, 0}}), Catch::Contains("start at 0"));
+    }
+    SECTION("does not reach 360") {
+        CHECK_THROWS_WITH(MotionProgram({{dw, 0, 300 * deg, 0, 0}}), Catch::Contains("end at 360"));
+    }
+    SECTION("beta <= 0") {
+        CHECK_THROWS_WITH(MotionProgram({{dw, 0, 0, 0, 0}, {dw, 0, 2 * pi, 0, 0}}),
+                          Catch::Contains("segments[0]: span beta") && Catch::Contains("> 0"));
+    }
+    SECTION("levels do not chain") {
+        CHECK_THROWS_WITH(
+            MotionProgram({{mt, 0, pi, 0, 0.01}, {mt, pi, 2 * pi, 0.02, 0.0}}),
+            Catch::Contains("segments[1].h_start") && Catch::Contains("levels must chain"));
+    }
+    SECTION("does not close") {
+        CHECK_THROWS_WITH(MotionProgram({{mt, 0, pi, 0, 0.01}, {dw, pi, 2 * pi, 0.01, 0.01}}),
+                          Catch::Contains("close over one revolution"));
+    }
+    SECTION("dwell with a lift") {
+        CHECK_THROWS_WITH(MotionProgram({{dw, 0, pi, 0, 0.01}, {mt, pi, 2 * pi, 0.01, 0.0}}),
+                          Catch::Contains("a dwell must have h_end == h_start"));
+    }
+    SECTION("non-finite") {
+        CHECK_THROWS_WITH(MotionProgram({{mt, 0, pi, 0, std::nan("")}, {mt, pi, 2 * pi, 0, 0}}),
+                          Catch::Contains("segments[0].h_start/h_end must be finite"));
+        CHECK_THROWS_WITH(MotionProgram::paper_default().evaluate(INFINITY), Catch::Contains("theta must be finite"));
+    }
+    SECTION("empty") { CHECK_THROWS_AS(MotionProgram({}), std::invalid_argument); }
+}
