@@ -47,6 +47,7 @@ public:
         Vector g, g_dot;               // d delta / dq and its time derivative
         double delta0, delta0_dot;     // delta = g^T q + delta0
         Vector external;               // applied forces (preload, gravity, backlash excitation)
+        double pressure_angle() const { return kinematics.pressure_angle(); }
     };
 
     struct Nonlinear {

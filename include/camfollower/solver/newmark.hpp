@@ -1,8 +1,8 @@
 // Implicit Newmark-beta / HHT-alpha time integration with Newton-Raphson on the effective residual.
 //
 // System concept (see CamFollowerModel): dofs, Vector/Matrix (fixed size), mass_matrix(),
-// damping_matrix(), stiffness_matrix(), initial_state(), at_time(t) -> TimeContext (with a
-// direction g), nonlinear(ctx, q, v) -> {force, delta, delta_dot, contact}, and
+// damping_matrix(), stiffness_matrix(), initial_state(), at_time(t) -> TimeContext (members theta,
+// g: the contact direction; pressure_angle()), nonlinear(ctx, q, v) -> {force, delta, contact}, and
 // tangent_row(ctx, nl, velocity_factor) -> w such that d force / dq = g w^T.
 //
 // Residual (HHT-alpha, alpha in [-1/3, 0]; alpha = 0 is plain Newmark):
@@ -124,6 +124,9 @@ public:
                                  s0.nl.force.cwiseAbs().maxCoeff()});
     }
 
+    // The solver keeps a reference to the system: a temporary would dangle.
+    NewmarkSolver(System&&, const NewmarkSettings&) = delete;
+
     const NewmarkSettings& settings() const { return s_; }
     double force_scale() const { return force_scale_; }
 
@@ -215,7 +218,7 @@ private:
     void finish(State& s, const Context& ctx) const {
         s.nl = system_.nonlinear(ctx, s.q, s.v);
         s.theta = ctx.theta;
-        s.pressure_angle = ctx.kinematics.pressure_angle();
+        s.pressure_angle = ctx.pressure_angle();
     }
 
     bool try_step(const State& s, State& out, int level, int& iterations, double& residual) const {

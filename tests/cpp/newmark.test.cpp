@@ -1,0 +1,153 @@
+// Newmark-beta / HHT-alpha solver on linear systems with exact solutions.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "camfollower/motion/laws.hpp"
+#include "camfollower/solver/newmark.hpp"
+#include "linear_system.hpp"
+
+using namespace camfollower;
+
+namespace {
+
+// Damped SDOF released from x0 at rest: x = e^{-zeta w t} (x0 cos wd t + zeta w x0 / wd sin wd t).
+struct Sdof {
+    double m = 2.0, k = 800.0, c = 4.0, x0 = 0.01;
+    LinearSystem<1> system() const {
+        LinearSystem<1> s;
+        s.M(0, 0) = m, s.K(0, 0) = k, s.C(0, 0) = c, s.q0[0] = x0;
+        return s;
+    }
+    double exact(double t) const {
+        const double w = std::sqrt(k / m), zeta = c / (2 * std::sqrt(k * m)), wd = w * std::sqrt(1 - zeta * zeta);
+        return std::exp(-zeta * w * t) * (x0 * std::cos(wd * t) + zeta * w * x0 / wd * std::sin(wd * t));
+    }
+};
+
+double max_error(const Sdof& sdof, const NewmarkSettings& settings, double duration) {
+    const auto system = sdof.system();
+    const auto r = NewmarkSolver<LinearSystem<1>>(system, settings).run(duration);
+    double err = 0.0;
+    for (std::size_t i = 0; i < r.rows; ++i) err = std::max(err, std::abs(r.q[i] - sdof.exact(r.t[i])));
+    return err;
+}
+
+}  // namespace
+
+TEST_CASE("linear SDOF: average acceleration matches the exact solution, order 2") {
+    const Sdof sdof;
+    const double period = 2 * pi / std::sqrt(sdof.k / sdof.m);
+    NewmarkSettings s;
+    double errors[4];
+    for (int i = 0; i < 4; ++i) {
+        s.time_step = period / (40.0 * (1 << i));
+        errors[i] = max_error(sdof, s, 3 * period);
+    }
+    CHECK(errors[3] < 1e-3 * sdof.x0);  // ~ (w dt)^2 / 12 phase error per radian
+    for (int i = 0; i < 3; ++i) {
+        const double order = std::log2(errors[i] / errors[i + 1]);
+        INFO("dt = T/" << 40 * (1 << i) << ": error " << errors[i] << ", observed order " << order);
+        CHECK(order == Approx(2.0).margin(0.05));
+    }
+}
+
+TEST_CASE("HHT-alpha is second order too, and damps a high-frequency mode") {
+    const Sdof sdof;
+    const double period = 2 * pi / std::sqrt(sdof.k / sdof.m);
+    const double e1 = max_error(sdof, NewmarkSettings::hht(-0.1, period / 80), 3 * period);
+    const double e2 = max_error(sdof, NewmarkSettings::hht(-0.1, period / 160), 3 * period);
+    CHECK(std::log2(e1 / e2) == Approx(2.0).margin(0.1));
+
+    // Undamped oscillator, dt = period / 2 (unresolved): trapezoidal keeps the amplitude, HHT kills it.
+    Sdof stiff;
+    stiff.c = 0.0;
+    const double T = 2 * pi / std::sqrt(stiff.k / stiff.m);
+    const auto system = stiff.system();
+    auto final_energy_ratio = [&](const NewmarkSettings& s) {
+        const auto r = NewmarkSolver<LinearSystem<1>>(system, s).run(50 * T);
+        const double x = r.q.back(), v = r.v.back();
+        return (stiff.m * v * v + stiff.k * x * x) / (stiff.k * stiff.x0 * stiff.x0);
+    };
+    NewmarkSettings trapezoidal;
+    trapezoidal.time_step = T / 2;
+    CHECK(final_energy_ratio(trapezoidal) == Approx(1.0).epsilon(1e-12));
+    CHECK(final_energy_ratio(NewmarkSettings::hht(-0.3, T / 2)) < 1e-4);
+}
+
+TEST_CASE("trapezoidal rule conserves the energy of an undamped linear system to round-off") {
+    LinearSystem<3> s;
+    s.M.diagonal() << 2.0, 1.0, 0.5;
+    s.K << 300, -100, 0, -100, 250, -150, 0, -150, 150;
+    s.q0 << 0.01, -0.02, 0.03;
+    NewmarkSettings settings;
+    settings.time_step = 1e-3;
+    const auto r = NewmarkSolver<LinearSystem<3>>(s, settings).run(20.0);
+    auto energy = [&](std::size_t i) {
+        const Eigen::Map<const Eigen::Vector3d> q(&r.q[3 * i]), v(&r.v[3 * i]);
+        return 0.5 * v.dot(s.M * v) + 0.5 * q.dot(s.K * q);
+    };
+    const double e0 = energy(0);
+    double drift = 0;
+    for (std::size_t i = 0; i < r.rows; ++i) drift = std::max(drift, std::abs(energy(i) - e0));
+    INFO("relative energy drift over 20000 steps: " << drift / e0);
+    CHECK(drift / e0 < 1e-12);
+    // With Newmark's damped variant (gamma > 1/2) it must decay: the check can fail.
+    settings.gamma = 0.6;
+    settings.beta = 0.3025;
+    const auto d = NewmarkSolver<LinearSystem<3>>(s, settings).run(20.0);
+    const Eigen::Map<const Eigen::Vector3d> q(&d.q[3 * (d.rows - 1)]), v(&d.v[3 * (d.rows - 1)]);
+    CHECK(0.5 * v.dot(s.M * v) + 0.5 * q.dot(s.K * q) < 0.9 * e0);
+}
+
+TEST_CASE("decimation keeps every n-th row of the full run") {
+    const Sdof sdof;
+    NewmarkSettings s;
+    s.time_step = 1e-3;
+    const auto system = sdof.system();
+    const auto full = NewmarkSolver<LinearSystem<1>>(system, s).run(1.0);
+    const auto dec = NewmarkSolver<LinearSystem<1>>(system, s).run(1.0, 7);
+    REQUIRE(full.rows == 1001);
+    REQUIRE(dec.rows == 1000 / 7 + 1);
+    for (std::size_t i = 0; i < dec.rows; ++i) {
+        CHECK(dec.t[i] == full.t[7 * i]);
+        CHECK(dec.q[i] == full.q[7 * i]);
+    }
+}
+
+TEST_CASE("bad settings and durations are rejected with the parameter named") {
+    const Sdof sdof;
+    const auto system = sdof.system();
+    NewmarkSettings s;
+    s.time_step = 0.0;
+    CHECK_THROWS_WITH((NewmarkSolver<LinearSystem<1>>(system, s)), Catch::Contains("time_step must be finite and > 0"));
+    s.time_step = NAN;
+    CHECK_THROWS_WITH((NewmarkSolver<LinearSystem<1>>(system, s)), Catch::Contains("time_step"));
+    s = NewmarkSettings{};
+    s.hht_alpha = -0.5;
+    CHECK_THROWS_WITH((NewmarkSolver<LinearSystem<1>>(system, s)), Catch::Contains("hht_alpha must be in [-0.33"));
+    s = NewmarkSettings{};
+    s.beta = 0.0;
+    CHECK_THROWS_WITH((NewmarkSolver<LinearSystem<1>>(system, s)), Catch::Contains("beta must be in (0, 0.5]"));
+    s = NewmarkSettings{};
+    const NewmarkSolver<LinearSystem<1>> solver(system, s);
+    CHECK_THROWS_WITH(solver.run(-1.0), Catch::Contains("duration must be finite and > 0"));
+    CHECK_THROWS_WITH(solver.run(INFINITY), Catch::Contains("duration"));
+    CHECK_THROWS_WITH(solver.run(1.0, 0), Catch::Contains("decimation must be >= 1"));
+    CHECK_THROWS_WITH(solver.run(1e9), Catch::Contains("too many"));
+    CHECK_THROWS_WITH(solver.run(1e3, 1, 1e6), Catch::Contains("max_output_bytes") && Catch::Contains("increase decimation"));
+}
+
+TEST_CASE("a step that cannot converge halves, then reports time, step, iterations and residual") {
+    const Sdof sdof;
+    NewmarkSettings s;
+    s.time_step = 1e-3;
+    s.max_iterations = 1;  // one Newton iteration can never confirm convergence
+    s.max_halvings = 3;
+    const auto system = sdof.system();
+    const NewmarkSolver<LinearSystem<1>> solver(system, s);
+    CHECK_THROWS_AS(solver.run(0.01), ConvergenceError);
+    CHECK_THROWS_WITH(solver.run(0.01), Catch::Contains("did not converge at t = 0 s") &&
+                                            Catch::Contains("time step 0.000125 s (3 halvings)") &&
+                                            Catch::Contains("after 1 iterations; residual"));
+}
