@@ -9,7 +9,27 @@ package re-exports it and adds the Python-side analysis and the paper study.
 0.036661
 """
 
-from ._core import DiskCam, MotionLaw, MotionProgram, PeakCoefficients, Segment
+from ._core import (
+    CamFollowerModel,
+    Defects,
+    DiskCam,
+    MotionLaw,
+    MotionProgram,
+    Parameters,
+    PeakCoefficients,
+    Segment,
+    simulate,
+)
 
-__all__ = ["DiskCam", "MotionLaw", "MotionProgram", "PeakCoefficients", "Segment"]
+__all__ = [
+    "CamFollowerModel",
+    "Defects",
+    "DiskCam",
+    "MotionLaw",
+    "MotionProgram",
+    "Parameters",
+    "PeakCoefficients",
+    "Segment",
+    "simulate",
+]
 __version__ = "0.1.0"

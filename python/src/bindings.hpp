@@ -42,5 +42,7 @@ py::dict map_to_dict(const DoubleArray& x, const std::array<const char*, K>& nam
 
 void bind_motion(py::module_& m);
 void bind_geometry(py::module_& m);
+void bind_model(py::module_& m);
+void bind_solver(py::module_& m);
 
 }  // namespace camfollower::python

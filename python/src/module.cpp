@@ -5,4 +5,6 @@ PYBIND11_MODULE(_core, m) {
     m.doc() = "camfollower compiled core (use the camfollower package, not this module directly)";
     camfollower::python::bind_motion(m);
     camfollower::python::bind_geometry(m);
+    camfollower::python::bind_model(m);
+    camfollower::python::bind_solver(m);
 }
