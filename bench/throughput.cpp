@@ -1,0 +1,75 @@
+// Throughput of the 7-DOF Newmark-Newton integration (Google Benchmark).
+//   cmake -S . -B build-bench -DCAMFOLLOWER_BUILD_BENCHMARKS=ON && cmake --build build-bench
+//   build-bench/bench/camfollower_bench
+// items_per_second = time steps per second; iterations_per_step = Newton linear solves per step.
+#include <benchmark/benchmark.h>
+
+#include "camfollower/camfollower.hpp"
+
+namespace cf = camfollower;
+using Model = cf::CamFollowerModel;
+
+namespace {
+
+cf::Defects defect_case(int which) {
+    cf::Defects d;
+    if (which == 1) d.eccentricity = 10e-6;
+    if (which == 2) d.backlash = 10e-6, d.backlash_switch_width = cf::degrees_to_radians(2.0);
+    return d;
+}
+
+// Bare stepping: advance() over one revolution, no output recorded.
+void BM_Steps(benchmark::State& state) {
+    const Model model({}, cf::MotionProgram::paper_default(), defect_case(int(state.range(0))));
+    cf::NewmarkSettings settings;
+    settings.linear_solver = state.range(1) ? cf::LinearSolver::dense_lu : cf::LinearSolver::sherman_morrison;
+    const cf::NewmarkSolver<Model> solver(model, settings);
+    const auto steps = static_cast<std::int64_t>(model.period() / settings.time_step);
+    cf::SolverStatistics stats;
+    for (auto _ : state) {
+        auto s = solver.initial_state();
+        for (std::int64_t n = 0; n < steps; ++n) solver.advance(s, stats);
+        benchmark::DoNotOptimize(s.q.data());
+    }
+    state.SetItemsProcessed(state.iterations() * steps);
+    state.counters["iterations_per_step"] = stats.mean_iterations();
+    state.counters["ns_per_step"] = benchmark::Counter(double(state.iterations() * steps),
+                                                       benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+    state.SetLabel(std::string(state.range(0) == 0 ? "healthy" : state.range(0) == 1 ? "eccentricity" : "backlash") +
+                   (state.range(1) ? ", dense LU" : ", Sherman-Morrison"));
+}
+BENCHMARK(BM_Steps)->ArgsProduct({{0, 1, 2}, {0, 1}})->Unit(benchmark::kMillisecond);
+
+// A whole run with every step recorded (what simulate() does).
+void BM_RunRecorded(benchmark::State& state) {
+    const Model model;
+    const cf::NewmarkSolver<Model> solver(model, cf::NewmarkSettings{});
+    std::uint64_t steps = 0;
+    for (auto _ : state) {
+        const auto r = solver.run(model.period(), std::size_t(state.range(0)));
+        steps = r.stats.steps;
+        benchmark::DoNotOptimize(r.q.data());
+    }
+    state.SetItemsProcessed(state.iterations() * std::int64_t(steps));
+    state.SetLabel("decimation " + std::to_string(state.range(0)));
+}
+BENCHMARK(BM_RunRecorded)->Arg(1)->Arg(100)->Unit(benchmark::kMillisecond);
+
+// The time-dependent part of a step: cam profile, contact direction, defect terms.
+void BM_ProfileEvaluation(benchmark::State& state) {
+    const Model model({}, cf::MotionProgram::paper_default(), defect_case(int(state.range(0))));
+    double t = 0.0;
+    const double dt = 3e-6;
+    for (auto _ : state) {
+        const auto c = model.at_time(t);
+        benchmark::DoNotOptimize(c.delta0);
+        t += dt;
+        if (t > model.period()) t = 0.0;
+    }
+    state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_ProfileEvaluation)->Arg(0)->Arg(1)->Arg(2);
+
+}  // namespace
+
+BENCHMARK_MAIN();
