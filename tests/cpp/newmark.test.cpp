@@ -151,3 +151,32 @@ TEST_CASE("a step that cannot converge halves, then reports time, step, iteratio
                                             Catch::Contains("time step 0.000125 s (3 halvings)") &&
                                             Catch::Contains("after 1 iterations; residual"));
 }
+
+TEST_CASE("Bathe's 2-DOF worked example (Finite Element Procedures, trapezoidal rule) to its printed digits") {
+    // M = diag(2, 1), K = [6 -2; -2 4], R = (0, 10), U0 = 0, dt = 0.28, Newmark gamma = 1/2, beta = 1/4.
+    // Values as printed (3 significant digits); transcribed from the book by Kratos' GeoMechanics tests
+    // ("Finite Element Procedures, Bathe K.J., 1996, page 782") and by gfsReboucas/Drivetrain.
+    LinearSystem<2> s;
+    s.M.diagonal() << 2.0, 1.0;
+    s.K << 6, -2, -2, 4;
+    s.load = [](double) { return Eigen::Vector2d(0.0, 10.0); };
+    NewmarkSettings settings;
+    settings.time_step = 0.28;
+    const auto r = NewmarkSolver<LinearSystem<2>>(s, settings).run(12 * 0.28);
+    const double u1[12] = {0.00673, 0.0505, 0.189, 0.485, 0.961, 1.58, 2.23, 2.76, 3.00, 2.85, 2.28, 1.40};
+    const double u2[12] = {0.364, 1.35, 2.68, 4.00, 4.95, 5.34, 5.13, 4.48, 3.64, 2.90, 2.44, 2.31};
+    REQUIRE(r.rows == 13);
+    // Agreement to the printed digits: within one unit of the last printed digit everywhere, and
+    // identical after rounding in all but one entry (step 2: U1 = 0.050448, printed 0.0505).
+    auto unit = [](double printed) { return std::pow(10.0, std::floor(std::log10(std::abs(printed))) - 2); };
+    auto rounded = [&](double x, double printed) { return std::round(x / unit(printed)) * unit(printed); };
+    int identical = 0;
+    for (int i = 0; i < 12; ++i) {
+        const double a = r.q[2 * (i + 1)], b = r.q[2 * (i + 1) + 1];
+        INFO("step " << i + 1 << ": U = (" << a << ", " << b << ")");
+        CHECK(std::abs(a - u1[i]) <= unit(u1[i]));
+        CHECK(std::abs(b - u2[i]) <= unit(u2[i]));
+        identical += (std::abs(rounded(a, u1[i]) - u1[i]) < 1e-9) + (std::abs(rounded(b, u2[i]) - u2[i]) < 1e-9);
+    }
+    CHECK(identical >= 23);
+}
