@@ -1,15 +1,22 @@
-// camfollower command line: kinematics summary of the paper cam (more subcommands to come).
+// camfollower command line.
+//   camfollower kinematics [rpm]         the paper cam's kinematic summary
+//   camfollower run CONFIG [-o FILE]     simulate a case from a config file (see examples/), CSV out
+//   camfollower modes [theta_deg]        natural frequencies of the paper model (config-free)
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <fstream>
 #include <string>
 
 #include "camfollower/camfollower.hpp"
+#include "config.hpp"
 
 namespace cf = camfollower;
 
 namespace {
+
 int kinematics(double rpm) {
+    cf::detail::require_positive(rpm, "rpm");
     const cf::DiskCam cam = cf::DiskCam::paper_default();
     const double omega = rpm * cf::two_pi / 60.0;
     const auto rise = cam.max_pressure_angle_rise();
@@ -26,21 +33,82 @@ int kinematics(double rpm) {
                 cf::radians_to_degrees(rise.value), cf::radians_to_degrees(rise.theta));
     std::printf("max |pressure angle|, return: %+.4f deg at theta = %.3f deg\n",
                 cf::radians_to_degrees(ret.value), cf::radians_to_degrees(ret.theta));
-    std::printf("min cam-surface radius of curvature (convex): %.4f mm at theta = %.3f deg\n",
-                rho.value * 1e3, cf::radians_to_degrees(rho.theta));
+    std::printf("min cam-surface radius of curvature (convex): %.4f mm at theta = %.3f deg\n", rho.value * 1e3,
+                cf::radians_to_degrees(rho.theta));
     std::printf("min cam-surface radius of curvature on the rise/return flanks: %.4f mm at theta = %.3f deg\n",
                 rho_flank.value * 1e3, cf::radians_to_degrees(rho_flank.theta));
-    std::printf("max theoretical follower acceleration at %.0f rpm: %.4f m/s^2 at theta = %.3f deg\n",
-                rpm, omega * omega * amax, cf::radians_to_degrees(at));
+    std::printf("max theoretical follower acceleration at %.0f rpm: %.4f m/s^2 at theta = %.3f deg\n", rpm,
+                omega * omega * amax, cf::radians_to_degrees(at));
     return 0;
 }
+
+int modes(double theta_deg) {
+    const cf::CamFollowerModel model;
+    const auto with = cf::modal_analysis(model, cf::degrees_to_radians(theta_deg));
+    const auto without = cf::modal_analysis(model, 0.0, false);
+    std::printf("natural frequencies of the paper model (Hz); contact linearized at theta = %g deg\n", theta_deg);
+    std::printf("%-6s %12s %12s %12s\n", "mode", "contact", "no contact", "Table 3");
+    const int table3[7] = {2447, 2447, 5711, 12777, 13990, 17009, 17009};
+    for (int k = 0; k < 7; ++k)
+        std::printf("f0%-4d %12.1f %12.1f %12d\n", k + 1, with.frequencies_hz[k], without.frequencies_hz[k], table3[k]);
+    return 0;
+}
+
+int run(const std::string& config_path, const std::string& output_override) {
+    const cf::cli::RunConfig c = cf::cli::load_config(config_path);
+    const std::string output = output_override.empty() ? c.output : output_override;
+    const cf::CamFollowerModel model(c.parameters, cf::MotionProgram::paper_default(), c.defects);
+    cf::NewmarkSettings settings;
+    settings.time_step = c.time_step > 0 ? c.time_step : model.period() / c.steps_per_revolution;
+    const cf::NewmarkSolver<cf::CamFollowerModel> solver(model, settings);
+    const auto r = solver.run(c.revolutions * model.period(), static_cast<std::size_t>(c.decimation));
+    const std::string tmp = output + ".tmp";
+    {
+        std::ofstream out(tmp);
+        if (!out) cf::detail::fail("output: cannot open '", output, "' for writing");
+        out.precision(12);
+        out << "t_s,theta_rad";
+        for (const char* d : {"y1", "y2", "y3", "y4", "x1", "x2", "x3"}) out << ",q_" << d << "_m";
+        for (const char* d : {"y1", "y2", "y3", "y4", "x1", "x2", "x3"}) out << ",a_" << d << "_m_s2";
+        out << ",contact_force_N,contact_stiffness_N_m,pressure_angle_rad,in_contact\n";
+        for (std::size_t i = 0; i < r.rows; ++i) {
+            out << r.t[i] << ',' << r.theta[i];
+            for (int k = 0; k < 7; ++k) out << ',' << r.q[7 * i + k];
+            for (int k = 0; k < 7; ++k) out << ',' << r.a[7 * i + k];
+            out << ',' << r.contact_force[i] << ',' << r.contact_stiffness[i] << ',' << r.pressure_angle[i] << ','
+                << int(r.in_contact[i]) << '\n';
+        }
+        if (!out.flush()) cf::detail::fail("output: writing '", output, "' failed");
+    }
+    if (std::rename(tmp.c_str(), output.c_str()) != 0) {
+        std::remove(tmp.c_str());
+        cf::detail::fail("output: cannot rename the temporary file to '", output, "'");
+    }
+    double lost = 0;
+    for (const auto& [a, b] : r.contact_loss) lost += b - a;
+    std::printf("%zu rows (%llu steps, dt = %.4g s, %.3f Newton iterations/step), contact lost %.4g s -> %s\n",
+                r.rows, static_cast<unsigned long long>(r.stats.steps), settings.time_step,
+                r.stats.mean_iterations(), lost, output.c_str());
+    return 0;
+}
+
+void usage() {
+    std::fprintf(stderr,
+                 "usage: camfollower kinematics [rpm]\n"
+                 "       camfollower modes [theta_deg]\n"
+                 "       camfollower run CONFIG.toml [-o OUTPUT.csv]\n");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     try {
-        if (argc >= 2 && std::strcmp(argv[1], "kinematics") == 0)
-            return kinematics(argc >= 3 ? std::stod(argv[2]) : 750.0);
-        std::fprintf(stderr, "usage: camfollower kinematics [rpm]\n");
+        const std::string cmd = argc >= 2 ? argv[1] : "";
+        if (cmd == "kinematics") return kinematics(argc >= 3 ? std::stod(argv[2]) : 750.0);
+        if (cmd == "modes") return modes(argc >= 3 ? std::stod(argv[2]) : 0.0);
+        if (cmd == "run" && (argc == 3 || (argc == 5 && std::strcmp(argv[3], "-o") == 0)))
+            return run(argv[2], argc == 5 ? argv[4] : "");
+        usage();
         return 2;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "camfollower: error: %s\n", e.what());

@@ -61,6 +61,20 @@ TEST_CASE("static equilibrium on the dwell: the axial contact force is the sprin
     CHECK(q[Model::y1] == Approx(-preload / 2.6e8).epsilon(1e-9));
 }
 
+TEST_CASE("quasi-static equilibrium converges at every cam angle, axial force = spring force") {
+    const Model m;
+    for (int deg = 0; deg < 360; deg += 5) {
+        const double theta = degrees_to_radians(deg);
+        INFO("theta = " << deg << " deg");
+        const auto q = m.static_equilibrium(theta);
+        const auto c = m.at_time(theta / m.omega());
+        const auto nl = m.nonlinear(c, q, Model::Vector::Zero());
+        // The follower chain is in series: the contact's axial part carries the return spring.
+        CHECK(nl.contact.force * c.kinematics.cos_alpha == Approx(m.spring_preload() + 1.4e4 * q[Model::y4]).epsilon(1e-9));
+        CHECK(q[Model::y4] == Approx(c.kinematics.h).margin(20e-6));
+    }
+}
+
 TEST_CASE("gravity adds the follower weight to the axial contact force") {
     CamFollowerParameters p;
     p.gravity = 9.81;

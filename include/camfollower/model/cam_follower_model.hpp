@@ -16,7 +16,9 @@
 // equilibrium on the dwell (theta = 0, no defects) the spring force is exactly K_rs delta_rs.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include <Eigen/Core>
@@ -174,10 +176,14 @@ public:
     Vector static_equilibrium(double theta) const {
         const TimeContext c = at_time(theta / omega_);
         Vector q = Eigen::PartialPivLU<Matrix>(K_).solve(c.external);
-        const double tolerance = 1e-12 * (c.external.cwiseAbs().maxCoeff() + 1.0);
+        const double scale = c.external.cwiseAbs().maxCoeff() + 1.0;
+        const double norm_K = K_.cwiseAbs().rowwise().sum().maxCoeff();
         for (int it = 0; it < 100; ++it) {
             const ContactResponse f = contact_(c.g.dot(q) + c.delta0, 0.0);  // static: no rate term
             const Vector r = K_ * q + f.force * c.g - c.external;
+            // 1e-12 of the load, or the rounding floor of K q when the lift makes q large.
+            const double tolerance =
+                std::max(1e-12 * scale, 64.0 * std::numeric_limits<double>::epsilon() * norm_K * q.cwiseAbs().maxCoeff());
             q -= Eigen::PartialPivLU<Matrix>(K_ + f.stiffness * c.g * c.g.transpose()).solve(r);
             if (f.in_contact && r.cwiseAbs().maxCoeff() <= tolerance) return q;
         }

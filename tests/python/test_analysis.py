@@ -1,0 +1,67 @@
+"""Analysis helpers on signals with known answers."""
+
+import math
+
+import numpy as np
+import pytest
+
+import camfollower as cf
+from camfollower import analysis as an
+
+
+def test_spectrum_reads_the_amplitude_of_a_sinusoid_on_a_bin():
+    fs, n = 10000.0, 8000  # resolution 1.25 Hz
+    t = np.arange(n) / fs
+    x = 3.0 * np.sin(2 * np.pi * 250.0 * t) + 0.5 * np.cos(2 * np.pi * 1000.0 * t) + 7.0
+    for window in ("hann", "rect"):
+        s = an.spectrum(x, fs, window=window)
+        assert s.resolution == pytest.approx(1.25)
+        assert s.at(250.0) == pytest.approx(3.0, rel=1e-9)
+        assert s.at(1000.0) == pytest.approx(0.5, rel=1e-9)
+        assert s.at(0.0) == pytest.approx(0.0, abs=1e-9)  # detrended
+    peaks = an.find_peaks(an.spectrum(x, fs, window="rect"), 2)
+    assert [f for f, _ in peaks] == [250.0, 1000.0]
+
+
+def test_sidebands_of_an_amplitude_modulated_carrier():
+    # (1 + m cos(2 pi fm t)) sin(2 pi fc t): sidebands of m/2 at fc +- fm.
+    fs, n, fc, fm, m = 8000.0, 8000, 1000.0, 12.5 * 4, 0.3
+    t = np.arange(n) / fs
+    x = (1 + m * np.cos(2 * np.pi * fm * t)) * np.sin(2 * np.pi * fc * t)
+    sb = an.sidebands(an.spectrum(x, fs, window="rect"), fc, fm, orders=2)
+    assert sb["levels"][0] == pytest.approx(1.0, rel=1e-9)
+    assert sb["levels"][1] == pytest.approx(m / 2, rel=1e-9)
+    assert sb["levels"][-1] == pytest.approx(m / 2, rel=1e-9)
+    assert sb["levels"][2] == pytest.approx(0.0, abs=1e-9)
+    assert sb["modulation_ratio"] == pytest.approx(m / math.sqrt(2), rel=1e-9)
+
+
+def test_phase_statistics_and_theoretical_acceleration():
+    model = cf.CamFollowerModel()
+    theta = np.linspace(0, 2 * np.pi, 36001)[:-1]
+    theory = an.theoretical_follower_acceleration(model, theta)
+    stats = an.phase_statistics(model, theta, theory)
+    assert [s["phase"] for s in stats] == ["dwell 0-30 deg", "rise 30-180 deg", "dwell 180-210 deg", "return 210-360 deg"]
+    assert stats[0]["peak"] == 0.0 and stats[2]["rms"] == 0.0
+    peak = model.omega**2 * 0.010 * (8 * np.pi / (np.pi + 2)) / np.radians(150) ** 2
+    assert stats[1]["peak"] == pytest.approx(peak, rel=1e-9)
+
+
+def test_contact_loss_intervals_from_flags():
+    t = np.arange(10.0)
+    flags = np.array([1, 1, 0, 0, 1, 1, 1, 0, 0, 0], dtype=bool)
+    assert an.contact_loss_intervals(t, flags) == [(2.0, 4.0), (7.0, 9.0)]
+    assert an.contact_loss_intervals(t, np.ones(10, bool)) == []
+
+
+def test_last_revolutions_needs_a_step_dividing_the_period():
+    model = cf.CamFollowerModel()
+    r = cf.simulate(model, revolutions=2, time_step=model.period / 4096, decimation=4)
+    w = an.last_revolutions(r, model.period, 1)
+    assert w.stop - w.start == 1024
+    with pytest.raises(ValueError, match="does not divide the period"):
+        an.last_revolutions(cf.simulate(model, revolutions=1, time_step=3e-6, decimation=100), model.period, 1)
+    with pytest.raises(ValueError, match="signal must be finite"):
+        an.spectrum(np.array([1.0, np.nan] * 8), 100.0)
+    with pytest.raises(ValueError, match="window must be"):
+        an.spectrum(np.ones(16), 100.0, window="kaiser")
