@@ -9,7 +9,7 @@ import scipy.linalg
 from scipy.integrate import solve_ivp
 
 import camfollower as cf
-from reference_model import NumpyCamFollower
+from camfollower.reference import NumpyCamFollower
 
 
 @pytest.fixture(scope="module")
