@@ -11,6 +11,10 @@
 // A0 + (1 + alpha) g w^T with A0 = M / (beta dt^2) + (1 + alpha)(gamma / (beta dt) C + K) constant
 // for a given dt: it is factored once per step size, and the rank-one contact term is handled by
 // the Sherman-Morrison formula (default) or by a dense LU of the full matrix every iteration.
+// Convergence: residual below tolerance (or its rounding floor) and Newton increment below
+// tolerance. When the Newton matrix is A0 plus a symmetric positive semi-definite contact term (no
+// contact damping), the next increment is bounded by |r|_2 / lambda_min(A0) and the confirming
+// solve is skipped: a step whose contact state does not change converges in one solve.
 #pragma once
 
 #include <array>
@@ -22,6 +26,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 
 #include "camfollower/error.hpp"
@@ -114,7 +119,15 @@ public:
         for (int level = 0; level <= s_.max_halvings; ++level) {
             const double dt = s_.time_step / double(1 << level);
             A0_[level] = effective_matrix(dt);
+            Aa_[level] = (s_.beta * dt * dt) * A0_[level];
             lu_[level].compute(A0_[level]);
+            // 1 / lambda_min(A0) when A0 is symmetric positive definite (0 disables the bound).
+            inverse_bound_[level] = 0.0;
+            if ((A0_[level] - A0_[level].transpose()).cwiseAbs().maxCoeff() <= 1e-14 * A0_[level].cwiseAbs().maxCoeff()) {
+                const Eigen::SelfAdjointEigenSolver<Matrix> eig(A0_[level], Eigen::EigenvaluesOnly);
+                if (eig.info() == Eigen::Success && eig.eigenvalues()[0] > 0.0)
+                    inverse_bound_[level] = 1.0 / eig.eigenvalues()[0];
+            }
         }
         norm_M_ = M.cwiseAbs().rowwise().sum().maxCoeff();
         norm_C_ = system.damping_matrix().cwiseAbs().rowwise().sum().maxCoeff();
@@ -224,15 +237,16 @@ private:
     bool try_step(const State& s, State& out, int level, int& iterations, double& residual) const {
         const double dt = s_.time_step / double(1 << level);
         const double alpha = s_.hht_alpha, one_alpha = 1.0 + alpha;
-        const Matrix& M = system_.mass_matrix();
         const Matrix& C = system_.damping_matrix();
         const Matrix& K = system_.stiffness_matrix();
         const double t1 = s.t + dt;
         const auto ctx = system_.at_time(t1);
         const Vector q_pred = s.q + dt * s.v + (dt * dt * (0.5 - s_.beta)) * s.a;
         const Vector v_pred = s.v + (dt * (1.0 - s_.gamma)) * s.a;
-        // Part of the HHT residual fixed by the previous state.
-        const Vector previous = alpha * (C * s.v + K * s.q + s.nl.force);
+        // The residual is affine in the new acceleration but for the nonlinear force:
+        // r(a) = Aa a + b + (1 + alpha) f(q, v), Aa = M + (1 + alpha)(gamma dt C + beta dt^2 K).
+        Vector b = one_alpha * (C * v_pred + K * q_pred);
+        if (alpha != 0.0) b -= alpha * (C * s.v + K * s.q + s.nl.force);
         const double v_factor = s_.gamma / (s_.beta * dt);
         // A0^-1 u with u = (1 + alpha) g: the Sherman-Morrison vector, fixed for the step.
         const Vector u = one_alpha * ctx.g;
@@ -247,10 +261,26 @@ private:
             const Vector q = q_pred + q_step * a;
             const Vector v = v_pred + v_step * a;
             const auto nl = system_.nonlinear(ctx, q, v);
-            const Vector r = M * a + one_alpha * (C * v + K * q + nl.force) - previous;
+            const Vector r = Aa_[level] * a + b + one_alpha * nl.force;
             residual = r.cwiseAbs().maxCoeff();
             if (!std::isfinite(residual)) return false;
+            // Rounding floor of the residual: a few ulps of its largest terms.
+            const double floor = 64.0 * std::numeric_limits<double>::epsilon() *
+                                 (norm_M_ * a.cwiseAbs().maxCoeff() + norm_C_ * v.cwiseAbs().maxCoeff() +
+                                  norm_K_ * q.cwiseAbs().maxCoeff());
+            const bool residual_ok = residual <= std::max(r_tol, floor);
+            const double q_tol = s_.increment_tolerance * (q.cwiseAbs().maxCoeff() + 1e-9);
             const Vector w = system_.tangent_row(ctx, nl, v_factor);
+            // The next Newton increment is bounded without solving when the Newton matrix is A0 plus
+            // a symmetric positive semi-definite term (w = s u, s >= 0): |dq|_2 <= |r|_2 / lambda_min(A0).
+            if (iterations > 0 && residual_ok && inverse_bound_[level] > 0.0) {
+                const double s = w.dot(u) / u.squaredNorm();
+                if (s >= 0.0 && (w - s * u).squaredNorm() <= 1e-24 * w.squaredNorm() &&
+                    r.norm() * inverse_bound_[level] <= q_tol) {
+                    accept(out, a, q_pred, v_pred, q_step, v_step, t1, ctx);
+                    return true;
+                }
+            }
             // Newton: (beta dt^2) (A0 + u w^T) da = -r; dq = beta dt^2 da.
             Vector dq;
             if (s_.linear_solver == LinearSolver::sherman_morrison) {
@@ -262,21 +292,22 @@ private:
             }
             a += dq / q_step;
             ++iterations;
-            // Rounding floor of the residual: a few ulps of its largest terms.
-            const double floor = 64.0 * std::numeric_limits<double>::epsilon() *
-                                 (norm_M_ * a.cwiseAbs().maxCoeff() + norm_C_ * v.cwiseAbs().maxCoeff() +
-                                  norm_K_ * q.cwiseAbs().maxCoeff());
-            const double q_tol = s_.increment_tolerance * (q.cwiseAbs().maxCoeff() + 1e-9);
-            if (residual <= std::max(r_tol, floor) && dq.cwiseAbs().maxCoeff() <= q_tol) {
-                out.a = a;
-                out.q = q_pred + q_step * a;
-                out.v = v_pred + v_step * a;
-                out.t = t1;
-                finish(out, ctx);
+            if (residual_ok && dq.cwiseAbs().maxCoeff() <= q_tol) {
+                accept(out, a, q_pred, v_pred, q_step, v_step, t1, ctx);
                 return true;
             }
         }
         return false;
+    }
+
+    template <class Context>
+    void accept(State& out, const Vector& a, const Vector& q_pred, const Vector& v_pred, double q_step,
+                double v_step, double t1, const Context& ctx) const {
+        out.a = a;
+        out.q = q_pred + q_step * a;
+        out.v = v_pred + v_step * a;
+        out.t = t1;
+        finish(out, ctx);
     }
 
     static void reserve(SimulationResult<N>& out, std::size_t rows) {
@@ -306,8 +337,9 @@ private:
 
     const System& system_;
     NewmarkSettings s_;
-    std::array<Matrix, NewmarkSettings::max_levels> A0_;
+    std::array<Matrix, NewmarkSettings::max_levels> A0_, Aa_;
     std::array<Eigen::PartialPivLU<Matrix>, NewmarkSettings::max_levels> lu_;
+    std::array<double, NewmarkSettings::max_levels> inverse_bound_{};
     double force_scale_ = 1.0;
     double norm_M_ = 0.0, norm_C_ = 0.0, norm_K_ = 0.0;  // infinity norms, for the rounding floor
 };
