@@ -9,6 +9,8 @@ package re-exports it and adds the Python-side analysis and the paper study.
 0.036661
 """
 
+import numpy as _numpy  # noqa: F401  (imported here, not lazily inside the first simulate call)
+
 from ._core import (
     CamFollowerModel,
     Defects,
