@@ -180,3 +180,19 @@ TEST_CASE("Bathe's 2-DOF worked example (Finite Element Procedures, trapezoidal 
     }
     CHECK(identical >= 23);
 }
+
+TEST_CASE("beta < 1/4 beyond its stability limit is reported as an instability, not a NaN") {
+    Sdof sdof;
+    sdof.c = 0.0;
+    const auto system = sdof.system();
+    NewmarkSettings s;
+    s.beta = 1.0 / 12.0;  // stable for omega dt < 2.449
+    const double omega = std::sqrt(sdof.k / sdof.m);
+    s.time_step = 2.2 / omega;
+    const auto fine = NewmarkSolver<LinearSystem<1>>(system, s).run(100 * s.time_step);
+    CHECK(std::abs(fine.q.back()) <= 1.01 * sdof.x0);
+    s.time_step = 2.6 / omega;
+    s.max_halvings = 0;
+    CHECK_THROWS_WITH(NewmarkSolver<LinearSystem<1>>(system, s).run(2000 * s.time_step),
+                      Catch::Contains("non-finite") && Catch::Contains("conditionally stable"));
+}

@@ -115,6 +115,12 @@ def test_bad_solver_input_raises_value_error(model, kwargs, message):
         cf.simulate(model, **kwargs)
 
 
+def test_unstable_step_is_reported_not_returned_as_nan(model):
+    # beta = 1/12 is only conditionally stable: T/1024 exceeds the limit for the 12 kHz mode.
+    with pytest.raises(RuntimeError, match="unstable.*conditionally stable"):
+        cf.simulate(model, revolutions=1, time_step=model.period / 1024, beta=1 / 12)
+
+
 def test_non_convergence_raises_runtime_error_with_context(model):
     with pytest.raises(RuntimeError, match=r"did not converge at t = .* s with time step .* residual"):
         cf.simulate(model, revolutions=1, max_iterations=1, max_halvings=2)

@@ -121,6 +121,9 @@ public:
             A0_[level] = effective_matrix(dt);
             Aa_[level] = (s_.beta * dt * dt) * A0_[level];
             lu_[level].compute(A0_[level]);
+            // A 7x7 well-conditioned inverse applied as one matrix-vector product beats two
+            // triangular solves; the factorization stays for the dense-LU option.
+            A0_inv_[level] = lu_[level].inverse();
             // 1 / lambda_min(A0) when A0 is symmetric positive definite (0 disables the bound).
             inverse_bound_[level] = 0.0;
             if ((A0_[level] - A0_[level].transpose()).cwiseAbs().maxCoeff() <= 1e-14 * A0_[level].cwiseAbs().maxCoeff()) {
@@ -168,12 +171,18 @@ public:
             return;
         }
         stats.newton_iterations += std::uint64_t(iterations);
-        if (level >= s_.max_halvings)
+        if (level >= s_.max_halvings) {
+            const double dt = s_.time_step / double(1 << level);
+            if (!std::isfinite(residual))
+                throw ConvergenceError(detail::concat(
+                    "the state became non-finite at t = ", state.t, " s with time step ", dt, " s (", level,
+                    " halvings): the integration is unstable", s_.beta < 0.25 ? " (beta < 1/4 is only conditionally "
+                    "stable: reduce time_step below 2 / (omega_max sqrt(1 - 4 beta)) or use beta = 1/4)" : ""));
             throw ConvergenceError(detail::concat(
-                "Newton-Raphson did not converge at t = ", state.t, " s with time step ",
-                s_.time_step / double(1 << level), " s (", level, " halvings) after ", iterations,
-                " iterations; residual ", residual, " N (tolerance ", s_.residual_tolerance * force_scale_,
-                " N)"));
+                "Newton-Raphson did not converge at t = ", state.t, " s with time step ", dt, " s (", level,
+                " halvings) after ", iterations, " iterations; residual ", residual, " N (tolerance ",
+                s_.residual_tolerance * force_scale_, " N)"));
+        }
         stats.halvings += 1;
         advance(state, stats, level + 1);
         advance(state, stats, level + 1);
@@ -250,7 +259,7 @@ private:
         const double v_factor = s_.gamma / (s_.beta * dt);
         // A0^-1 u with u = (1 + alpha) g: the Sherman-Morrison vector, fixed for the step.
         const Vector u = one_alpha * ctx.g;
-        const Vector A0_inv_u = lu_[level].solve(u);
+        const Vector A0_inv_u = A0_inv_[level] * u;
         const double r_tol = s_.residual_tolerance * force_scale_;
 
         // The unknown is the new acceleration (q and v follow from it): unlike a/q, no rounding error
@@ -277,14 +286,17 @@ private:
                 const double s = w.dot(u) / u.squaredNorm();
                 if (s >= 0.0 && (w - s * u).squaredNorm() <= 1e-24 * w.squaredNorm() &&
                     r.norm() * inverse_bound_[level] <= q_tol) {
-                    accept(out, a, q_pred, v_pred, q_step, v_step, t1, ctx);
+                    // q and v are those nl was evaluated at: reuse it.
+                    out.a = a, out.q = q, out.v = v, out.t = t1, out.nl = nl;
+                    out.theta = ctx.theta;
+                    out.pressure_angle = ctx.pressure_angle();
                     return true;
                 }
             }
             // Newton: (beta dt^2) (A0 + u w^T) da = -r; dq = beta dt^2 da.
             Vector dq;
             if (s_.linear_solver == LinearSolver::sherman_morrison) {
-                const Vector x = lu_[level].solve(r);
+                const Vector x = A0_inv_[level] * r;
                 dq = -(x - A0_inv_u * (w.dot(x) / (1.0 + w.dot(A0_inv_u))));
             } else {
                 const Matrix A = A0_[level] + u * w.transpose();
@@ -337,7 +349,7 @@ private:
 
     const System& system_;
     NewmarkSettings s_;
-    std::array<Matrix, NewmarkSettings::max_levels> A0_, Aa_;
+    std::array<Matrix, NewmarkSettings::max_levels> A0_, Aa_, A0_inv_;
     std::array<Eigen::PartialPivLU<Matrix>, NewmarkSettings::max_levels> lu_;
     std::array<double, NewmarkSettings::max_levels> inverse_bound_{};
     double force_scale_ = 1.0;
