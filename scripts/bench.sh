@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# Benchmarks (not part of the tests): C++ throughput (Google Benchmark), the side-by-side comparison
+# with scipy and Exudyn at equal accuracy, and the scaling runs. Results go to ./bench-out.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+.venv/bin/python -c "import exudyn" 2>/dev/null || .venv/bin/python -m pip install -q exudyn
+mkdir -p bench-out
+cmake -S . -B build-bench -G Ninja -DCMAKE_BUILD_TYPE=Release -DCAMFOLLOWER_BUILD_BENCHMARKS=ON \
+      -DCAMFOLLOWER_BUILD_TESTS=OFF -DCAMFOLLOWER_BUILD_CLI=OFF >/dev/null
+cmake --build build-bench
+build-bench/bench/camfollower_bench --benchmark_out=bench-out/throughput.json --benchmark_out_format=json
+.venv/bin/python bench/compare.py --out bench-out
+.venv/bin/python bench/scaling.py | tee bench-out/scaling.txt
