@@ -177,15 +177,15 @@ def main(argv=None) -> int:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(figsize=(8, 5.5))
+    fig, ax = plt.subplots(figsize=(10, 5.5))
     for tool in tools:
-        pts = sorted((r["wall_s"], r["err_y4"]) for r in rows if r["tool"] == tool)
+        pts = [(r["wall_s"], r["err_y4"]) for r in rows if r["tool"] == tool]  # in order of the setting
         ax.loglog([p[0] for p in pts], [p[1] for p in pts], "o-", label=tool)
     ax.set_xlabel("wall time for one revolution (s)")
     ax.set_ylabel("max relative error in follower displacement y4")
     ax.set_title("Work-precision: 7-DOF cam-follower, one revolution at 750 rpm")
     ax.grid(which="both", alpha=0.3)
-    ax.legend()
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0))
     fig.tight_layout()
     fig.savefig(out / "work_precision.png", dpi=110)
     print(f"\nwrote {out}/compare.csv and {out}/work_precision.png")
