@@ -3,7 +3,7 @@
 # with scipy and Exudyn at equal accuracy, and the scaling runs. Results go to ./bench-out.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/setup.sh
+bash scripts/setup.sh test
 .venv/bin/python -c "import exudyn" 2>/dev/null || .venv/bin/python -m pip install -q exudyn
 mkdir -p bench-out
 cmake -S . -B build-bench -G Ninja -DCMAKE_BUILD_TYPE=Release -DCAMFOLLOWER_BUILD_BENCHMARKS=ON \

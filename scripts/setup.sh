@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
 # Install what this machine lacks, then build and install the Python package into .venv.
-# Used by scripts/study.sh and scripts/test.sh; safe to run again (it skips what is done).
+# Used by scripts/study.sh (`setup.sh study`: what the study needs), scripts/test.sh and
+# scripts/bench.sh (`setup.sh test`: everything). Safe to run again: it skips what is done.
 #   Debian packages: compilers, CMake, Ninja, Eigen 3.4, SuiteSparse, Catch2 v2, Google Benchmark.
-#   PyPI (into .venv): numpy, scipy, matplotlib, pytest, sympy, pybind11, scikit-build-core.
+#   PyPI (into .venv): numpy, matplotlib, pybind11, scikit-build-core; for tests also scipy, pytest, sympy.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+mode=${1:-test}
 
 apt_packages=(build-essential cmake ninja-build libeigen3-dev libsuitesparse-dev catch2 libbenchmark-dev
               python3 python3-dev python3-venv)
@@ -25,16 +27,20 @@ if [ ! -x .venv/bin/python ]; then
   $python -m venv .venv
 fi
 export PIP_DISABLE_PIP_VERSION_CHECK=1
-pip_packages=(numpy scipy matplotlib pytest sympy "pybind11>=2.12" "scikit-build-core>=0.10")
-if ! .venv/bin/python -c "import numpy, scipy, matplotlib, pytest, sympy, pybind11, scikit_build_core" 2>/dev/null; then
-  echo "setup: installing Python packages into .venv"
-  .venv/bin/python -m pip install -q "${pip_packages[@]}"
-fi
+need() {  # need MODULE... : pip-install the given packages unless all modules import
+  local modules=$1; shift
+  if ! .venv/bin/python -c "import $modules" 2>/dev/null; then
+    echo "setup: installing Python packages into .venv: $*"
+    .venv/bin/python -m pip install -q "$@"
+  fi
+}
+need "numpy, matplotlib, pybind11, scikit_build_core" numpy matplotlib "pybind11>=2.12" "scikit-build-core>=0.10"
+[ "$mode" = study ] || need "scipy, pytest, sympy" scipy pytest sympy
 
 # Rebuild the package only when its sources changed.
 stamp=$(cat pyproject.toml CMakeLists.txt cmake/* $(find include python -type f \( -name '*.hpp' -o -name '*.cpp' -o -name '*.py' -o -name '*.txt' -o -name '*.pyi' \) | sort) | sha256sum | cut -c1-16)
 if [ "$(cat .venv/.camfollower-stamp 2>/dev/null)" != "$stamp" ]; then
-  echo "setup: building and installing the camfollower Python package"
-  .venv/bin/python -m pip install -q --no-build-isolation .
+  echo "setup: building and installing the camfollower Python package (about 30 s)"
+  .venv/bin/python -m pip install -q --no-build-isolation --no-deps .
   echo "$stamp" > .venv/.camfollower-stamp
 fi

@@ -3,5 +3,5 @@
 # (extra arguments go to `python -m camfollower.study`, see --help).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/setup.sh
+bash scripts/setup.sh study
 .venv/bin/python -m camfollower.study "$@"
