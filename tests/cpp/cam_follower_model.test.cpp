@@ -210,4 +210,7 @@ TEST_CASE("backlash side: + on rises, - on returns, dwells keep the last side, s
     const double fd = (smooth.at(33 * deg + 1e-7).side - smooth.at(33 * deg - 1e-7).side) / 2e-7;
     CHECK(smooth.at(33 * deg).dside == Approx(fd).epsilon(1e-6));
     CHECK_THROWS_WITH((Defects{0, 0, -1e-6, 0}.validate()), Catch::Contains("backlash must be finite and >= 0"));
+    // An eccentricity that would push the effective offset past the pitch circle is refused.
+    CHECK_THROWS_WITH(Model({}, MotionProgram::paper_default(), Defects{0.03, 0, 0, 0}),
+                      Catch::Contains("must stay below base_radius + roller_radius"));
 }

@@ -156,3 +156,7 @@ def test_parameters_by_name_and_defects_validation():
     assert np.all(np.isfinite(r["q"]))
     with pytest.raises(ValueError, match="eccentricity must be finite and >= 0"):
         cf.Defects(eccentricity=-1e-6)
+    with pytest.raises(ValueError, match="eccentricity must be finite"):
+        cf.Defects(eccentricity=float("nan"))
+    with pytest.raises(ValueError, match="must stay below base_radius"):
+        cf.CamFollowerModel(defects=cf.Defects(eccentricity=0.03))

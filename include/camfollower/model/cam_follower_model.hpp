@@ -67,6 +67,14 @@ public:
           cam_(parameters.geometry, std::move(program)),
           backlash_side_(cam_.program(), defects.backlash_switch_width) {
         const CamFollowerParameters& p = parameters_;
+        // The defects move the offset to e + eccentricity cos(.) +- backlash: it must stay a
+        // possible offset for the pitch circle.
+        const double reach = std::abs(p.geometry.offset) + defects_.eccentricity + defects_.backlash;
+        const double rp = p.geometry.base_radius + p.geometry.roller_radius;
+        if (!(reach < rp))
+            detail::fail("eccentricity + backlash = ", defects_.eccentricity + defects_.backlash,
+                         " m with |offset| = ", std::abs(p.geometry.offset), " m make the effective offset reach ", reach,
+                         " m: it must stay below base_radius + roller_radius = ", rp, " m");
         network_.set_mass(y1, p.camshaft_mass, "camshaft (y1)");
         network_.set_mass(y2, p.roller_mass, "roller (y2)");
         network_.set_mass(y3, p.follower_rod_mass, "follower rod (y3)");
