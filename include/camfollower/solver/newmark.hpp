@@ -235,12 +235,16 @@ private:
                one_alpha * (s_.gamma / (s_.beta * dt) * system_.damping_matrix() + system_.stiffness_matrix());
     }
 
-    // Fill the state's time-dependent outputs and nonlinear terms.
+    // Fill the state's time-dependent outputs and nonlinear terms (given, or evaluated here).
     template <class Context>
-    void finish(State& s, const Context& ctx) const {
-        s.nl = system_.nonlinear(ctx, s.q, s.v);
+    void finish(State& s, const Context& ctx, const Nonlinear& nl) const {
+        s.nl = nl;
         s.theta = ctx.theta;
         s.pressure_angle = ctx.pressure_angle();
+    }
+    template <class Context>
+    void finish(State& s, const Context& ctx) const {
+        finish(s, ctx, system_.nonlinear(ctx, s.q, s.v));
     }
 
     bool try_step(const State& s, State& out, int level, int& iterations, double& residual) const {
@@ -286,10 +290,8 @@ private:
                 const double s = w.dot(u) / u.squaredNorm();
                 if (s >= 0.0 && (w - s * u).squaredNorm() <= 1e-24 * w.squaredNorm() &&
                     r.norm() * inverse_bound_[level] <= q_tol) {
-                    // q and v are those nl was evaluated at: reuse it.
-                    out.a = a, out.q = q, out.v = v, out.t = t1, out.nl = nl;
-                    out.theta = ctx.theta;
-                    out.pressure_angle = ctx.pressure_angle();
+                    out.a = a, out.q = q, out.v = v, out.t = t1;
+                    finish(out, ctx, nl);  // q and v are those nl was evaluated at
                     return true;
                 }
             }
