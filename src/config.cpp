@@ -87,7 +87,15 @@ RunConfig parse_config(const std::string& text, const std::string& origin) {
         {"decimation", {&RunConfig::decimation, "-"}}};
     for (int number = 1; std::getline(in, line); ++number) {
         const std::string where_line = detail::concat(origin, ":", number);
-        const auto hash = line.find('#');
+        // A '#' starts a comment unless it sits inside a quoted value.
+        std::size_t hash = std::string::npos;
+        for (std::size_t i = 0, quotes = 0; i < line.size(); ++i) {
+            if (line[i] == '"') ++quotes;
+            if (line[i] == '#' && quotes % 2 == 0) {
+                hash = i;
+                break;
+            }
+        }
         std::string content = trim(hash == std::string::npos ? line : line.substr(0, hash));
         if (content.empty()) continue;
         if (content.front() == '[') {
@@ -121,13 +129,7 @@ RunConfig parse_config(const std::string& text, const std::string& origin) {
                     detail::fail(where_line, ": ", e.what());
                 }
             }
-            try {
-                c.parameters.set(key, parse_value(value, kind, where));
-            } catch (const std::invalid_argument& e) {
-                const std::string msg = e.what();
-                if (msg.rfind(origin, 0) == 0) throw;
-                detail::fail(where_line, ": ", msg);
-            }
+            c.parameters.ref(key) = parse_value(value, kind, where);  // validated once, at the end
         } else {
             const bool defect = section == "defects";
             if (!defect && key == "output") {
@@ -152,8 +154,12 @@ RunConfig parse_config(const std::string& text, const std::string& origin) {
             *slot = parse_value(value, kind, where);
         }
     }
-    c.parameters.validate();
-    c.defects.validate();
+    try {
+        c.parameters.validate();
+        c.defects.validate();
+    } catch (const std::invalid_argument& e) {
+        detail::fail(origin, ": ", e.what());
+    }
     detail::require_positive(c.revolutions, "[run] revolutions");
     detail::require_non_negative(c.time_step, "[run] time_step", "(s)");
     if (!(c.steps_per_revolution >= 100 && std::floor(c.steps_per_revolution) == c.steps_per_revolution))

@@ -2,6 +2,7 @@
 //   camfollower kinematics [rpm]         the paper cam's kinematic summary
 //   camfollower run CONFIG [-o FILE]     simulate a case from a config file (see examples/), CSV out
 //   camfollower modes [theta_deg]        natural frequencies of the paper model (config-free)
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -29,10 +30,12 @@ int kinematics(double rpm) {
         if (a > amax) amax = a, at = t;
     }
     std::printf("paper cam: r_b = 30 mm, r_r = 8 mm, e = 10 mm, 10 mm modified-trapezoid rise/return\n");
-    std::printf("max |pressure angle|, rise:   %+.4f deg at theta = %.3f deg\n",
-                cf::radians_to_degrees(rise.value), cf::radians_to_degrees(rise.theta));
-    std::printf("max |pressure angle|, return: %+.4f deg at theta = %.3f deg\n",
-                cf::radians_to_degrees(ret.value), cf::radians_to_degrees(ret.theta));
+    std::printf("max |pressure angle|, rise:   %.4f deg (alpha = %+.4f deg) at theta = %.3f deg\n",
+                std::abs(cf::radians_to_degrees(rise.value)), cf::radians_to_degrees(rise.value),
+                cf::radians_to_degrees(rise.theta));
+    std::printf("max |pressure angle|, return: %.4f deg (alpha = %+.4f deg) at theta = %.3f deg\n",
+                std::abs(cf::radians_to_degrees(ret.value)), cf::radians_to_degrees(ret.value),
+                cf::radians_to_degrees(ret.theta));
     std::printf("min cam-surface radius of curvature (convex): %.4f mm at theta = %.3f deg\n", rho.value * 1e3,
                 cf::radians_to_degrees(rho.theta));
     std::printf("min cam-surface radius of curvature on the rise/return flanks: %.4f mm at theta = %.3f deg\n",
@@ -99,13 +102,26 @@ void usage() {
                  "       camfollower run CONFIG.toml [-o OUTPUT.csv]\n");
 }
 
+// A whole-string number, or a clear error naming the argument.
+double number_argument(const char* text, const char* name) {
+    std::size_t used = 0;
+    double v = 0.0;
+    try {
+        v = std::stod(text, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (used == 0 || text[used] != '\0' || !std::isfinite(v)) cf::detail::fail(name, " must be a number, got '", text, "'");
+    return v;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     try {
         const std::string cmd = argc >= 2 ? argv[1] : "";
-        if (cmd == "kinematics") return kinematics(argc >= 3 ? std::stod(argv[2]) : 750.0);
-        if (cmd == "modes") return modes(argc >= 3 ? std::stod(argv[2]) : 0.0);
+        if (cmd == "kinematics") return kinematics(argc >= 3 ? number_argument(argv[2], "rpm") : 750.0);
+        if (cmd == "modes") return modes(argc >= 3 ? number_argument(argv[2], "theta_deg") : 0.0);
         if (cmd == "run" && (argc == 3 || (argc == 5 && std::strcmp(argv[3], "-o") == 0)))
             return run(argv[2], argc == 5 ? argv[4] : "");
         usage();

@@ -460,10 +460,12 @@ class CamFollowerModel:
     @property
     def stiffness_matrix(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[7, 7]"]:
         ...
-def simulate(model: CamFollowerModel, *, duration: typing.SupportsFloat | typing.SupportsIndex | None = None, revolutions: typing.SupportsFloat | typing.SupportsIndex | None = None, time_step: typing.SupportsFloat | typing.SupportsIndex = 3e-06, decimation: typing.SupportsInt | typing.SupportsIndex = 1, gamma: typing.SupportsFloat | typing.SupportsIndex = 0.5, beta: typing.SupportsFloat | typing.SupportsIndex = 0.25, hht_alpha: typing.SupportsFloat | typing.SupportsIndex = 0.0, linear_solver: str = 'sherman_morrison', residual_tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-10, increment_tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-10, max_iterations: typing.SupportsInt | typing.SupportsIndex = 25, max_halvings: typing.SupportsInt | typing.SupportsIndex = 6, max_output_bytes: typing.SupportsFloat | typing.SupportsIndex = 4294967296.0) -> dict:
+def simulate(model: CamFollowerModel, *, duration: typing.SupportsFloat | typing.SupportsIndex | None = None, revolutions: typing.SupportsFloat | typing.SupportsIndex | None = None, time_step: typing.SupportsFloat | typing.SupportsIndex = 3e-06, decimation: typing.SupportsInt | typing.SupportsIndex = 1, gamma: typing.SupportsFloat | typing.SupportsIndex | None = None, beta: typing.SupportsFloat | typing.SupportsIndex | None = None, hht_alpha: typing.SupportsFloat | typing.SupportsIndex = 0.0, linear_solver: str = 'sherman_morrison', residual_tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-10, increment_tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-10, max_iterations: typing.SupportsInt | typing.SupportsIndex = 25, max_halvings: typing.SupportsInt | typing.SupportsIndex = 6, max_output_bytes: typing.SupportsFloat | typing.SupportsIndex = 4294967296.0) -> dict:
     """
     Integrate the model from its static equilibrium with Newmark-beta (HHT-alpha if hht_alpha < 0)
     and Newton-Raphson. Give duration (s) or revolutions. One row every `decimation` steps.
+    gamma, beta default to 1/2, 1/4 (average acceleration) or, with hht_alpha, to 1/2 - alpha and
+    (1 - alpha)^2 / 4. beta < 1/4 is only conditionally stable: a time_step beyond its limit is refused.
     Returns a dict of NumPy arrays: t, theta (rad), q, v, a (rows x 7, m, m/s, m/s^2),
     contact_force (N), contact_stiffness (dF/d delta, N/m), pressure_angle (rad), penetration (m),
     in_contact (bool); contact_loss: list of (start, end) times; stats: steps, iterations, halvings.

@@ -33,8 +33,11 @@ class Spectrum:
         return float(self.frequency[1] - self.frequency[0])
 
     def at(self, f: float) -> float:
-        """Amplitude of the bin nearest to f (Hz)."""
-        return float(self.amplitude[int(round(f / self.resolution))])
+        """Amplitude of the bin nearest to f (Hz); ValueError outside the spectrum's range."""
+        lo, hi = self.frequency[0], self.frequency[-1]
+        if not (lo - 0.5 * self.resolution <= f <= hi + 0.5 * self.resolution):
+            raise ValueError(f"frequency {f} Hz is outside this spectrum's range [{lo}, {hi}] Hz")
+        return float(self.amplitude[int(round((f - lo) / self.resolution))])
 
     def band(self, lo: float, hi: float) -> "Spectrum":
         keep = (self.frequency >= lo) & (self.frequency <= hi)
@@ -64,7 +67,9 @@ def spectrum(signal, sample_rate: float, window: str = "hann", detrend: bool = T
     else:
         raise ValueError(f"window must be 'hann' or 'rect', got {window!r}")
     amplitude = np.abs(np.fft.rfft(x * w)) * 2.0 / w.sum()
-    amplitude[0] /= 2.0
+    amplitude[0] /= 2.0  # DC and (even length) Nyquist have no mirror image
+    if x.size % 2 == 0:
+        amplitude[-1] /= 2.0
     frequency = np.fft.rfftfreq(x.size, d=1.0 / sample_rate)
     return Spectrum(frequency, amplitude)
 

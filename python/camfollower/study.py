@@ -306,7 +306,7 @@ def kinematics_summary(cam: DiskCam, rpm: float) -> dict:
 def run_study(cfg: StudyConfig, out: Path, figures: bool = True) -> dict:
     """Run the three cases, write figures, data and summary.json into `out`; return the summary."""
     cfg.validate()
-    progress = Progress(5 + (11 if figures else 0))
+    progress = Progress(6 + (10 if figures else 0))
     defects = {
         "healthy": Defects(),
         "eccentricity": Defects(eccentricity=cfg.eccentricity, eccentricity_phase=cfg.eccentricity_phase),

@@ -23,8 +23,8 @@ CamFollowerParameters parameters_from_kwargs(const py::kwargs& kwargs) {
             else detail::fail("contact_damping must be 'none', 'hunt_crossley' or 'lankarani_nikravesh', got '", model, "'");
             continue;
         }
-        p.ref(name);  // unknown names fail here, before the value is converted
-        p.set(name, item.second.cast<double>());
+        double& slot = p.ref(name);  // unknown names fail here, before the value is converted
+        slot = item.second.cast<double>();  // validated once all are set: order does not matter
     }
     p.validate();
     return p;

@@ -25,7 +25,8 @@ void bind_solver(py::module_& m) {
     m.def(
         "simulate",
         [](const CamFollowerModel& model, std::optional<double> duration, std::optional<double> revolutions,
-           double time_step, std::size_t decimation, double gamma, double beta, double hht_alpha,
+           double time_step, std::size_t decimation, std::optional<double> gamma, std::optional<double> beta,
+           double hht_alpha,
            const std::string& linear_solver, double residual_tolerance, double increment_tolerance,
            int max_iterations, int max_halvings, double max_output_bytes) {
             if (duration.has_value() == revolutions.has_value())
@@ -37,11 +38,10 @@ void bind_solver(py::module_& m) {
             } else {
                 span = *duration;
             }
-            NewmarkSettings s;
-            s.time_step = time_step;
-            s.gamma = gamma;
-            s.beta = beta;
-            s.hht_alpha = hht_alpha;
+            // gamma and beta default to the average-acceleration rule, or to HHT's own values.
+            NewmarkSettings s = NewmarkSettings::hht(hht_alpha, time_step);
+            if (gamma) s.gamma = *gamma;
+            if (beta) s.beta = *beta;
             s.residual_tolerance = residual_tolerance;
             s.increment_tolerance = increment_tolerance;
             s.max_iterations = max_iterations;
@@ -83,12 +83,14 @@ void bind_solver(py::module_& m) {
             return d;
         },
         py::arg("model"), py::kw_only(), py::arg("duration") = py::none(), py::arg("revolutions") = py::none(),
-        py::arg("time_step") = 3e-6, py::arg("decimation") = 1, py::arg("gamma") = 0.5, py::arg("beta") = 0.25,
+        py::arg("time_step") = 3e-6, py::arg("decimation") = 1, py::arg("gamma") = py::none(), py::arg("beta") = py::none(),
         py::arg("hht_alpha") = 0.0, py::arg("linear_solver") = "sherman_morrison",
         py::arg("residual_tolerance") = 1e-10, py::arg("increment_tolerance") = 1e-10, py::arg("max_iterations") = 25,
         py::arg("max_halvings") = 6, py::arg("max_output_bytes") = 4.0 * 1024 * 1024 * 1024,
         "Integrate the model from its static equilibrium with Newmark-beta (HHT-alpha if hht_alpha < 0)\n"
         "and Newton-Raphson. Give duration (s) or revolutions. One row every `decimation` steps.\n"
+        "gamma, beta default to 1/2, 1/4 (average acceleration) or, with hht_alpha, to 1/2 - alpha and\n"
+        "(1 - alpha)^2 / 4. beta < 1/4 is only conditionally stable: a time_step beyond its limit is refused.\n"
         "Returns a dict of NumPy arrays: t, theta (rad), q, v, a (rows x 7, m, m/s, m/s^2),\n"
         "contact_force (N), contact_stiffness (dF/d delta, N/m), pressure_angle (rad), penetration (m),\n"
         "in_contact (bool); contact_loss: list of (start, end) times; stats: steps, iterations, halvings.\n"

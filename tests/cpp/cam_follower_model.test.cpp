@@ -185,7 +185,10 @@ TEST_CASE("parameters: by name, validated, unknown names listed") {
     CHECK(p.roller_mass == 0.1);
     CHECK_THROWS_WITH(p.set("roller_mass", -1.0), Catch::Contains("roller_mass must be finite and > 0"));
     CHECK(p.roller_mass == 0.1);  // unchanged after a rejected set
-    CHECK_THROWS_WITH(p.set("rod_stiffness", -5.0), Catch::Contains("rod_stiffness must be finite and >= 0"));
+    CHECK_THROWS_WITH(p.set("rod_stiffness", -5.0), Catch::Contains("rod_stiffness must be finite and > 0"));
+    CHECK_THROWS_WITH(p.set("spring_stiffness", 0.0), Catch::Contains("spring_stiffness must be finite and > 0"));
+    CHECK_THROWS_WITH(p.set("rod_damping", -1.0), Catch::Contains("rod_damping must be finite and >= 0"));
+    p.set("rod_damping", 0.0);  // dampers may be zero
     CHECK_THROWS_WITH(p.set("guide_stiffness", NAN), Catch::Contains("guide_stiffness must be finite"));
     CHECK_THROWS_WITH(p.set("contact_exponent", 0.5), Catch::Contains("contact_exponent must be in [1, 3]"));
     CHECK_THROWS_WITH(p.set("offset", 0.05), Catch::Contains("|offset| < base_radius + roller_radius"));
@@ -247,4 +250,43 @@ TEST_CASE("contact damping: exact (non-symmetric) tangent keeps Newton fast, bot
     };
     INFO("peak |a4| on the top dwell: damped " << dwell_vibration(a) << ", undamped " << dwell_vibration(c));
     CHECK(dwell_vibration(a) < 0.9 * dwell_vibration(c));
+}
+
+TEST_CASE("penetration rate and Newton tangent against finite differences, with and without defects") {
+    CamFollowerParameters p;
+    p.contact_damping = ContactDampingModel::lankarani_nikravesh;
+    p.restitution = 0.5;
+    p.reference_speed = 0.1;
+    p.contact_exponent = 1.5;
+    p.contact_stiffness = 1e11;
+    const Defects cases[] = {Defects{}, Defects{1e-3, 0.3, 0, 0}, Defects{0, 0, 1e-3, degrees_to_radians(40.0)}};
+    for (const Defects& d : cases) {
+        const Model m(p, MotionProgram::paper_default(), d);
+        INFO("eccentricity " << d.eccentricity << ", backlash " << d.backlash);
+        Model::Vector v0;
+        v0 << 0.02, -0.5, 0.3, 0.1, -0.04, 0.07, 0.01;
+        const Model::Vector q0 = m.initial_state();
+        // Along q(t) = q0 + (t - tc) v0 the penetration changes at the reported rate.
+        for (double tc : {0.011, 0.0165, 0.027, 0.05, 0.071}) {
+            INFO("t = " << tc);
+            auto delta = [&](double t) { return m.nonlinear(m.at_time(t), q0 + (t - tc) * v0, v0).delta; };
+            const double h = 1e-7;
+            const double fd = (delta(tc + h) - delta(tc - h)) / (2 * h);
+            CHECK(m.nonlinear(m.at_time(tc), q0, v0).delta_dot == Approx(fd).epsilon(1e-6).margin(1e-9));
+            // d force / dq with v following q (dv/dq = vf I, as inside a Newmark step) is g w^T.
+            const double vf = 1e5;
+            const auto c = m.at_time(tc);
+            const auto nl = m.nonlinear(c, q0, v0);
+            REQUIRE(nl.contact.in_contact);
+            const Model::Matrix analytic = c.g * m.tangent_row(c, nl, vf).transpose();
+            for (int j = 0; j < 7; ++j) {
+                const double eps = 1e-12;
+                Model::Vector e = Model::Vector::Zero();
+                e[j] = eps;
+                const Model::Vector fd_col = (m.nonlinear(c, q0 + e, v0 + vf * e).force -
+                                              m.nonlinear(c, q0 - e, v0 - vf * e).force) / (2 * eps);
+                CHECK((fd_col - analytic.col(j)).norm() <= 1e-5 * analytic.norm());
+            }
+        }
+    }
 }

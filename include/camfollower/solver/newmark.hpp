@@ -58,9 +58,15 @@ struct NewmarkSettings {
 
     void validate() const {
         detail::require_positive(time_step, "time_step", "(s)");
-        detail::require_in_range(gamma, 0.0, 1.0, "gamma");
-        if (!(std::isfinite(beta) && beta > 0.0 && beta <= 0.5)) detail::fail("beta must be in (0, 0.5], got ", beta);
         detail::require_in_range(hht_alpha, -1.0 / 3.0, 0.0, "hht_alpha");
+        detail::require_in_range(gamma, 0.5, 1.0, "gamma (below 1/2 the scheme adds negative damping)");
+        if (!(std::isfinite(beta) && beta > 0.0 && beta <= 0.5)) detail::fail("beta must be in (0, 0.5], got ", beta);
+        // HHT-alpha is stable only with its own gamma and beta (NewmarkSettings::hht).
+        if (hht_alpha != 0.0 && (std::abs(gamma - (0.5 - hht_alpha)) > 1e-12 ||
+                                 std::abs(beta - 0.25 * (1.0 - hht_alpha) * (1.0 - hht_alpha)) > 1e-12))
+            detail::fail("hht_alpha = ", hht_alpha, " needs gamma = 1/2 - alpha = ", 0.5 - hht_alpha,
+                         " and beta = (1 - alpha)^2 / 4 = ", 0.25 * (1.0 - hht_alpha) * (1.0 - hht_alpha), ", got gamma = ",
+                         gamma, ", beta = ", beta, " (use NewmarkSettings::hht)");
         detail::require_positive(residual_tolerance, "residual_tolerance");
         detail::require_positive(increment_tolerance, "increment_tolerance");
         if (max_iterations < 1 || max_iterations > 1000)
@@ -136,8 +142,28 @@ public:
         norm_C_ = system.damping_matrix().cwiseAbs().rowwise().sum().maxCoeff();
         norm_K_ = system.stiffness_matrix().cwiseAbs().rowwise().sum().maxCoeff();
         const State s0 = initial_state();
+        check_stability_limit(s0);
         force_scale_ = std::max({1.0, (system.stiffness_matrix() * s0.q).cwiseAbs().maxCoeff(),
                                  s0.nl.force.cwiseAbs().maxCoeff()});
+    }
+
+    // beta < gamma / 2 is only conditionally stable: omega_max dt < 1 / sqrt(gamma / 2 - beta)
+    // (undamped). omega_max from the tangent stiffness at the initial state, with a 10 % margin for
+    // its variation along the motion (the contact direction turns with the pressure angle).
+    void check_stability_limit(const State& s0) const {
+        if (s_.beta >= 0.5 * s_.gamma) return;
+        const auto ctx = system_.at_time(0.0);
+        const Vector w = system_.tangent_row(ctx, s0.nl, 0.0);
+        const Matrix gw = ctx.g * w.transpose();
+        const Matrix Kt = system_.stiffness_matrix() + 0.5 * (gw + gw.transpose());
+        const Eigen::GeneralizedSelfAdjointEigenSolver<Matrix> eig(Kt, system_.mass_matrix(), Eigen::EigenvaluesOnly);
+        if (eig.info() != Eigen::Success) return;
+        const double omega_max = std::sqrt(std::max(eig.eigenvalues().maxCoeff(), 0.0));
+        const double limit = 0.9 / (omega_max * std::sqrt(0.5 * s_.gamma - s_.beta));
+        if (s_.time_step > limit)
+            detail::fail("time_step = ", s_.time_step, " s exceeds the stability limit ", limit, " s of Newmark with beta = ",
+                         s_.beta, " < gamma / 2 (highest mode ", omega_max / (2.0 * 3.14159265358979323846),
+                         " Hz); reduce time_step or use beta = 1/4");
     }
 
     // The solver keeps a reference to the system: a temporary would dangle.
