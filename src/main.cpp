@@ -71,8 +71,8 @@ int run(const std::string& config_path, const std::string& output_override) {
         if (!out) cf::detail::fail("output: cannot open '", output, "' for writing");
         out.precision(12);
         out << "t_s,theta_rad";
-        for (const char* d : {"y1", "y2", "y3", "y4", "x1", "x2", "x3"}) out << ",q_" << d << "_m";
-        for (const char* d : {"y1", "y2", "y3", "y4", "x1", "x2", "x3"}) out << ",a_" << d << "_m_s2";
+        for (int k = 0; k < 7; ++k) out << ",q_" << cf::CamFollowerModel::dof_name(k) << "_m";
+        for (int k = 0; k < 7; ++k) out << ",a_" << cf::CamFollowerModel::dof_name(k) << "_m_s2";
         out << ",contact_force_N,contact_stiffness_N_m,pressure_angle_rad,in_contact\n";
         for (std::size_t i = 0; i < r.rows; ++i) {
             out << r.t[i] << ',' << r.theta[i];

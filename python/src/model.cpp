@@ -115,7 +115,9 @@ void bind_model(py::module_& m) {
         .def_property_readonly("spring_preload", &CamFollowerModel::spring_preload,
                                "P (N): return-spring force on y4 is -(P + K_rs y4)")
         .def_property_readonly_static("dof_names", [](py::object) {
-            return std::vector<std::string>{"y1", "y2", "y3", "y4", "x1", "x2", "x3"};
+            std::vector<std::string> names;
+            for (int k = 0; k < CamFollowerModel::dofs; ++k) names.emplace_back(CamFollowerModel::dof_name(k));
+            return names;
         })
         .def("static_equilibrium", &CamFollowerModel::static_equilibrium, py::arg("theta"),
              "Quasi-static equilibrium at cam angle theta (rad).")
