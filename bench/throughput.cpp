@@ -18,17 +18,17 @@ cf::Defects defect_case(int which) {
     return d;
 }
 
-// Bare stepping: advance() over one revolution, no output recorded.
+// Bare stepping: step() over one revolution, no output recorded.
 void BM_Steps(benchmark::State& state) {
     const Model model({}, cf::MotionProgram::paper_default(), defect_case(int(state.range(0))));
     cf::NewmarkSettings settings;
     settings.linear_solver = state.range(1) ? cf::LinearSolver::dense_lu : cf::LinearSolver::sherman_morrison;
-    const cf::NewmarkSolver<Model> solver(model, settings);
+    cf::Newmark<Model> stepper(model, settings);
     const auto steps = static_cast<std::int64_t>(model.period() / settings.time_step);
     cf::SolverStatistics stats;
     for (auto _ : state) {
-        auto s = solver.initial_state();
-        for (std::int64_t n = 0; n < steps; ++n) solver.advance(s, stats);
+        auto s = stepper.start(0.0, model.initial_displacement(), Model::Vector::Zero());
+        for (std::int64_t n = 0; n < steps; ++n) stepper.step(s, stats);
         benchmark::DoNotOptimize(s.q.data());
     }
     state.SetItemsProcessed(state.iterations() * steps);
@@ -43,12 +43,14 @@ BENCHMARK(BM_Steps)->ArgsProduct({{0, 1, 2}, {0, 1}})->Unit(benchmark::kMillisec
 // A whole run with every step recorded (what simulate() does).
 void BM_RunRecorded(benchmark::State& state) {
     const Model model;
-    const cf::NewmarkSolver<Model> solver(model, cf::NewmarkSettings{});
+    cf::RunOptions options;
+    options.duration = model.period();
+    options.record.decimation = std::size_t(state.range(0));
     std::uint64_t steps = 0;
     for (auto _ : state) {
-        const auto r = solver.run(model.period(), std::size_t(state.range(0)));
-        steps = r.stats.steps;
-        benchmark::DoNotOptimize(r.q.data());
+        const auto r = cf::simulate(model, cf::NewmarkSettings{}, options);
+        steps = r.report.stats.steps;
+        benchmark::DoNotOptimize(r.recording.data.data());
     }
     state.SetItemsProcessed(state.iterations() * std::int64_t(steps));
     state.SetLabel("decimation " + std::to_string(state.range(0)));

@@ -63,23 +63,29 @@ int run(const std::string& config_path, const std::string& output_override) {
     const cf::CamFollowerModel model(c.parameters, cf::MotionProgram::paper_default(), c.defects);
     cf::NewmarkSettings settings;
     settings.time_step = c.time_step > 0 ? c.time_step : model.period() / c.steps_per_revolution;
-    const cf::NewmarkSolver<cf::CamFollowerModel> solver(model, settings);
-    const auto r = solver.run(c.revolutions * model.period(), static_cast<std::size_t>(c.decimation));
+    cf::RunOptions options;
+    options.duration = c.revolutions * model.period();
+    options.record.decimation = static_cast<std::size_t>(c.decimation);
+    const auto run = cf::simulate(model, settings, options);
+    const cf::Recording& r = run.recording;
+    const std::size_t n = r.dofs.size();
     const std::string tmp = output + ".tmp";
     {
         std::ofstream out(tmp);
         if (!out) cf::detail::fail("output: cannot open '", output, "' for writing");
         out.precision(12);
         out << "t_s,theta_rad";
-        for (int k = 0; k < 7; ++k) out << ",q_" << cf::CamFollowerModel::dof_name(k) << "_m";
-        for (int k = 0; k < 7; ++k) out << ",a_" << cf::CamFollowerModel::dof_name(k) << "_m_s2";
+        for (const std::string& d : r.dofs) out << ",q_" << d << "_m";
+        for (const std::string& d : r.dofs) out << ",a_" << d << "_m_s2";
         out << ",contact_force_N,contact_stiffness_N_m,pressure_angle_rad,in_contact\n";
+        const double *t = r.channel("t"), *theta = r.channel("theta"), *force = r.channel("contact_force"),
+                     *stiffness = r.channel("contact_stiffness"), *alpha = r.channel("pressure_angle"),
+                     *contact = r.channel("in_contact");
         for (std::size_t i = 0; i < r.rows; ++i) {
-            out << r.t[i] << ',' << r.theta[i];
-            for (int k = 0; k < 7; ++k) out << ',' << r.q[7 * i + k];
-            for (int k = 0; k < 7; ++k) out << ',' << r.a[7 * i + k];
-            out << ',' << r.contact_force[i] << ',' << r.contact_stiffness[i] << ',' << r.pressure_angle[i] << ','
-                << int(r.in_contact[i]) << '\n';
+            out << t[i] << ',' << theta[i];
+            for (std::size_t k = 0; k < n; ++k) out << ',' << r.channel(r.block(0) + k)[i];
+            for (std::size_t k = 0; k < n; ++k) out << ',' << r.channel(r.block(2) + k)[i];
+            out << ',' << force[i] << ',' << stiffness[i] << ',' << alpha[i] << ',' << int(contact[i]) << '\n';
         }
         if (!out.flush()) cf::detail::fail("output: writing '", output, "' failed");
     }
@@ -88,10 +94,12 @@ int run(const std::string& config_path, const std::string& output_override) {
         cf::detail::fail("output: cannot rename the temporary file to '", output, "'");
     }
     double lost = 0;
-    for (const auto& [a, b] : r.contact_loss) lost += b - a;
+    for (const auto& [a, b] : cf::CamFollowerModel::contact_loss(run.final_state.workspace, run.final_state.t))
+        lost += b - a;
+    const cf::SolverStatistics& stats = run.report.stats;
     std::printf("%zu rows (%llu steps, dt = %.4g s, %.3f Newton iterations/step), contact lost %.4g s -> %s\n",
-                r.rows, static_cast<unsigned long long>(r.stats.steps), settings.time_step,
-                r.stats.mean_iterations(), lost, output.c_str());
+                r.rows, static_cast<unsigned long long>(stats.steps), settings.time_step, stats.mean_iterations(), lost,
+                output.c_str());
     return 0;
 }
 

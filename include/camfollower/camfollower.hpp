@@ -2,6 +2,7 @@
 #pragma once
 
 #include "camfollower/contact/hertz.hpp"
+#include "camfollower/core/system.hpp"
 #include "camfollower/error.hpp"
 #include "camfollower/geometry/disk_cam.hpp"
 #include "camfollower/model/cam_follower_model.hpp"
@@ -11,4 +12,7 @@
 #include "camfollower/model/parameters.hpp"
 #include "camfollower/motion/laws.hpp"
 #include "camfollower/motion/program.hpp"
+#include "camfollower/solver/integrate.hpp"
 #include "camfollower/solver/newmark.hpp"
+#include "camfollower/solver/observers.hpp"
+#include "camfollower/solver/simulate.hpp"

@@ -20,8 +20,9 @@ from ._core import (
     Parameters,
     PeakCoefficients,
     Segment,
-    simulate,
 )
+from .results import Result
+from .simulation import simulate
 
 __all__ = [
     "CamFollowerModel",
@@ -31,6 +32,7 @@ __all__ = [
     "MotionProgram",
     "Parameters",
     "PeakCoefficients",
+    "Result",
     "Segment",
     "simulate",
 ]

@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['CamFollowerModel', 'Defects', 'DiskCam', 'MotionLaw', 'MotionProgram', 'Parameters', 'PeakCoefficients', 'Segment', 'simulate']
+__all__: list[str] = ['CamFollowerModel', 'Defects', 'DiskCam', 'MotionLaw', 'MotionProgram', 'Parameters', 'PeakCoefficients', 'Segment']
 class PeakCoefficients:
     """
     Peaks of |V|, |A|, |J| of a normalized law.
@@ -460,15 +460,7 @@ class CamFollowerModel:
     @property
     def stiffness_matrix(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[7, 7]"]:
         ...
-def simulate(model: CamFollowerModel, *, duration: typing.SupportsFloat | typing.SupportsIndex | None = None, revolutions: typing.SupportsFloat | typing.SupportsIndex | None = None, time_step: typing.SupportsFloat | typing.SupportsIndex = 3e-06, decimation: typing.SupportsInt | typing.SupportsIndex = 1, gamma: typing.SupportsFloat | typing.SupportsIndex | None = None, beta: typing.SupportsFloat | typing.SupportsIndex | None = None, hht_alpha: typing.SupportsFloat | typing.SupportsIndex = 0.0, linear_solver: str = 'sherman_morrison', residual_tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-10, increment_tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-10, max_iterations: typing.SupportsInt | typing.SupportsIndex = 25, max_halvings: typing.SupportsInt | typing.SupportsIndex = 6, max_output_bytes: typing.SupportsFloat | typing.SupportsIndex = 4294967296.0) -> dict:
+def _run(system: CamFollowerModel, duration: typing.SupportsFloat | typing.SupportsIndex, time_step: typing.SupportsFloat | typing.SupportsIndex, decimation: typing.SupportsInt | typing.SupportsIndex, gamma: typing.SupportsFloat | typing.SupportsIndex | None, beta: typing.SupportsFloat | typing.SupportsIndex | None, hht_alpha: typing.SupportsFloat | typing.SupportsIndex, linear_solver: str, residual_tolerance: typing.SupportsFloat | typing.SupportsIndex, increment_tolerance: typing.SupportsFloat | typing.SupportsIndex, max_iterations: typing.SupportsInt | typing.SupportsIndex, max_halvings: typing.SupportsInt | typing.SupportsIndex, record_from: typing.SupportsFloat | typing.SupportsIndex, max_output_bytes: typing.SupportsFloat | typing.SupportsIndex, progress: typing.Any, progress_interval: typing.SupportsFloat | typing.SupportsIndex) -> dict:
     """
-    Integrate the model from its static equilibrium with Newmark-beta (HHT-alpha if hht_alpha < 0)
-    and Newton-Raphson. Give duration (s) or revolutions. One row every `decimation` steps.
-    gamma, beta default to 1/2, 1/4 (average acceleration) or, with hht_alpha, to 1/2 - alpha and
-    (1 - alpha)^2 / 4. beta < 1/4 is only conditionally stable: a time_step beyond its limit is refused.
-    Returns a dict of NumPy arrays: t, theta (rad), q, v, a (rows x 7, m, m/s, m/s^2),
-    contact_force (N), contact_stiffness (dF/d delta, N/m), pressure_angle (rad), penetration (m),
-    in_contact (bool); contact_loss: list of (start, end) times; stats: steps, iterations, halvings.
-    Raises ValueError for bad input and RuntimeError when Newton fails after max_halvings.
-    The GIL is released during the run.
+    Internal: camfollower.simulate() calls this and wraps the output in a Result.
     """

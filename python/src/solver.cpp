@@ -1,101 +1,138 @@
-// Bindings for include/camfollower/solver: run a simulation, get NumPy arrays (no copies).
+// Bindings for include/camfollower/solver: run any bound system, get its recording as NumPy views.
+// One templated binder (bind_simulate<System>) serves every system type.
+#include <chrono>
 #include <memory>
+#include <optional>
 
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
 #include "camfollower/model/cam_follower_model.hpp"
-#include "camfollower/solver/newmark.hpp"
+#include "camfollower/solver/simulate.hpp"
 
 namespace camfollower::python {
 
 namespace {
-using Result = SimulationResult<CamFollowerModel::dofs>;
 
-// NumPy view over a vector owned by a shared result (kept alive by the array's base capsule).
-template <class T>
-py::array_t<T> view(const std::shared_ptr<Result>& owner, std::vector<T>& data, std::vector<py::ssize_t> shape) {
-    auto* keep = new std::shared_ptr<Result>(owner);
-    py::capsule base(keep, [](void* p) { delete static_cast<std::shared_ptr<Result>*>(p); });
-    return py::array_t<T>(shape, data.data(), base);
+NewmarkSettings settings_from(double time_step, std::optional<double> gamma, std::optional<double> beta, double hht_alpha,
+                              const std::string& linear_solver, double residual_tolerance, double increment_tolerance,
+                              int max_iterations, int max_halvings) {
+    // gamma and beta default to the average-acceleration rule, or to HHT's own values.
+    NewmarkSettings s = NewmarkSettings::hht(hht_alpha, time_step);
+    if (gamma) s.gamma = *gamma;
+    if (beta) s.beta = *beta;
+    s.residual_tolerance = residual_tolerance;
+    s.increment_tolerance = increment_tolerance;
+    s.max_iterations = max_iterations;
+    s.max_halvings = max_halvings;
+    if (linear_solver == "sherman_morrison" || linear_solver == "low_rank") s.linear_solver = LinearSolver::sherman_morrison;
+    else if (linear_solver == "dense_lu") s.linear_solver = LinearSolver::dense_lu;
+    else detail::fail("linear_solver must be 'low_rank' (alias 'sherman_morrison') or 'dense_lu', got '", linear_solver, "'");
+    s.validate();
+    return s;
 }
+
+// Contact-loss intervals for systems that track them.
+template <class System>
+py::list losses_of(const System&, const State<System>&) {
+    return py::list();
+}
+py::list losses_of(const CamFollowerModel&, const State<CamFollowerModel>& s) {
+    py::list out;
+    for (const auto& [a, b] : CamFollowerModel::contact_loss(s.workspace, s.t)) out.append(py::make_tuple(a, b));
+    return out;
+}
+
+// The raw output handed to camfollower.results.Result: channel names, DOF names, a channels x rows
+// view on the C++ buffer (kept alive by the view's base), statistics.
+template <class System>
+py::dict run_system(const System& system, double duration, const NewmarkSettings& settings, std::size_t decimation,
+                    double record_from, double max_output_bytes, const py::object& progress,
+                    double progress_interval) {
+    RunOptions options;
+    options.duration = duration;
+    options.record.decimation = decimation;
+    options.record.from_time = record_from;
+    options.record.max_bytes = max_output_bytes;
+    detail::require_positive(progress_interval, "progress_interval", "(s)");
+    // Every few thousand steps: after progress_interval seconds take the GIL, honour Ctrl-C (a pending
+    // KeyboardInterrupt cancels the run) and call the progress callback.
+    std::optional<py::error_already_set> python_error;
+    auto last = std::chrono::steady_clock::now();
+    options.progress_every = 2048;
+    options.progress = [&](std::uint64_t done, std::uint64_t planned) {
+        const auto now = std::chrono::steady_clock::now();
+        if (std::chrono::duration<double>(now - last).count() < progress_interval) return true;
+        last = now;
+        py::gil_scoped_acquire acquire;
+        try {
+            if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+            if (!progress.is_none()) {
+                const py::object keep_going = progress(done, planned);
+                if (!keep_going.is_none() && !keep_going.cast<bool>()) return false;
+            }
+        } catch (py::error_already_set& e) {
+            python_error.emplace(std::move(e));
+            return false;
+        }
+        return true;
+    };
+    auto result = std::make_shared<RunResult<System>>();
+    {
+        py::gil_scoped_release release;
+        *result = simulate(system, settings, options);
+    }
+    if (python_error) throw std::move(*python_error);
+    const Recording& rec = result->recording;
+    auto* keep = new std::shared_ptr<RunResult<System>>(result);
+    py::capsule base(keep, [](void* p) { delete static_cast<std::shared_ptr<RunResult<System>>*>(p); });
+    const auto channels = static_cast<py::ssize_t>(rec.names.size());
+    const auto rows = static_cast<py::ssize_t>(rec.rows);
+    const auto stride = static_cast<py::ssize_t>(sizeof(double));
+    py::array_t<double> data({channels, rows}, {stride * static_cast<py::ssize_t>(rec.capacity), stride},
+                             rec.data.data(), base);
+    py::dict d;
+    d["names"] = rec.names;
+    d["dofs"] = rec.dofs;
+    d["data"] = data;
+    const SolverStatistics& st = result->report.stats;
+    py::dict stats;
+    stats["steps"] = st.steps;
+    stats["newton_iterations"] = st.newton_iterations;
+    stats["mean_iterations"] = st.mean_iterations();
+    stats["max_iterations_in_a_step"] = st.max_iterations_in_a_step;
+    stats["halvings"] = st.halvings;
+    stats["time_step"] = result->time_step;
+    stats["decimation"] = result->decimation;
+    stats["cancelled"] = result->report.cancelled;
+    d["stats"] = stats;
+    d["contact_loss"] = losses_of(system, result->final_state);
+    d["final_time"] = result->final_state.t;
+    return d;
+}
+
 }  // namespace
 
-void bind_solver(py::module_& m) {
+template <class System>
+void bind_run(py::module_& m) {
     m.def(
-        "simulate",
-        [](const CamFollowerModel& model, std::optional<double> duration, std::optional<double> revolutions,
-           double time_step, std::size_t decimation, std::optional<double> gamma, std::optional<double> beta,
-           double hht_alpha,
-           const std::string& linear_solver, double residual_tolerance, double increment_tolerance,
-           int max_iterations, int max_halvings, double max_output_bytes) {
-            if (duration.has_value() == revolutions.has_value())
-                detail::fail("give exactly one of duration (s) or revolutions");
-            double span = 0.0;
-            if (revolutions) {
-                detail::require_positive(*revolutions, "revolutions");
-                span = *revolutions * model.period();
-            } else {
-                span = *duration;
-            }
-            // gamma and beta default to the average-acceleration rule, or to HHT's own values.
-            NewmarkSettings s = NewmarkSettings::hht(hht_alpha, time_step);
-            if (gamma) s.gamma = *gamma;
-            if (beta) s.beta = *beta;
-            s.residual_tolerance = residual_tolerance;
-            s.increment_tolerance = increment_tolerance;
-            s.max_iterations = max_iterations;
-            s.max_halvings = max_halvings;
-            if (linear_solver == "sherman_morrison") s.linear_solver = LinearSolver::sherman_morrison;
-            else if (linear_solver == "dense_lu") s.linear_solver = LinearSolver::dense_lu;
-            else detail::fail("linear_solver must be 'sherman_morrison' or 'dense_lu', got '", linear_solver, "'");
-            auto result = std::make_shared<Result>();
-            {
-                py::gil_scoped_release release;
-                const NewmarkSolver<CamFollowerModel> solver(model, s);
-                *result = solver.run(span, decimation, max_output_bytes);
-            }
-            const auto rows = static_cast<py::ssize_t>(result->rows);
-            const py::ssize_t n = CamFollowerModel::dofs;
-            py::dict d;
-            d["t"] = view(result, result->t, {rows});
-            d["theta"] = view(result, result->theta, {rows});
-            d["q"] = view(result, result->q, {rows, n});
-            d["v"] = view(result, result->v, {rows, n});
-            d["a"] = view(result, result->a, {rows, n});
-            d["contact_force"] = view(result, result->contact_force, {rows});
-            d["contact_stiffness"] = view(result, result->contact_stiffness, {rows});
-            d["pressure_angle"] = view(result, result->pressure_angle, {rows});
-            d["penetration"] = view(result, result->penetration, {rows});
-            d["in_contact"] = view(result, result->in_contact, {rows}).attr("astype")("bool");
-            py::list losses;
-            for (const auto& [a, b] : result->contact_loss) losses.append(py::make_tuple(a, b));
-            d["contact_loss"] = losses;
-            py::dict stats;
-            stats["steps"] = result->stats.steps;
-            stats["newton_iterations"] = result->stats.newton_iterations;
-            stats["mean_iterations"] = result->stats.mean_iterations();
-            stats["max_iterations_in_a_step"] = result->stats.max_iterations_in_a_step;
-            stats["halvings"] = result->stats.halvings;
-            stats["time_step"] = result->time_step;
-            stats["decimation"] = result->decimation;
-            d["stats"] = stats;
-            return d;
+        "_run",
+        [](const System& system, double duration, double time_step, std::size_t decimation, std::optional<double> gamma,
+           std::optional<double> beta, double hht_alpha, const std::string& linear_solver, double residual_tolerance,
+           double increment_tolerance, int max_iterations, int max_halvings, double record_from,
+           double max_output_bytes, const py::object& progress, double progress_interval) {
+            const NewmarkSettings s = settings_from(time_step, gamma, beta, hht_alpha, linear_solver, residual_tolerance,
+                                                    increment_tolerance, max_iterations, max_halvings);
+            return run_system(system, duration, s, decimation, record_from, max_output_bytes, progress,
+                              progress_interval);
         },
-        py::arg("model"), py::kw_only(), py::arg("duration") = py::none(), py::arg("revolutions") = py::none(),
-        py::arg("time_step") = 3e-6, py::arg("decimation") = 1, py::arg("gamma") = py::none(), py::arg("beta") = py::none(),
-        py::arg("hht_alpha") = 0.0, py::arg("linear_solver") = "sherman_morrison",
-        py::arg("residual_tolerance") = 1e-10, py::arg("increment_tolerance") = 1e-10, py::arg("max_iterations") = 25,
-        py::arg("max_halvings") = 6, py::arg("max_output_bytes") = 4.0 * 1024 * 1024 * 1024,
-        "Integrate the model from its static equilibrium with Newmark-beta (HHT-alpha if hht_alpha < 0)\n"
-        "and Newton-Raphson. Give duration (s) or revolutions. One row every `decimation` steps.\n"
-        "gamma, beta default to 1/2, 1/4 (average acceleration) or, with hht_alpha, to 1/2 - alpha and\n"
-        "(1 - alpha)^2 / 4. beta < 1/4 is only conditionally stable: a time_step beyond its limit is refused.\n"
-        "Returns a dict of NumPy arrays: t, theta (rad), q, v, a (rows x 7, m, m/s, m/s^2),\n"
-        "contact_force (N), contact_stiffness (dF/d delta, N/m), pressure_angle (rad), penetration (m),\n"
-        "in_contact (bool); contact_loss: list of (start, end) times; stats: steps, iterations, halvings.\n"
-        "Raises ValueError for bad input and RuntimeError when Newton fails after max_halvings.\n"
-        "The GIL is released during the run.");
+        py::arg("system"), py::arg("duration"), py::arg("time_step"), py::arg("decimation"), py::arg("gamma"),
+        py::arg("beta"), py::arg("hht_alpha"), py::arg("linear_solver"), py::arg("residual_tolerance"),
+        py::arg("increment_tolerance"), py::arg("max_iterations"), py::arg("max_halvings"), py::arg("record_from"),
+        py::arg("max_output_bytes"), py::arg("progress"), py::arg("progress_interval"),
+        "Internal: camfollower.simulate() calls this and wraps the output in a Result.");
 }
+
+void bind_solver(py::module_& m) { bind_run<CamFollowerModel>(m); }
 
 }  // namespace camfollower::python

@@ -8,8 +8,10 @@ int main() {
     const cf::DiskCam cam = cf::DiskCam::paper_default();
     const double alpha = cam.kinematics(cf::degrees_to_radians(105.0)).pressure_angle();
     const cf::CamFollowerModel model;
-    const cf::NewmarkSolver<cf::CamFollowerModel> solver(model, cf::NewmarkSettings{});
-    const auto result = solver.run(0.1 * model.period(), 10);
+    cf::RunOptions options;
+    options.duration = 0.1 * model.period();
+    options.record.decimation = 10;
+    const auto result = cf::simulate(model, cf::NewmarkSettings{}, options).recording;
     const auto modes = cf::modal_analysis(model, 0.0);
     std::printf("pressure angle at 105 deg: %.6f deg; %zu rows; f01 = %.1f Hz\n",
                 cf::radians_to_degrees(alpha), result.rows, modes.frequencies_hz[0]);

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "camfollower/camfollower.hpp"
+#include "run.hpp"
 
 using namespace camfollower;
 using Model = CamFollowerModel;
@@ -107,13 +108,13 @@ TEST_CASE("modal analysis: contact-free camshaft bearing mode and the specified 
 TEST_CASE("Sherman-Morrison and dense LU give the same trajectory") {
     const Model m;
     NewmarkSettings s;
-    const auto a = NewmarkSolver<Model>(m, s).run(0.3 * m.period(), 10);
+    const auto a = run(m, s, 0.3 * m.period(), 10);
     s.linear_solver = LinearSolver::dense_lu;
-    const auto b = NewmarkSolver<Model>(m, s).run(0.3 * m.period(), 10);
+    const auto b = run(m, s, 0.3 * m.period(), 10);
     REQUIRE(a.rows == b.rows);
     double dq = 0, df = 0;
     for (std::size_t i = 0; i < a.q.size(); ++i) dq = std::max(dq, std::abs(a.q[i] - b.q[i]));
-    for (std::size_t i = 0; i < a.rows; ++i) df = std::max(df, std::abs(a.contact_force[i] - b.contact_force[i]));
+    for (std::size_t i = 0; i < a.rows; ++i) df = std::max(df, std::abs(a.channel("contact_force")[i] - b.channel("contact_force")[i]));
     CHECK(dq < 1e-14);
     CHECK(df < 1e-6);
 }
@@ -121,15 +122,15 @@ TEST_CASE("Sherman-Morrison and dense LU give the same trajectory") {
 TEST_CASE("one revolution: y4 follows h, the dwell starts at rest, Newton needs about two iterations") {
     const Model m;
     NewmarkSettings s;
-    const auto r = NewmarkSolver<Model>(m, s).run(m.period(), 1);
+    const auto r = run(m, s, m.period(), 1);
     CHECK(r.stats.halvings == 0);
     CHECK(r.stats.mean_iterations() < 2.5);
-    CHECK(r.contact_loss.empty());
+    CHECK(Model::contact_loss(r.final_state.workspace, r.final_state.t).empty());
     double worst = 0;
     for (std::size_t i = 0; i < r.rows; ++i) {
-        const double h = m.cam().program().evaluate(r.theta[i]).h;
+        const double h = m.cam().program().evaluate(r.channel("theta")[i]).h;
         worst = std::max(worst, std::abs(r.q[7 * i + Model::y4] - h));
-        if (r.theta[i] < degrees_to_radians(29.0)) CHECK(std::abs(r.a[7 * i + Model::y4]) < 1e-6);
+        if (r.channel("theta")[i] < degrees_to_radians(29.0)) CHECK(std::abs(r.a[7 * i + Model::y4]) < 1e-6);
     }
     CHECK(worst < 20e-6);  // static deflection (3.7 um) plus vibration
 }
@@ -144,10 +145,10 @@ TEST_CASE("rigid limit: with stiffnesses x1e3 the follower acceleration approach
         const Model m(p);
         NewmarkSettings s;
         s.time_step = dt;
-        const auto r = NewmarkSolver<Model>(m, s).run(m.period(), 10);
+        const auto r = run(m, s, m.period(), 10);
         double worst = 0;
         for (std::size_t i = 0; i < r.rows; ++i) {
-            const double theory = m.omega() * m.omega() * m.cam().program().evaluate(r.theta[i]).d2h;
+            const double theory = m.omega() * m.omega() * m.cam().program().evaluate(r.channel("theta")[i]).d2h;
             worst = std::max(worst, std::abs(r.a[7 * i + Model::y4] - theory));
         }
         return worst;
@@ -165,16 +166,17 @@ TEST_CASE("contact loss at high speed is detected and reported as intervals") {
     const Model m(p);
     NewmarkSettings s;
     s.time_step = 1e-6;
-    const auto r = NewmarkSolver<Model>(m, s).run(m.period(), 1);
-    REQUIRE_FALSE(r.contact_loss.empty());
+    const auto r = run(m, s, m.period(), 1);
+    const auto losses = Model::contact_loss(r.final_state.workspace, r.final_state.t);
+    REQUIRE_FALSE(losses.empty());
     double lost = 0;
-    for (const auto& [a, b] : r.contact_loss) {
+    for (const auto& [a, b] : losses) {
         CHECK(b > a);
         lost += b - a;
     }
     CHECK(lost > 0.0);
     for (std::size_t i = 0; i < r.rows; ++i)
-        if (!r.in_contact[i]) CHECK(r.contact_force[i] == 0.0);
+        if (r.channel("in_contact")[i] == 0.0) CHECK(r.channel("contact_force")[i] == 0.0);
 }
 
 TEST_CASE("parameters: by name, validated, unknown names listed") {
@@ -227,9 +229,9 @@ TEST_CASE("contact damping: exact (non-symmetric) tangent keeps Newton fast, bot
     p.contact_stiffness = 1e11;  // N/m^1.5: tangent 1.5 F / delta ~ 1.9e8 N/m at the 1.5 um static penetration
     const Model m(p);
     NewmarkSettings s;
-    const auto a = NewmarkSolver<Model>(m, s).run(0.6 * m.period(), 10);
+    const auto a = run(m, s, 0.6 * m.period(), 10);
     s.linear_solver = LinearSolver::dense_lu;
-    const auto b = NewmarkSolver<Model>(m, s).run(0.6 * m.period(), 10);
+    const auto b = run(m, s, 0.6 * m.period(), 10);
     CHECK(a.stats.halvings == 0);
     // Nonlinear law: quadratic convergence takes a few iterations, not tens.
     CHECK(a.stats.mean_iterations() < 4.0);
@@ -240,11 +242,11 @@ TEST_CASE("contact damping: exact (non-symmetric) tangent keeps Newton fast, bot
     // The damped contact dissipates: less residual vibration on the top dwell than without it.
     p.contact_damping = ContactDampingModel::none;
     const Model undamped(p);
-    const auto c = NewmarkSolver<Model>(undamped, NewmarkSettings{}).run(0.6 * m.period(), 10);
-    auto dwell_vibration = [&](const SimulationResult<7>& r) {
+    const auto c = run(undamped, NewmarkSettings{}, 0.6 * m.period(), 10);
+    auto dwell_vibration = [&](const Histories<Model>& r) {
         double worst = 0;
         for (std::size_t i = 0; i < r.rows; ++i)
-            if (r.theta[i] > degrees_to_radians(185.0) && r.theta[i] < degrees_to_radians(209.0))
+            if (r.channel("theta")[i] > degrees_to_radians(185.0) && r.channel("theta")[i] < degrees_to_radians(209.0))
                 worst = std::max(worst, std::abs(r.a[7 * i + Model::y4]));  // theory: 0 on the dwell
         return worst;
     };

@@ -6,6 +6,7 @@
 #include "camfollower/motion/laws.hpp"
 #include "camfollower/solver/newmark.hpp"
 #include "linear_system.hpp"
+#include "run.hpp"
 
 using namespace camfollower;
 
@@ -27,7 +28,7 @@ struct Sdof {
 
 double max_error(const Sdof& sdof, const NewmarkSettings& settings, double duration) {
     const auto system = sdof.system();
-    const auto r = NewmarkSolver<LinearSystem<1>>(system, settings).run(duration);
+    const auto r = run(system, settings, duration);
     double err = 0.0;
     for (std::size_t i = 0; i < r.rows; ++i) err = std::max(err, std::abs(r.q[i] - sdof.exact(r.t[i])));
     return err;
@@ -65,7 +66,7 @@ TEST_CASE("HHT-alpha is second order too, and damps a high-frequency mode") {
     const double T = 2 * pi / std::sqrt(stiff.k / stiff.m);
     const auto system = stiff.system();
     auto final_energy_ratio = [&](const NewmarkSettings& s) {
-        const auto r = NewmarkSolver<LinearSystem<1>>(system, s).run(50 * T);
+        const auto r = run(system, s, 50 * T);
         const double x = r.q.back(), v = r.v.back();
         return (stiff.m * v * v + stiff.k * x * x) / (stiff.k * stiff.x0 * stiff.x0);
     };
@@ -82,7 +83,7 @@ TEST_CASE("trapezoidal rule conserves the energy of an undamped linear system to
     s.q0 << 0.01, -0.02, 0.03;
     NewmarkSettings settings;
     settings.time_step = 1e-3;
-    const auto r = NewmarkSolver<LinearSystem<3>>(s, settings).run(20.0);
+    const auto r = run(s, settings, 20.0);
     auto energy = [&](std::size_t i) {
         const Eigen::Map<const Eigen::Vector3d> q(&r.q[3 * i]), v(&r.v[3 * i]);
         return 0.5 * v.dot(s.M * v) + 0.5 * q.dot(s.K * q);
@@ -95,7 +96,7 @@ TEST_CASE("trapezoidal rule conserves the energy of an undamped linear system to
     // With Newmark's damped variant (gamma > 1/2) it must decay: the check can fail.
     settings.gamma = 0.6;
     settings.beta = 0.3025;
-    const auto d = NewmarkSolver<LinearSystem<3>>(s, settings).run(20.0);
+    const auto d = run(s, settings, 20.0);
     const Eigen::Map<const Eigen::Vector3d> q(&d.q[3 * (d.rows - 1)]), v(&d.v[3 * (d.rows - 1)]);
     CHECK(0.5 * v.dot(s.M * v) + 0.5 * q.dot(s.K * q) < 0.9 * e0);
 }
@@ -105,8 +106,8 @@ TEST_CASE("decimation keeps every n-th row of the full run") {
     NewmarkSettings s;
     s.time_step = 1e-3;
     const auto system = sdof.system();
-    const auto full = NewmarkSolver<LinearSystem<1>>(system, s).run(1.0);
-    const auto dec = NewmarkSolver<LinearSystem<1>>(system, s).run(1.0, 7);
+    const auto full = run(system, s, 1.0);
+    const auto dec = run(system, s, 1.0, 7);
     REQUIRE(full.rows == 1001);
     REQUIRE(dec.rows == 1000 / 7 + 1);
     for (std::size_t i = 0; i < dec.rows; ++i) {
@@ -120,22 +121,21 @@ TEST_CASE("bad settings and durations are rejected with the parameter named") {
     const auto system = sdof.system();
     NewmarkSettings s;
     s.time_step = 0.0;
-    CHECK_THROWS_WITH((NewmarkSolver<LinearSystem<1>>(system, s)), Catch::Contains("time_step must be finite and > 0"));
+    CHECK_THROWS_WITH((Newmark<LinearSystem<1>>(system, s)), Catch::Contains("time_step must be finite and > 0"));
     s.time_step = NAN;
-    CHECK_THROWS_WITH((NewmarkSolver<LinearSystem<1>>(system, s)), Catch::Contains("time_step"));
+    CHECK_THROWS_WITH((Newmark<LinearSystem<1>>(system, s)), Catch::Contains("time_step"));
     s = NewmarkSettings{};
     s.hht_alpha = -0.5;
-    CHECK_THROWS_WITH((NewmarkSolver<LinearSystem<1>>(system, s)), Catch::Contains("hht_alpha must be in [-0.33"));
+    CHECK_THROWS_WITH((Newmark<LinearSystem<1>>(system, s)), Catch::Contains("hht_alpha must be in [-0.33"));
     s = NewmarkSettings{};
     s.beta = 0.0;
-    CHECK_THROWS_WITH((NewmarkSolver<LinearSystem<1>>(system, s)), Catch::Contains("beta must be in (0, 0.5]"));
+    CHECK_THROWS_WITH((Newmark<LinearSystem<1>>(system, s)), Catch::Contains("beta must be in (0, 0.5]"));
     s = NewmarkSettings{};
-    const NewmarkSolver<LinearSystem<1>> solver(system, s);
-    CHECK_THROWS_WITH(solver.run(-1.0), Catch::Contains("duration must be finite and > 0"));
-    CHECK_THROWS_WITH(solver.run(INFINITY), Catch::Contains("duration"));
-    CHECK_THROWS_WITH(solver.run(1.0, 0), Catch::Contains("decimation must be >= 1"));
-    CHECK_THROWS_WITH(solver.run(1e9), Catch::Contains("too many"));
-    CHECK_THROWS_WITH(solver.run(1e3, 1, 1e6), Catch::Contains("max_output_bytes") && Catch::Contains("increase decimation"));
+    CHECK_THROWS_WITH(run(system, s, -1.0), Catch::Contains("duration must be finite and > 0"));
+    CHECK_THROWS_WITH(run(system, s, INFINITY), Catch::Contains("duration"));
+    CHECK_THROWS_WITH(run(system, s, 1.0, 0), Catch::Contains("decimation must be >= 1"));
+    CHECK_THROWS_WITH(run(system, s, 1e9), Catch::Contains("too many"));
+    CHECK_THROWS_WITH(run(system, s, 1e3, 1, 1e6), Catch::Contains("max_output_bytes") && Catch::Contains("increase decimation"));
 }
 
 TEST_CASE("a step that cannot converge halves, then reports time, step, iterations and residual") {
@@ -145,9 +145,8 @@ TEST_CASE("a step that cannot converge halves, then reports time, step, iteratio
     s.max_iterations = 1;  // one Newton iteration can never confirm convergence
     s.max_halvings = 3;
     const auto system = sdof.system();
-    const NewmarkSolver<LinearSystem<1>> solver(system, s);
-    CHECK_THROWS_AS(solver.run(0.01), ConvergenceError);
-    CHECK_THROWS_WITH(solver.run(0.01), Catch::Contains("did not converge at t = 0 s") &&
+    CHECK_THROWS_AS(run(system, s, 0.01), ConvergenceError);
+    CHECK_THROWS_WITH(run(system, s, 0.01), Catch::Contains("did not converge at t = 0 s") &&
                                             Catch::Contains("time step 0.000125 s (3 halvings)") &&
                                             Catch::Contains("after 1 iterations; residual"));
 }
@@ -159,10 +158,10 @@ TEST_CASE("Bathe's 2-DOF worked example (Finite Element Procedures, trapezoidal 
     LinearSystem<2> s;
     s.M.diagonal() << 2.0, 1.0;
     s.K << 6, -2, -2, 4;
-    s.load = [](double) { return Eigen::Vector2d(0.0, 10.0); };
+    s.external = [](double) { return Eigen::Vector2d(0.0, 10.0); };
     NewmarkSettings settings;
     settings.time_step = 0.28;
-    const auto r = NewmarkSolver<LinearSystem<2>>(s, settings).run(12 * 0.28);
+    const auto r = run(s, settings, 12 * 0.28);
     const double u1[12] = {0.00673, 0.0505, 0.189, 0.485, 0.961, 1.58, 2.23, 2.76, 3.00, 2.85, 2.28, 1.40};
     const double u2[12] = {0.364, 1.35, 2.68, 4.00, 4.95, 5.34, 5.13, 4.48, 3.64, 2.90, 2.44, 2.31};
     REQUIRE(r.rows == 13);
@@ -189,16 +188,16 @@ TEST_CASE("beta < 1/4: a step beyond the stability limit is refused; a blow-up i
     s.beta = 1.0 / 12.0;  // stable for omega dt < 2.449
     const double omega = std::sqrt(sdof.k / sdof.m);
     s.time_step = 2.0 / omega;
-    const auto fine = NewmarkSolver<LinearSystem<1>>(system, s).run(100 * s.time_step);
+    const auto fine = run(system, s, 100 * s.time_step);
     CHECK(std::abs(fine.q.back()) <= 1.01 * sdof.x0);
     s.time_step = 2.6 / omega;
-    CHECK_THROWS_WITH((NewmarkSolver<LinearSystem<1>>(system, s)),
+    CHECK_THROWS_WITH(run(system, s, 1.0),
                       Catch::Contains("time_step") && Catch::Contains("exceeds the stability limit"));
     // A state that overflows (here a load growing without bound) is an error, never a result.
     LinearSystem<1> exploding = system;
-    exploding.load = [](double t) { return Eigen::Matrix<double, 1, 1>(std::exp(1000.0 * t)); };
+    exploding.external = [](double t) { return Eigen::Matrix<double, 1, 1>(std::exp(1000.0 * t)); };
     NewmarkSettings plain;
     plain.time_step = 1e-3;
     plain.max_halvings = 1;
-    CHECK_THROWS_WITH(NewmarkSolver<LinearSystem<1>>(exploding, plain).run(1.0), Catch::Contains("became non-finite"));
+    CHECK_THROWS_WITH(run(exploding, plain, 1.0), Catch::Contains("became non-finite"));
 }

@@ -21,11 +21,14 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Core>
 #include <Eigen/LU>
 
 #include "camfollower/contact/hertz.hpp"
+#include "camfollower/core/system.hpp"
 #include "camfollower/geometry/disk_cam.hpp"
 #include "camfollower/model/defects.hpp"
 #include "camfollower/model/network.hpp"
@@ -108,6 +111,63 @@ public:
     const Matrix& mass_matrix() const { return M_; }
     const Matrix& damping_matrix() const { return C_; }
     const Matrix& stiffness_matrix() const { return K_; }
+
+    // --- The second-order-system contract (core/system.hpp) ---
+    // Workspace: the time terms of the step, and the contact-loss intervals of the run (path memory,
+    // updated after every accepted step, so no loss shorter than a step between two records is missed).
+    struct Workspace {
+        TimeContext context;
+        bool in_contact = true;
+        double loss_start = 0.0;
+        std::vector<std::pair<double, double>> contact_loss;  // [start, end) times
+    };
+    int size() const { return dofs; }
+    const Matrix& mass() const { return M_; }
+    const Matrix& damping() const { return C_; }
+    const Matrix& stiffness() const { return K_; }
+    Vector initial_displacement() const { return initial_state_; }
+    Workspace workspace() const { return {}; }
+    void prepare(double t, Workspace& w) const { w.context = at_time(t); }
+    void force(const Workspace& w, const Vector& q, const Vector& v, Vector& f) const {
+        f = nonlinear(w.context, q, v).force;
+    }
+    int max_rank() const { return 1; }
+    void tangent(const Workspace& w, const Vector& q, const Vector& v, double cq, double cv, LowRank<Vector>& uv) const {
+        const Nonlinear n = nonlinear(w.context, q, v);
+        if (n.contact.in_contact && (n.contact.stiffness != 0.0 || n.contact.damping != 0.0))
+            uv.add(w.context.g, (cq * n.contact.stiffness + cv * n.contact.damping) * w.context.g +
+                                    (cq * n.contact.damping) * w.context.g_dot);
+    }
+    void accepted(Workspace& w, const Vector& q, const Vector& v) const {
+        const bool contact = nonlinear(w.context, q, v).contact.in_contact;
+        if (contact == w.in_contact) return;
+        if (!contact) w.loss_start = w.context.t;
+        else w.contact_loss.emplace_back(w.loss_start, w.context.t);
+        w.in_contact = contact;
+    }
+    // Contact-loss intervals up to time t_end (a loss still open at t_end ends there).
+    static std::vector<std::pair<double, double>> contact_loss(const Workspace& w, double t_end) {
+        std::vector<std::pair<double, double>> out = w.contact_loss;
+        if (!w.in_contact) out.emplace_back(w.loss_start, t_end);
+        return out;
+    }
+    std::vector<std::string> dof_names() const {
+        std::vector<std::string> names;
+        for (int k = 0; k < dofs; ++k) names.emplace_back(dof_name(k));
+        return names;
+    }
+    std::vector<std::string> channel_names() const {
+        return {"theta", "contact_force", "contact_stiffness", "pressure_angle", "penetration", "in_contact"};
+    }
+    void observe(const Workspace& w, const Vector& q, const Vector& v, double* out) const {
+        const Nonlinear n = nonlinear(w.context, q, v);
+        out[0] = w.context.theta;
+        out[1] = n.contact.force;
+        out[2] = n.contact.stiffness;
+        out[3] = w.context.pressure_angle();
+        out[4] = n.delta;
+        out[5] = n.contact.in_contact ? 1.0 : 0.0;
+    }
     const HertzContact& contact_law() const { return contact_; }
     double omega() const { return omega_; }
     double period() const { return two_pi / omega_; }

@@ -1,34 +1,30 @@
-// Implicit Newmark-beta / HHT-alpha time integration with Newton-Raphson on the effective residual.
+// Implicit Newmark-beta / HHT-alpha stepper with Newton-Raphson, for any system of the contract in
+// core/system.hpp (M q'' + C q' + K q + f(t, q, q') = p(t)).
 //
-// System concept (see CamFollowerModel): dofs, Vector/Matrix (fixed size), mass_matrix(),
-// damping_matrix(), stiffness_matrix(), initial_state(), at_time(t) -> TimeContext (members theta,
-// g: the contact direction; pressure_angle()), nonlinear(ctx, q, v) -> {force, delta, contact}, and
-// tangent_row(ctx, nl, velocity_factor) -> w such that d force / dq = g w^T.
-//
-// Residual (HHT-alpha, alpha in [-1/3, 0]; alpha = 0 is plain Newmark):
-//   r = M a1 + (1 + alpha) (C v1 + K q1 + f1) - alpha (C v0 + K q0 + f0)
-// with a1 = (q1 - q_pred) / (beta dt^2), v1 = v_pred + gamma dt a1. The Newton matrix is
-// A0 + (1 + alpha) g w^T with A0 = M / (beta dt^2) + (1 + alpha)(gamma / (beta dt) C + K) constant
-// for a given dt: it is factored once per step size, and the rank-one contact term is handled by
-// the Sherman-Morrison formula (default) or by a dense LU of the full matrix every iteration.
-// Convergence: residual below tolerance (or its rounding floor) and Newton increment below
-// tolerance. When the Newton matrix is A0 plus a symmetric positive semi-definite contact term (no
-// contact damping), the next increment is bounded by |r|_2 / lambda_min(A0) and the confirming
-// solve is skipped: a step whose contact state does not change converges in one solve.
+// Residual (HHT-alpha, alpha in [-1/3, 0]; alpha = 0 is plain Newmark), unknown the new acceleration:
+//   r(a) = Aa a + b + (1 + alpha) f(q(a), v(a)),   Aa = M + (1 + alpha)(gamma dt C + beta dt^2 K),
+//   q(a) = q_pred + beta dt^2 a, v(a) = v_pred + gamma dt a.
+// In displacement units the Newton matrix is A0 + (1 + alpha) U V^T with
+// A0 = M / (beta dt^2) + (1 + alpha)(gamma / (beta dt) C + K), constant for a given dt (inverted once
+// per step size), and U V^T the system's low-rank tangent (rank = active contacts). Rank one is
+// solved by Sherman-Morrison, small ranks by Woodbury, larger ranks by a dense LU of the full matrix.
+// Convergence: residual below tolerance (or its rounding floor) and Newton increment below tolerance.
+// When the tangent is symmetric positive semi-definite (V = U diag(s), s >= 0) the next increment is
+// bounded by |r|_2 / lambda_min(A0) and the confirming solve is skipped: a step whose contact state
+// does not change converges in one solve. A step that fails is retried as two halves (bounded).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstddef>
 #include <cstdint>
 #include <limits>
-#include <utility>
-#include <vector>
 
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 
+#include "camfollower/core/system.hpp"
 #include "camfollower/error.hpp"
 
 namespace camfollower {
@@ -44,7 +40,7 @@ struct NewmarkSettings {
     double increment_tolerance = 1e-10; // relative to max |q| (+ 1 nm floor)
     int max_iterations = 25;
     int max_halvings = 6;
-    LinearSolver linear_solver = LinearSolver::sherman_morrison;
+    LinearSolver linear_solver = LinearSolver::sherman_morrison;  // low-rank updates, or dense LU always
 
     // HHT-alpha with its second-order, unconditionally stable gamma and beta.
     static NewmarkSettings hht(double alpha, double time_step = 3e-6) {
@@ -85,51 +81,43 @@ struct SolverStatistics {
     double mean_iterations() const { return steps ? double(newton_iterations) / double(steps) : 0.0; }
 };
 
-// Time histories, row-major per channel; one row every `decimation` steps (first row: t = 0).
-template <int N>
-struct SimulationResult {
-    std::size_t rows = 0;
-    std::vector<double> t, theta;
-    std::vector<double> q, v, a;  // rows x N
-    std::vector<double> contact_force, contact_stiffness, pressure_angle, penetration;
-    std::vector<std::uint8_t> in_contact;
-    std::vector<std::pair<double, double>> contact_loss;  // [start, end) times, every step checked
-    SolverStatistics stats;
-    double time_step = 0.0;
-    std::size_t decimation = 1;
+// The integrator's state: time, displacement, velocity, acceleration, the nonlinear force at them
+// (f(t, q, v) - p(t), needed by HHT) and the system's workspace (time terms prepared at t, path memory).
+template <class System>
+struct State {
+    using Vector = typename System::Vector;
+    double t = 0.0;
+    Vector q, v, a, f;
+    workspace_t<System> workspace;
 };
 
 template <class System>
-class NewmarkSolver {
+class Newmark {
+    static_assert(check_system<System>());
+
 public:
-    static constexpr int N = System::dofs;
     using Vector = typename System::Vector;
     using Matrix = typename System::Matrix;
+    using StateType = State<System>;
+    // Ranks up to this are solved by Woodbury with a fixed-capacity k x k matrix (no allocation).
+    static constexpr int max_woodbury_rank = 8;
 
-    using Nonlinear = decltype(std::declval<const System&>().nonlinear(
-        std::declval<const System&>().at_time(0.0), std::declval<Vector>(), std::declval<Vector>()));
-
-    struct State {
-        double t = 0.0;
-        Vector q, v, a;
-        Nonlinear nl;                // nonlinear terms at (t, q, v); nl.force is f for HHT
-        double theta = 0.0;          // cam angle, rad
-        double pressure_angle = 0.0; // rad
-    };
-
-    NewmarkSolver(const System& system, const NewmarkSettings& settings) : system_(system), s_(settings) {
+    Newmark(const System& system, const NewmarkSettings& settings)
+        : system_(system), s_(settings), n_(system.size()), uv_(n_, std::max(1, max_rank(system))) {
         s_.validate();
-        const Matrix& M = system.mass_matrix();
-        for (int k = 0; k < N; ++k)
-            if (!(M(k, k) > 0.0)) detail::fail("mass matrix diagonal must be > 0");
-        for (int level = 0; level <= s_.max_halvings; ++level) {
+        const Matrix& M = system.mass();
+        if (M.rows() != n_ || M.cols() != n_ || system.damping().rows() != n_ || system.stiffness().rows() != n_)
+            detail::fail("system: mass, damping and stiffness must be ", n_, " x ", n_, " (size())");
+        for (int k = 0; k < n_; ++k)
+            if (!(M(k, k) > 0.0)) detail::fail("system: mass matrix diagonal must be > 0, got M(", k, ", ", k, ") = ", M(k, k));
+        const int levels = s_.max_halvings + 1;
+        for (int level = 0; level < levels; ++level) {
             const double dt = s_.time_step / double(1 << level);
             A0_[level] = effective_matrix(dt);
             Aa_[level] = (s_.beta * dt * dt) * A0_[level];
-            lu_[level].compute(A0_[level]);
-            // A 7x7 well-conditioned inverse applied as one matrix-vector product beats two
-            // triangular solves; the factorization stays for the dense-LU option.
-            A0_inv_[level] = lu_[level].inverse();
+            // An explicit inverse applied as one matrix-vector product beats two triangular solves for
+            // the small, well-conditioned matrices of lumped models.
+            A0_inv_[level] = A0_[level].partialPivLu().inverse();
             // 1 / lambda_min(A0) when A0 is symmetric positive definite (0 disables the bound).
             inverse_bound_[level] = 0.0;
             if ((A0_[level] - A0_[level].transpose()).cwiseAbs().maxCoeff() <= 1e-14 * A0_[level].cwiseAbs().maxCoeff()) {
@@ -139,58 +127,47 @@ public:
             }
         }
         norm_M_ = M.cwiseAbs().rowwise().sum().maxCoeff();
-        norm_C_ = system.damping_matrix().cwiseAbs().rowwise().sum().maxCoeff();
-        norm_K_ = system.stiffness_matrix().cwiseAbs().rowwise().sum().maxCoeff();
-        const State s0 = initial_state();
-        check_stability_limit(s0);
-        force_scale_ = std::max({1.0, (system.stiffness_matrix() * s0.q).cwiseAbs().maxCoeff(),
-                                 s0.nl.force.cwiseAbs().maxCoeff()});
+        norm_C_ = system.damping().cwiseAbs().rowwise().sum().maxCoeff();
+        norm_K_ = system.stiffness().cwiseAbs().rowwise().sum().maxCoeff();
+        const int cap = uv_.capacity();
+        Z_.resize(n_, cap);
+        U_cached_.resize(n_, cap);
+        for (Vector* v : {&q_pred_, &v_pred_, &b_, &a_, &q_, &v_, &r_, &x_, &dq_}) v->resize(n_);
+        full_.resize(n_, n_);
+        if constexpr (Matrix::RowsAtCompileTime == Eigen::Dynamic) lu_ = Eigen::PartialPivLU<Matrix>(n_);
     }
 
-    // beta < gamma / 2 is only conditionally stable: omega_max dt < 1 / sqrt(gamma / 2 - beta)
-    // (undamped). omega_max from the tangent stiffness at the initial state, with a 10 % margin for
-    // its variation along the motion (the contact direction turns with the pressure angle).
-    void check_stability_limit(const State& s0) const {
-        if (s_.beta >= 0.5 * s_.gamma) return;
-        const auto ctx = system_.at_time(0.0);
-        const Vector w = system_.tangent_row(ctx, s0.nl, 0.0);
-        const Matrix gw = ctx.g * w.transpose();
-        const Matrix Kt = system_.stiffness_matrix() + 0.5 * (gw + gw.transpose());
-        const Eigen::GeneralizedSelfAdjointEigenSolver<Matrix> eig(Kt, system_.mass_matrix(), Eigen::EigenvaluesOnly);
-        if (eig.info() != Eigen::Success) return;
-        const double omega_max = std::sqrt(std::max(eig.eigenvalues().maxCoeff(), 0.0));
-        const double limit = 0.9 / (omega_max * std::sqrt(0.5 * s_.gamma - s_.beta));
-        if (s_.time_step > limit)
-            detail::fail("time_step = ", s_.time_step, " s exceeds the stability limit ", limit, " s of Newmark with beta = ",
-                         s_.beta, " < gamma / 2 (highest mode ", omega_max / (2.0 * 3.14159265358979323846),
-                         " Hz); reduce time_step or use beta = 1/4");
-    }
-
-    // The solver keeps a reference to the system: a temporary would dangle.
-    NewmarkSolver(System&&, const NewmarkSettings&) = delete;
+    // The stepper keeps a reference to the system: a temporary would dangle.
+    Newmark(System&&, const NewmarkSettings&) = delete;
 
     const NewmarkSettings& settings() const { return s_; }
+    const System& system() const { return system_; }
+    double time_step() const { return s_.time_step; }
     double force_scale() const { return force_scale_; }
 
-    // System at rest in its initial (static) state, with the consistent acceleration.
-    State initial_state() const {
-        State s;
-        s.t = 0.0;
-        s.q = system_.initial_state();
-        s.v.setZero();
-        finish(s, system_.at_time(0.0));
-        s.a = system_.mass_matrix().partialPivLu().solve(
-            -(system_.damping_matrix() * s.v + system_.stiffness_matrix() * s.q + s.nl.force));
+    // A state at (t, q, v) with the consistent acceleration M a = -(C v + K q + f). Sets the
+    // residual scale from it and refuses a conditionally stable scheme beyond its step limit.
+    StateType start(double t, const Vector& q, const Vector& v) {
+        detail::require_finite(t, "start time");
+        if (q.size() != n_ || v.size() != n_) detail::fail("initial q and v must have size ", n_, ", got ", q.size(), ", ", v.size());
+        if (!q.allFinite() || !v.allFinite()) detail::fail("initial q and v must be finite");
+        StateType s;
+        s.t = t, s.q = q, s.v = v;
+        s.workspace = make_workspace(system_);
+        prepare(system_, t, s.workspace);
+        s.f.resize(n_);
+        nonlinear_force(system_, s.workspace, s.q, s.v, s.f);
+        s.a = system_.mass().partialPivLu().solve(-(system_.damping() * s.v + system_.stiffness() * s.q + s.f));
+        force_scale_ = std::max({1.0, (system_.stiffness() * s.q).cwiseAbs().maxCoeff(), s.f.cwiseAbs().maxCoeff()});
+        check_stability_limit(s);
         return s;
     }
 
     // One step of the nominal size, halving (recursively, bounded) when Newton fails.
-    void advance(State& state, SolverStatistics& stats, int level = 0) const {
-        State next;
+    void step(StateType& state, SolverStatistics& stats, int level = 0) {
         int iterations = 0;
         double residual = 0.0;
-        if (try_step(state, next, level, iterations, residual)) {
-            state = next;
+        if (try_step(state, level, iterations, residual)) {
             stats.steps += 1;
             stats.newton_iterations += std::uint64_t(iterations);
             stats.max_iterations_in_a_step = std::max(stats.max_iterations_in_a_step, iterations);
@@ -210,178 +187,183 @@ public:
                 s_.residual_tolerance * force_scale_, " N)"));
         }
         stats.halvings += 1;
-        advance(state, stats, level + 1);
-        advance(state, stats, level + 1);
-    }
-
-    // Integrate from the initial state for `duration` seconds (ceil(duration / time_step) steps),
-    // recording every `decimation`-th step.
-    SimulationResult<N> run(double duration, std::size_t decimation = 1,
-                            double max_output_bytes = 4.0 * 1024 * 1024 * 1024) const {
-        detail::require_positive(duration, "duration", "(s)");
-        if (decimation < 1) detail::fail("decimation must be >= 1, got ", decimation);
-        detail::require_positive(max_output_bytes, "max_output_bytes");
-        const double steps_real = std::ceil(duration / s_.time_step - 1e-9);
-        if (!(steps_real < 1e13))
-            detail::fail("duration / time_step = ", steps_real, " steps is too many (limit 1e13)");
-        const auto steps = static_cast<std::uint64_t>(steps_real);
-        const std::uint64_t rows = steps / decimation + 1;
-        const double bytes = double(rows) * (8.0 * (6 + 3 * N) + 1.0);
-        if (bytes > max_output_bytes)
-            detail::fail("duration ", duration, " s at time_step ", s_.time_step, " s and decimation ", decimation,
-                         " would store ", rows, " rows (", bytes / 1073741824.0,
-                         " GiB) > max_output_bytes = ", max_output_bytes / 1073741824.0,
-                         " GiB; increase decimation or shorten the duration");
-
-        SimulationResult<N> out;
-        out.time_step = s_.time_step;
-        out.decimation = decimation;
-        reserve(out, std::size_t(rows));
-        State state = initial_state();
-        record(out, state);
-        bool contact = state.nl.contact.in_contact;
-        double loss_start = 0.0;
-        for (std::uint64_t n = 1; n <= steps; ++n) {
-            advance(state, out.stats);
-            if (state.nl.contact.in_contact != contact) {
-                if (contact) loss_start = state.t;
-                else out.contact_loss.emplace_back(loss_start, state.t);
-                contact = state.nl.contact.in_contact;
-            }
-            if (n % decimation == 0) record(out, state);
-        }
-        if (!contact) out.contact_loss.emplace_back(loss_start, state.t);
-        return out;
+        step(state, stats, level + 1);
+        step(state, stats, level + 1);
     }
 
 private:
     Matrix effective_matrix(double dt) const {
         const double one_alpha = 1.0 + s_.hht_alpha;
-        return system_.mass_matrix() / (s_.beta * dt * dt) +
-               one_alpha * (s_.gamma / (s_.beta * dt) * system_.damping_matrix() + system_.stiffness_matrix());
+        return system_.mass() / (s_.beta * dt * dt) +
+               one_alpha * (s_.gamma / (s_.beta * dt) * system_.damping() + system_.stiffness());
     }
 
-    // Fill the state's time-dependent outputs and nonlinear terms (given, or evaluated here).
-    template <class Context>
-    void finish(State& s, const Context& ctx, const Nonlinear& nl) const {
-        s.nl = nl;
-        s.theta = ctx.theta;
-        s.pressure_angle = ctx.pressure_angle();
-    }
-    template <class Context>
-    void finish(State& s, const Context& ctx) const {
-        finish(s, ctx, system_.nonlinear(ctx, s.q, s.v));
+    // beta < gamma / 2 is only conditionally stable: omega_max dt < 1 / sqrt(gamma / 2 - beta)
+    // (undamped). omega_max from the tangent stiffness at the start, with a 10 % margin for its
+    // variation along the motion (contact directions turn with the cam).
+    void check_stability_limit(const StateType& s0) {
+        if (s_.beta >= 0.5 * s_.gamma) return;
+        tangent(system_, s0.workspace, s0.q, s0.v, 1.0, 0.0, uv_);
+        const Matrix uv = uv_.U.leftCols(uv_.rank) * uv_.V.leftCols(uv_.rank).transpose();
+        const Matrix Kt = system_.stiffness() + 0.5 * (uv + uv.transpose());
+        const Eigen::GeneralizedSelfAdjointEigenSolver<Matrix> eig(Kt, system_.mass(), Eigen::EigenvaluesOnly);
+        if (eig.info() != Eigen::Success) return;
+        const double omega_max = std::sqrt(std::max(eig.eigenvalues().maxCoeff(), 0.0));
+        const double limit = 0.9 / (omega_max * std::sqrt(0.5 * s_.gamma - s_.beta));
+        if (s_.time_step > limit)
+            detail::fail("time_step = ", s_.time_step, " s exceeds the stability limit ", limit, " s of Newmark with beta = ",
+                         s_.beta, " < gamma / 2 (highest mode ", omega_max / two_pi_, " Hz); reduce time_step or use beta = 1/4");
     }
 
-    bool try_step(const State& s, State& out, int level, int& iterations, double& residual) const {
+    // Z = A0^-1 (1 + alpha) U for the active columns; a column is recomputed only when U changed
+    // (contact directions depend on time only, so usually once per step).
+    void update_woodbury_columns(int level, double one_alpha) {
+        for (int k = 0; k < uv_.rank; ++k) {
+            if (k < cached_rank_ && cached_level_ == level && U_cached_.col(k) == uv_.U.col(k)) continue;
+            U_cached_.col(k) = uv_.U.col(k);
+            Z_.col(k).noalias() = A0_inv_[level] * uv_.U.col(k);
+            Z_.col(k) *= one_alpha;
+        }
+        cached_rank_ = uv_.rank;
+        cached_level_ = level;
+    }
+
+    // True when (1 + alpha) U V^T is symmetric positive semi-definite: every V column a non-negative
+    // multiple of its U column.
+    bool tangent_is_spd() const {
+        for (int k = 0; k < uv_.rank; ++k) {
+            const auto u = uv_.U.col(k);
+            const auto w = uv_.V.col(k);
+            const double s = w.dot(u) / u.squaredNorm();
+            if (!(s >= 0.0) || (w - s * u).squaredNorm() > 1e-24 * w.squaredNorm()) return false;
+        }
+        return true;
+    }
+
+    // dq = -(A0 + (1 + alpha) U V^T)^-1 r, into dq_.
+    void solve(int level, double one_alpha) {
+        const int k = uv_.rank;
+        if (s_.linear_solver == LinearSolver::dense_lu || k > max_woodbury_rank || 2 * k > n_) {
+            full_ = A0_[level];
+            if (k > 0) full_.noalias() += one_alpha * uv_.U.leftCols(k) * uv_.V.leftCols(k).transpose();
+            lu_.compute(full_);
+            dq_.noalias() = lu_.solve(r_);
+            dq_ = -dq_;
+            return;
+        }
+        x_.noalias() = A0_inv_[level] * r_;
+        if (k == 0) {
+            dq_ = -x_;
+        } else if (k == 1) {  // Sherman-Morrison
+            const auto w = uv_.V.col(0);
+            const auto z = Z_.col(0);
+            dq_ = -(x_ - z * (w.dot(x_) / (1.0 + w.dot(z))));
+        } else {  // Woodbury: (A0 + Z' V^T)^-1 r = x - Z (I + V^T Z)^-1 V^T x
+            Small S = Small::Identity(k, k);
+            S.noalias() += uv_.V.leftCols(k).transpose() * Z_.leftCols(k);
+            SmallVector y = uv_.V.leftCols(k).transpose() * x_;
+            y = S.partialPivLu().solve(y);
+            dq_ = -x_;
+            dq_.noalias() += Z_.leftCols(k) * y;
+        }
+    }
+
+    bool try_step(StateType& s, int level, int& iterations, double& residual) {
         const double dt = s_.time_step / double(1 << level);
         const double alpha = s_.hht_alpha, one_alpha = 1.0 + alpha;
-        const Matrix& C = system_.damping_matrix();
-        const Matrix& K = system_.stiffness_matrix();
+        const Matrix& C = system_.damping();
+        const Matrix& K = system_.stiffness();
         const double t1 = s.t + dt;
-        const auto ctx = system_.at_time(t1);
-        const Vector q_pred = s.q + dt * s.v + (dt * dt * (0.5 - s_.beta)) * s.a;
-        const Vector v_pred = s.v + (dt * (1.0 - s_.gamma)) * s.a;
-        // The residual is affine in the new acceleration but for the nonlinear force:
-        // r(a) = Aa a + b + (1 + alpha) f(q, v), Aa = M + (1 + alpha)(gamma dt C + beta dt^2 K).
-        Vector b = one_alpha * (C * v_pred + K * q_pred);
-        if (alpha != 0.0) b -= alpha * (C * s.v + K * s.q + s.nl.force);
+        prepare(system_, t1, s.workspace);
+        q_pred_ = s.q + dt * s.v + (dt * dt * (0.5 - s_.beta)) * s.a;
+        v_pred_ = s.v + (dt * (1.0 - s_.gamma)) * s.a;
+        // r(a) = Aa a + b + (1 + alpha) f(q, v)
+        b_.noalias() = one_alpha * (C * v_pred_);
+        b_.noalias() += one_alpha * (K * q_pred_);
+        if (alpha != 0.0) {
+            b_.noalias() -= alpha * (C * s.v);
+            b_.noalias() -= alpha * (K * s.q);
+            b_ -= alpha * s.f;
+        }
         const double v_factor = s_.gamma / (s_.beta * dt);
-        // A0^-1 u with u = (1 + alpha) g: the Sherman-Morrison vector, fixed for the step.
-        const Vector u = one_alpha * ctx.g;
-        const Vector A0_inv_u = A0_inv_[level] * u;
         const double r_tol = s_.residual_tolerance * force_scale_;
+        cached_rank_ = 0;
 
-        // The unknown is the new acceleration (q and v follow from it): unlike a/q, no rounding error
-        // of q gets amplified by 1/(beta dt^2) in the residual.
-        Vector a = s.a;
+        // The unknown is the new acceleration (q and v follow from it): unlike q, no rounding error
+        // gets amplified by 1/(beta dt^2) in the residual.
+        a_ = s.a;
         const double q_step = s_.beta * dt * dt, v_step = s_.gamma * dt;
         for (iterations = 0; iterations < s_.max_iterations;) {
-            const Vector q = q_pred + q_step * a;
-            const Vector v = v_pred + v_step * a;
-            const auto nl = system_.nonlinear(ctx, q, v);
-            const Vector r = Aa_[level] * a + b + one_alpha * nl.force;
-            residual = r.cwiseAbs().maxCoeff();
-            if (!std::isfinite(residual)) return false;
+            q_ = q_pred_ + q_step * a_;
+            v_ = v_pred_ + v_step * a_;
+            nonlinear_force(system_, s.workspace, q_, v_, s.f);
+            r_.noalias() = Aa_[level] * a_;
+            r_ += b_ + one_alpha * s.f;
+            residual = r_.cwiseAbs().maxCoeff();
+            if (!std::isfinite(residual)) return fail_step(s);
             // Rounding floor of the residual: a few ulps of its largest terms.
             const double floor = 64.0 * std::numeric_limits<double>::epsilon() *
-                                 (norm_M_ * a.cwiseAbs().maxCoeff() + norm_C_ * v.cwiseAbs().maxCoeff() +
-                                  norm_K_ * q.cwiseAbs().maxCoeff());
+                                 (norm_M_ * a_.cwiseAbs().maxCoeff() + norm_C_ * v_.cwiseAbs().maxCoeff() +
+                                  norm_K_ * q_.cwiseAbs().maxCoeff());
             const bool residual_ok = residual <= std::max(r_tol, floor);
-            const double q_tol = s_.increment_tolerance * (q.cwiseAbs().maxCoeff() + 1e-9);
-            const Vector w = system_.tangent_row(ctx, nl, v_factor);
-            // The next Newton increment is bounded without solving when the Newton matrix is A0 plus
-            // a symmetric positive semi-definite term (w = s u, s >= 0): |dq|_2 <= |r|_2 / lambda_min(A0).
-            if (iterations > 0 && residual_ok && inverse_bound_[level] > 0.0) {
-                const double s = w.dot(u) / u.squaredNorm();
-                if (s >= 0.0 && (w - s * u).squaredNorm() <= 1e-24 * w.squaredNorm() &&
-                    r.norm() * inverse_bound_[level] <= q_tol) {
-                    out.a = a, out.q = q, out.v = v, out.t = t1;
-                    finish(out, ctx, nl);  // q and v are those nl was evaluated at
-                    return true;
-                }
+            const double q_tol = s_.increment_tolerance * (q_.cwiseAbs().maxCoeff() + 1e-9);
+            tangent(system_, s.workspace, q_, v_, 1.0, v_factor, uv_);
+            // Skip the confirming solve when the next increment is bounded below tolerance.
+            if (iterations > 0 && residual_ok && inverse_bound_[level] > 0.0 &&
+                r_.norm() * inverse_bound_[level] <= q_tol && tangent_is_spd()) {
+                accept(s, t1, false);  // s.f is already the force at (q_, v_)
+                return true;
             }
-            // Newton: (beta dt^2) (A0 + u w^T) da = -r; dq = beta dt^2 da.
-            Vector dq;
-            if (s_.linear_solver == LinearSolver::sherman_morrison) {
-                const Vector x = A0_inv_[level] * r;
-                dq = -(x - A0_inv_u * (w.dot(x) / (1.0 + w.dot(A0_inv_u))));
-            } else {
-                const Matrix A = A0_[level] + u * w.transpose();
-                dq = -A.partialPivLu().solve(r);
-            }
-            a += dq / q_step;
+            update_woodbury_columns(level, one_alpha);
+            solve(level, one_alpha);
+            a_ += dq_ / q_step;
             ++iterations;
-            if (residual_ok && dq.cwiseAbs().maxCoeff() <= q_tol) {
-                accept(out, a, q_pred, v_pred, q_step, v_step, t1, ctx);
+            if (residual_ok && dq_.cwiseAbs().maxCoeff() <= q_tol) {
+                q_ = q_pred_ + q_step * a_;
+                v_ = v_pred_ + v_step * a_;
+                accept(s, t1, true);
                 return true;
             }
         }
+        return fail_step(s);
+    }
+
+    void accept(StateType& s, double t1, bool evaluate_force) {
+        s.t = t1;
+        s.q = q_;
+        s.v = v_;
+        s.a = a_;
+        if (evaluate_force) nonlinear_force(system_, s.workspace, s.q, s.v, s.f);
+        accepted(system_, s.workspace, s.q, s.v);
+    }
+
+    // A failed attempt leaves the state as it was, but for the force at the old state (HHT needs it)
+    // and the workspace's time terms, both restored here.
+    bool fail_step(StateType& s) {
+        prepare(system_, s.t, s.workspace);
+        nonlinear_force(system_, s.workspace, s.q, s.v, s.f);
         return false;
     }
 
-    template <class Context>
-    void accept(State& out, const Vector& a, const Vector& q_pred, const Vector& v_pred, double q_step,
-                double v_step, double t1, const Context& ctx) const {
-        out.a = a;
-        out.q = q_pred + q_step * a;
-        out.v = v_pred + v_step * a;
-        out.t = t1;
-        finish(out, ctx);
-    }
-
-    static void reserve(SimulationResult<N>& out, std::size_t rows) {
-        for (auto* v : {&out.t, &out.theta, &out.contact_force, &out.contact_stiffness, &out.pressure_angle,
-                        &out.penetration})
-            v->reserve(rows);
-        for (auto* v : {&out.q, &out.v, &out.a}) v->reserve(rows * N);
-        out.in_contact.reserve(rows);
-        out.contact_loss.reserve(64);
-    }
-
-    static void record(SimulationResult<N>& out, const State& s) {
-        out.t.push_back(s.t);
-        out.theta.push_back(s.theta);
-        for (int k = 0; k < N; ++k) {
-            out.q.push_back(s.q[k]);
-            out.v.push_back(s.v[k]);
-            out.a.push_back(s.a[k]);
-        }
-        out.contact_force.push_back(s.nl.contact.force);
-        out.contact_stiffness.push_back(s.nl.contact.stiffness);
-        out.pressure_angle.push_back(s.pressure_angle);
-        out.penetration.push_back(s.nl.delta);
-        out.in_contact.push_back(s.nl.contact.in_contact ? 1 : 0);
-        ++out.rows;
-    }
+    using Columns = typename LowRank<Vector>::Columns;
+    using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, max_woodbury_rank, max_woodbury_rank>;
+    using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, max_woodbury_rank, 1>;
+    static constexpr double two_pi_ = 6.283185307179586476925286766559;
 
     const System& system_;
     NewmarkSettings s_;
+    int n_;
     std::array<Matrix, NewmarkSettings::max_levels> A0_, Aa_, A0_inv_;
-    std::array<Eigen::PartialPivLU<Matrix>, NewmarkSettings::max_levels> lu_;
     std::array<double, NewmarkSettings::max_levels> inverse_bound_{};
     double force_scale_ = 1.0;
     double norm_M_ = 0.0, norm_C_ = 0.0, norm_K_ = 0.0;  // infinity norms, for the rounding floor
+    // Scratch, sized once: nothing is allocated inside the time loop.
+    LowRank<Vector> uv_;
+    Columns Z_, U_cached_;
+    int cached_rank_ = 0, cached_level_ = -1;
+    Vector q_pred_, v_pred_, b_, a_, q_, v_, r_, x_, dq_;
+    Matrix full_;
+    Eigen::PartialPivLU<Matrix> lu_;
 };
 
 }  // namespace camfollower

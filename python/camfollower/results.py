@@ -1,0 +1,136 @@
+"""Typed simulation results: named channels as NumPy views on the C++ buffers, statistics, NPZ files."""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from pathlib import Path
+from typing import Any, Dict, List, Sequence, Tuple
+
+import numpy as np
+
+_FORMAT = "camfollower.Result/1"
+
+
+class Result:
+    """Time histories of one run.
+
+    ``t`` (s), ``q``, ``v``, ``a`` (rows x DOFs, SI units of each DOF: m or rad) and every channel of the
+    system by name (``r["contact_force"]``, ``r.channel("contact_force")``; ``r.channels`` lists them).
+    ``stats`` holds the solver statistics, ``contact_loss`` the (start, end) times in s of every interval
+    without contact (checked at every step, not only at recorded rows). Arrays are read-only views on
+    the run's buffer; ``save(path)`` / ``Result.load(path)`` round-trip through an NPZ file.
+    """
+
+    def __init__(self, names: Sequence[str], dofs: Sequence[str], data: np.ndarray, stats: Dict[str, Any],
+                 contact_loss: Sequence[Tuple[float, float]]):
+        self._names: List[str] = list(names)
+        self._index = {n: i for i, n in enumerate(self._names)}
+        self.dof_names: List[str] = list(dofs)
+        data = np.asarray(data)
+        if data.shape[0] != len(self._names):
+            raise ValueError(f"data has {data.shape[0]} channels, names {len(self._names)}")
+        data.flags.writeable = False
+        self._data = data
+        self.stats: Dict[str, Any] = dict(stats)
+        self.contact_loss: List[Tuple[float, float]] = [(float(a), float(b)) for a, b in contact_loss]
+
+    # --- channels ---
+    @property
+    def channels(self) -> List[str]:
+        """Names of the recorded channels: t, q.<dof>, v.<dof>, a.<dof>, then the system's own."""
+        return list(self._names)
+
+    @property
+    def rows(self) -> int:
+        return int(self._data.shape[1])
+
+    def channel(self, name: str) -> np.ndarray:
+        try:
+            return self._data[self._index[name]]
+        except KeyError:
+            raise KeyError(f"unknown channel {name!r}; recorded channels: {', '.join(self._names)}") from None
+
+    def _block(self, prefix: str) -> np.ndarray:
+        first = self._index[f"{prefix}.{self.dof_names[0]}"]
+        return self._data[first:first + len(self.dof_names)].T  # rows x DOFs, a view
+
+    @property
+    def t(self) -> np.ndarray:
+        return self.channel("t")
+
+    @property
+    def q(self) -> np.ndarray:
+        """Displacements, rows x DOFs (view)."""
+        return self._block("q")
+
+    @property
+    def v(self) -> np.ndarray:
+        return self._block("v")
+
+    @property
+    def a(self) -> np.ndarray:
+        return self._block("a")
+
+    @property
+    def time_step(self) -> float:
+        return float(self.stats["time_step"])
+
+    @property
+    def decimation(self) -> int:
+        return int(self.stats["decimation"])
+
+    def __getitem__(self, key: str) -> Any:
+        """Channels by name; also "q", "v", "a" (2-D), "stats", "contact_loss"; boolean channels
+        (``in_contact`` and ``<contact>.in_contact``) come back as bool arrays."""
+        if key in ("q", "v", "a"):
+            return self._block(key)
+        if key == "stats":
+            return self.stats
+        if key == "contact_loss":
+            return self.contact_loss
+        values = self.channel(key)
+        return values.astype(bool) if key == "in_contact" or key.endswith(".in_contact") else values
+
+    def __contains__(self, key: str) -> bool:
+        return key in self._index or key in ("q", "v", "a", "stats", "contact_loss")
+
+    def __repr__(self) -> str:
+        return (f"Result({self.rows} rows, {len(self.dof_names)} DOFs, channels: "
+                f"{', '.join(n for n in self._names if '.' not in n or not n.startswith(('q.', 'v.', 'a.')))})")
+
+    # --- files ---
+    def save(self, path: os.PathLike | str) -> Path:
+        """Write an NPZ file atomically (a temporary file in the same folder, then renamed)."""
+        path = Path(path)
+        if path.suffix != ".npz":
+            raise ValueError(f"path must end in .npz, got {str(path)!r}")
+        if path.exists() and not path.is_file():
+            raise ValueError(f"path {str(path)!r} exists and is not a regular file")
+        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent or ".")
+        try:
+            with os.fdopen(fd, "wb") as f:
+                np.savez(f, format=np.array(_FORMAT), names=np.array(self._names), dofs=np.array(self.dof_names),
+                         data=np.ascontiguousarray(self._data), stats_keys=np.array(list(self.stats)),
+                         stats_values=np.array([float(v) for v in self.stats.values()]),
+                         contact_loss=np.array(self.contact_loss, dtype=float).reshape(-1, 2))
+            os.replace(tmp, path)
+        except BaseException:
+            if os.path.exists(tmp):
+                os.unlink(tmp)
+            raise
+        return path
+
+    @classmethod
+    def load(cls, path: os.PathLike | str) -> "Result":
+        with np.load(Path(path), allow_pickle=False) as z:
+            if "format" not in z or str(z["format"]) != _FORMAT:
+                raise ValueError(f"{str(path)!r} is not a camfollower Result file ({_FORMAT})")
+            stats: Dict[str, Any] = {}
+            for k, v in zip(z["stats_keys"], z["stats_values"]):
+                stats[str(k)] = bool(v) if str(k) == "cancelled" else (int(v) if float(v).is_integer() and str(k) != "time_step" and str(k) != "mean_iterations" else float(v))
+            return cls([str(n) for n in z["names"]], [str(d) for d in z["dofs"]], z["data"], stats,
+                       [tuple(x) for x in z["contact_loss"]])
+
+    def __reduce__(self):
+        return (Result, (self._names, self.dof_names, np.array(self._data), self.stats, self.contact_loss))
