@@ -12,28 +12,44 @@ package re-exports it and adds the Python-side analysis and the paper study.
 import numpy as _numpy  # noqa: F401  (imported here, not lazily inside the first simulate call)
 
 from ._core import (
+    ArmTurn,
     CamFollowerModel,
     Defects,
     DiskCam,
+    Mechanism,
+    MechanismBuilder,
     MotionLaw,
     MotionProgram,
+    OscillatingFlat,
+    OscillatingRoller,
     Parameters,
     PeakCoefficients,
     Segment,
+    TranslatingFlat,
+    TranslatingRoller,
 )
+from . import presets
 from .results import Result
 from .simulation import simulate
 
 __all__ = [
+    "ArmTurn",
     "CamFollowerModel",
     "Defects",
     "DiskCam",
+    "Mechanism",
+    "MechanismBuilder",
     "MotionLaw",
     "MotionProgram",
+    "OscillatingFlat",
+    "OscillatingRoller",
     "Parameters",
     "PeakCoefficients",
     "Result",
     "Segment",
+    "TranslatingFlat",
+    "TranslatingRoller",
+    "presets",
     "simulate",
 ]
 __version__ = "0.1.0"

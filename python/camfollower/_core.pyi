@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['CamFollowerModel', 'Defects', 'DiskCam', 'MotionLaw', 'MotionProgram', 'Parameters', 'PeakCoefficients', 'Segment']
+__all__: list[str] = ['ArmTurn', 'CamFollowerModel', 'Defects', 'DiskCam', 'Mechanism', 'MechanismBuilder', 'MotionLaw', 'MotionProgram', 'OscillatingFlat', 'OscillatingRoller', 'Parameters', 'PeakCoefficients', 'Segment', 'TranslatingFlat', 'TranslatingRoller', 'paper_preset']
 class PeakCoefficients:
     """
     Peaks of |V|, |A|, |J| of a normalized law.
@@ -55,7 +55,11 @@ class MotionLaw:
         """
         Sine-constant-cosine acceleration family; b + c + d = 1 (fractions of the segment).
         """
+    def __getstate__(self) -> tuple[int, float, float, float]:
+        ...
     def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
         ...
     def evaluate(self, x: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> dict:
         """
@@ -81,9 +85,13 @@ class Segment:
     """
     One segment of a motion program (angles in rad, lifts in m).
     """
+    def __getstate__(self) -> tuple[MotionLaw, float, float, float, float]:
+        ...
     def __init__(self, law: MotionLaw, theta_start: typing.SupportsFloat | typing.SupportsIndex, theta_end: typing.SupportsFloat | typing.SupportsIndex, h_start: typing.SupportsFloat | typing.SupportsIndex, h_end: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
         ...
     @property
     def h_end(self) -> float:
@@ -109,7 +117,11 @@ class MotionProgram:
         """
         Paper Table 1: dwell 0-30, modified-trapezoid rise 30-180, dwell 180-210, return 210-360 deg.
         """
+    def __getstate__(self) -> tuple[list[Segment]]:
+        ...
     def __init__(self, segments: collections.abc.Sequence[Segment]) -> None:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
         ...
     def evaluate(self, theta: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> dict:
         """
@@ -460,7 +472,370 @@ class CamFollowerModel:
     @property
     def stiffness_matrix(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[7, 7]"]:
         ...
+class ArmTurn:
+    """
+    Sense in which an oscillating follower's arm turns to lift.
+    
+    Members:
+    
+      counter_clockwise
+    
+      clockwise
+    """
+    __members__: typing.ClassVar[dict[str, ArmTurn]]
+    clockwise: typing.ClassVar[ArmTurn]
+    counter_clockwise: typing.ClassVar[ArmTurn]
+    @typing.overload
+    def __eq__(self, other: ArmTurn) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: ArmTurn) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class TranslatingRoller:
+    """
+    Translating roller follower with offset (m): the paper's follower.
+    """
+    def __getstate__(self) -> tuple[float, float, float]:
+        ...
+    def __init__(self, base_radius: typing.SupportsFloat | typing.SupportsIndex, roller_radius: typing.SupportsFloat | typing.SupportsIndex, offset: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
+        ...
+    def check(self, program: MotionProgram) -> None:
+        """
+        Raise ValueError naming the cam angle if the cam undercuts, has a cusp or the pressure angle reaches 90 deg.
+        """
+    def contact(self, program: MotionProgram, theta: typing.SupportsFloat | typing.SupportsIndex) -> dict:
+        """
+        Contact geometry at cam angle theta (rad): unit normal (ground frame), lever, lift and their theta-rates.
+        """
+    def max_pressure_angle(self, program: MotionProgram) -> tuple[float, float]:
+        """
+        (theta, alpha) in rad of the largest |pressure angle| over the revolution.
+        """
+    def min_surface_radius(self, program: MotionProgram) -> tuple[float, float]:
+        """
+        (theta, radius) of the smallest convex cam-surface radius of curvature (m).
+        """
+    def profile(self, program: MotionProgram, theta: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> dict:
+        """
+        Cam profile at theta (rad, scalar or array): surface and reference points in the cam frame (m), the
+        contact point in the ground frame (m), surface radius of curvature (m, > 0 convex), pressure angle.
+        """
+    @property
+    def base_radius(self) -> float:
+        ...
+    @property
+    def offset(self) -> float:
+        ...
+    @property
+    def roller_radius(self) -> float:
+        ...
+class TranslatingFlat:
+    """
+    Translating flat-faced follower: face angle (rad) from the normal to the axis, offset (m).
+    """
+    def __getstate__(self) -> tuple[float, float, float]:
+        ...
+    def __init__(self, base_radius: typing.SupportsFloat | typing.SupportsIndex, face_angle: typing.SupportsFloat | typing.SupportsIndex = 0.0, offset: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
+        ...
+    def check(self, program: MotionProgram) -> None:
+        """
+        Raise ValueError naming the cam angle if the cam undercuts, has a cusp or the pressure angle reaches 90 deg.
+        """
+    def contact(self, program: MotionProgram, theta: typing.SupportsFloat | typing.SupportsIndex) -> dict:
+        """
+        Contact geometry at cam angle theta (rad): unit normal (ground frame), lever, lift and their theta-rates.
+        """
+    def max_pressure_angle(self, program: MotionProgram) -> tuple[float, float]:
+        """
+        (theta, alpha) in rad of the largest |pressure angle| over the revolution.
+        """
+    def min_surface_radius(self, program: MotionProgram) -> tuple[float, float]:
+        """
+        (theta, radius) of the smallest convex cam-surface radius of curvature (m).
+        """
+    def profile(self, program: MotionProgram, theta: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> dict:
+        """
+        Cam profile at theta (rad, scalar or array): surface and reference points in the cam frame (m), the
+        contact point in the ground frame (m), surface radius of curvature (m, > 0 convex), pressure angle.
+        """
+    @property
+    def base_radius(self) -> float:
+        ...
+    @property
+    def face_angle(self) -> float:
+        ...
+    @property
+    def offset(self) -> float:
+        ...
+class OscillatingRoller:
+    """
+    Oscillating (swing-arm) roller follower: pivot (x, y) in m in the ground frame, arm length (m); its lift program is the arm rotation in rad.
+    """
+    def __getstate__(self) -> tuple[float, float, typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"], float, str]:
+        ...
+    def __init__(self, base_radius: typing.SupportsFloat | typing.SupportsIndex, roller_radius: typing.SupportsFloat | typing.SupportsIndex, pivot: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[2, 1]"], arm_length: typing.SupportsFloat | typing.SupportsIndex, turn: str = 'counter_clockwise') -> None:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
+        ...
+    def check(self, program: MotionProgram) -> None:
+        """
+        Raise ValueError naming the cam angle if the cam undercuts, has a cusp or the pressure angle reaches 90 deg.
+        """
+    def contact(self, program: MotionProgram, theta: typing.SupportsFloat | typing.SupportsIndex) -> dict:
+        """
+        Contact geometry at cam angle theta (rad): unit normal (ground frame), lever, lift and their theta-rates.
+        """
+    def max_pressure_angle(self, program: MotionProgram) -> tuple[float, float]:
+        """
+        (theta, alpha) in rad of the largest |pressure angle| over the revolution.
+        """
+    def min_surface_radius(self, program: MotionProgram) -> tuple[float, float]:
+        """
+        (theta, radius) of the smallest convex cam-surface radius of curvature (m).
+        """
+    def profile(self, program: MotionProgram, theta: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> dict:
+        """
+        Cam profile at theta (rad, scalar or array): surface and reference points in the cam frame (m), the
+        contact point in the ground frame (m), surface radius of curvature (m, > 0 convex), pressure angle.
+        """
+    @property
+    def arm_length(self) -> float:
+        ...
+    @property
+    def base_radius(self) -> float:
+        ...
+    @property
+    def pivot(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"]:
+        ...
+    @property
+    def roller_radius(self) -> float:
+        ...
+    @property
+    def start_angle(self) -> float:
+        """
+        arm angle on the base circle, rad
+        """
+    @property
+    def turn(self) -> str:
+        ...
+class OscillatingFlat:
+    """
+    Oscillating flat-faced follower: pivot (x, y) in m, face offset from the pivot (m); its lift program is the arm rotation in rad.
+    """
+    def __getstate__(self) -> tuple[float, typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"], float, str]:
+        ...
+    def __init__(self, base_radius: typing.SupportsFloat | typing.SupportsIndex, pivot: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[2, 1]"], face_offset: typing.SupportsFloat | typing.SupportsIndex = 0.0, turn: str = 'counter_clockwise') -> None:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
+        ...
+    def check(self, program: MotionProgram) -> None:
+        """
+        Raise ValueError naming the cam angle if the cam undercuts, has a cusp or the pressure angle reaches 90 deg.
+        """
+    def contact(self, program: MotionProgram, theta: typing.SupportsFloat | typing.SupportsIndex) -> dict:
+        """
+        Contact geometry at cam angle theta (rad): unit normal (ground frame), lever, lift and their theta-rates.
+        """
+    def max_pressure_angle(self, program: MotionProgram) -> tuple[float, float]:
+        """
+        (theta, alpha) in rad of the largest |pressure angle| over the revolution.
+        """
+    def min_surface_radius(self, program: MotionProgram) -> tuple[float, float]:
+        """
+        (theta, radius) of the smallest convex cam-surface radius of curvature (m).
+        """
+    def profile(self, program: MotionProgram, theta: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> dict:
+        """
+        Cam profile at theta (rad, scalar or array): surface and reference points in the cam frame (m), the
+        contact point in the ground frame (m), surface radius of curvature (m, > 0 convex), pressure angle.
+        """
+    @property
+    def base_radius(self) -> float:
+        ...
+    @property
+    def face_offset(self) -> float:
+        ...
+    @property
+    def pivot(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"]:
+        ...
+    @property
+    def start_angle(self) -> float:
+        """
+        face-normal angle on the base circle, rad
+        """
+    @property
+    def turn(self) -> str:
+        ...
+class MechanismBuilder:
+    """
+    Describe a cam mechanism: DOFs with masses, springs and dampers between DOFs or to 'ground', loads,
+    gravity, global damping, and cam-follower contact pairs. build() makes the immutable Mechanism.
+    SI units: kg (kg m^2 for a rotation), N/m, N s/m, N; angles in rad.
+    """
+    def __getstate__(self) -> tuple:
+        ...
+    def __init__(self) -> None:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
+        ...
+    def add_contact(self, name: str, program: MotionProgram, follower: typing.Any, *, follower_dof: str, stiffness: typing.SupportsFloat | typing.SupportsIndex, exponent: typing.SupportsFloat | typing.SupportsIndex = 1.0, damping_factor: typing.SupportsFloat | typing.SupportsIndex = 0.0, phase: typing.SupportsFloat | typing.SupportsIndex = 0.0, cam_x: str = 'ground', cam_y: str = 'ground', lateral: str = 'ground') -> None:
+        """
+        A cam-follower contact pair: the cam's lift program (m, or rad for an oscillating follower), the follower
+        type, the DOF of the follower's coordinate, a Hertz law F = k delta^n (1 + chi delta'), the cam's
+        phase on the shaft (rad), the cam centre's DOFs and a translating follower's lateral DOF.
+        """
+    def add_damper(self, name: str, a: str, b: str = 'ground', *, damping: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    def add_dof(self, name: str, mass: typing.SupportsFloat | typing.SupportsIndex, direction: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"] = ...) -> None:
+        """
+        A DOF: mass (kg, or kg m^2 for a rotation) and, for a translation, its unit direction in space (for gravity).
+        """
+    def add_load(self, dof: str, force: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        """
+        Constant load along +q (N).
+        """
+    def add_spring(self, name: str, a: str, b: str = 'ground', *, stiffness: typing.SupportsFloat | typing.SupportsIndex, damping: typing.SupportsFloat | typing.SupportsIndex = 0.0, preload: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+        """
+        Spring-damper between DOFs a and b (or 'ground'); force on a: -(preload + k (q_a - q_b) + c (v_a - v_b)).
+        """
+    def build(self) -> ...:
+        """
+        Validate and assemble the immutable Mechanism.
+        """
+    def set_gravity(self, gravity: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> None:
+        """
+        Gravity vector (m/s^2).
+        """
+    def set_modal_damping(self, ratios: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> None:
+        """
+        C += modal damping with these ratios (one for all modes, or one per mode, ascending), over the modes at the initial equilibrium with the contacts linearized.
+        """
+    def set_rayleigh_damping(self, alpha: typing.SupportsFloat | typing.SupportsIndex, beta: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        """
+        C += alpha M + beta K.
+        """
+    @property
+    def camshaft_speed_rpm(self) -> float:
+        ...
+    @camshaft_speed_rpm.setter
+    def camshaft_speed_rpm(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def dof_names(self) -> list[str]:
+        ...
+class Mechanism:
+    """
+    An immutable cam mechanism (build one with MechanismBuilder, or camfollower.presets).
+    simulate(mechanism, ...) integrates it; channels: theta and per contact <name>.force,
+    .penetration, .stiffness, .pressure_angle, .cam_angle, .in_contact.
+    """
+    def __getstate__(self) -> tuple:
+        ...
+    def __init__(self, builder: MechanismBuilder) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
+        ...
+    def builder(self) -> MechanismBuilder:
+        """
+        A copy of the description it was built from: change it and build() a changed mechanism.
+        """
+    def modal_analysis(self, theta: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> dict:
+        """
+        Undamped natural frequencies (Hz, ascending), mass-normalized mode shapes and the tangent stiffness at
+        the quasi-static equilibrium at camshaft angle theta (rad), contacts linearized.
+        """
+    def static_equilibrium(self, theta: typing.SupportsFloat | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        Quasi-static equilibrium at camshaft angle theta (rad).
+        """
+    def with_camshaft_speed_rpm(self, rpm: typing.SupportsFloat | typing.SupportsIndex) -> Mechanism:
+        """
+        The same mechanism at another camshaft speed (a new object).
+        """
+    @property
+    def camshaft_speed_rpm(self) -> float:
+        ...
+    @property
+    def contact_names(self) -> list[str]:
+        ...
+    @property
+    def damping(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        ...
+    @property
+    def dof_names(self) -> list[str]:
+        ...
+    @property
+    def initial_state(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        static equilibrium at t = 0 (m or rad per DOF)
+        """
+    @property
+    def mass(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        ...
+    @property
+    def omega(self) -> float:
+        """
+        rad/s
+        """
+    @property
+    def period(self) -> float:
+        """
+        one camshaft revolution, s
+        """
+    @property
+    def size(self) -> int:
+        ...
+    @property
+    def stiffness(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        ...
+@typing.overload
 def _run(system: CamFollowerModel, duration: typing.SupportsFloat | typing.SupportsIndex, time_step: typing.SupportsFloat | typing.SupportsIndex, decimation: typing.SupportsInt | typing.SupportsIndex, gamma: typing.SupportsFloat | typing.SupportsIndex | None, beta: typing.SupportsFloat | typing.SupportsIndex | None, hht_alpha: typing.SupportsFloat | typing.SupportsIndex, linear_solver: str, residual_tolerance: typing.SupportsFloat | typing.SupportsIndex, increment_tolerance: typing.SupportsFloat | typing.SupportsIndex, max_iterations: typing.SupportsInt | typing.SupportsIndex, max_halvings: typing.SupportsInt | typing.SupportsIndex, record_from: typing.SupportsFloat | typing.SupportsIndex, max_output_bytes: typing.SupportsFloat | typing.SupportsIndex, progress: typing.Any, progress_interval: typing.SupportsFloat | typing.SupportsIndex) -> dict:
     """
     Internal: camfollower.simulate() calls this and wraps the output in a Result.
+    """
+@typing.overload
+def _run(system: Mechanism, duration: typing.SupportsFloat | typing.SupportsIndex, time_step: typing.SupportsFloat | typing.SupportsIndex, decimation: typing.SupportsInt | typing.SupportsIndex, gamma: typing.SupportsFloat | typing.SupportsIndex | None, beta: typing.SupportsFloat | typing.SupportsIndex | None, hht_alpha: typing.SupportsFloat | typing.SupportsIndex, linear_solver: str, residual_tolerance: typing.SupportsFloat | typing.SupportsIndex, increment_tolerance: typing.SupportsFloat | typing.SupportsIndex, max_iterations: typing.SupportsInt | typing.SupportsIndex, max_halvings: typing.SupportsInt | typing.SupportsIndex, record_from: typing.SupportsFloat | typing.SupportsIndex, max_output_bytes: typing.SupportsFloat | typing.SupportsIndex, progress: typing.Any, progress_interval: typing.SupportsFloat | typing.SupportsIndex) -> dict:
+    ...
+def paper_preset(parameters: Parameters | None = None, program: MotionProgram | None = None) -> Mechanism:
+    """
+    The paper's 7-DOF model (Tounsi et al.) built from the mechanism parts; DOFs y1..y4, x1..x3,
+    contact 'cam'. Parameters as for CamFollowerModel (Table 2 defaults).
     """

@@ -10,6 +10,8 @@ from typing import Any, Dict, List, Sequence, Tuple
 import numpy as np
 
 _FORMAT = "camfollower.Result/1"
+_STAT_TYPES = {"steps": int, "newton_iterations": int, "max_iterations_in_a_step": int, "halvings": int,
+               "decimation": int, "cancelled": bool}
 
 
 class Result:
@@ -17,13 +19,13 @@ class Result:
 
     ``t`` (s), ``q``, ``v``, ``a`` (rows x DOFs, SI units of each DOF: m or rad) and every channel of the
     system by name (``r["contact_force"]``, ``r.channel("contact_force")``; ``r.channels`` lists them).
-    ``stats`` holds the solver statistics, ``contact_loss`` the (start, end) times in s of every interval
-    without contact (checked at every step, not only at recorded rows). Arrays are read-only views on
+    ``stats`` holds the solver statistics, ``contact_loss`` maps each contact's name to the (start, end)
+    times in s of its intervals without contact (checked at every step, not only at recorded rows). Arrays are read-only views on
     the run's buffer; ``save(path)`` / ``Result.load(path)`` round-trip through an NPZ file.
     """
 
     def __init__(self, names: Sequence[str], dofs: Sequence[str], data: np.ndarray, stats: Dict[str, Any],
-                 contact_loss: Sequence[Tuple[float, float]]):
+                 contact_loss: Dict[str, Sequence[Tuple[float, float]]]):
         self._names: List[str] = list(names)
         self._index = {n: i for i, n in enumerate(self._names)}
         self.dof_names: List[str] = list(dofs)
@@ -33,7 +35,8 @@ class Result:
         data.flags.writeable = False
         self._data = data
         self.stats: Dict[str, Any] = dict(stats)
-        self.contact_loss: List[Tuple[float, float]] = [(float(a), float(b)) for a, b in contact_loss]
+        self.contact_loss: Dict[str, List[Tuple[float, float]]] = {
+            str(name): [(float(a), float(b)) for a, b in intervals] for name, intervals in dict(contact_loss).items()}
 
     # --- channels ---
     @property
@@ -113,7 +116,9 @@ class Result:
                 np.savez(f, format=np.array(_FORMAT), names=np.array(self._names), dofs=np.array(self.dof_names),
                          data=np.ascontiguousarray(self._data), stats_keys=np.array(list(self.stats)),
                          stats_values=np.array([float(v) for v in self.stats.values()]),
-                         contact_loss=np.array(self.contact_loss, dtype=float).reshape(-1, 2))
+                         contact_names=np.array(list(self.contact_loss), dtype=str),
+                         **{f"contact_loss_{i}": np.array(v, dtype=float).reshape(-1, 2)
+                            for i, v in enumerate(self.contact_loss.values())})
             os.replace(tmp, path)
         except BaseException:
             if os.path.exists(tmp):
@@ -128,9 +133,9 @@ class Result:
                 raise ValueError(f"{str(path)!r} is not a camfollower Result file ({_FORMAT})")
             stats: Dict[str, Any] = {}
             for k, v in zip(z["stats_keys"], z["stats_values"]):
-                stats[str(k)] = bool(v) if str(k) == "cancelled" else (int(v) if float(v).is_integer() and str(k) != "time_step" and str(k) != "mean_iterations" else float(v))
-            return cls([str(n) for n in z["names"]], [str(d) for d in z["dofs"]], z["data"], stats,
-                       [tuple(x) for x in z["contact_loss"]])
+                stats[str(k)] = _STAT_TYPES.get(str(k), float)(v)
+            losses = {str(n): [tuple(x) for x in z[f"contact_loss_{i}"]] for i, n in enumerate(z["contact_names"])}
+            return cls([str(n) for n in z["names"]], [str(d) for d in z["dofs"]], z["data"], stats, losses)
 
     def __reduce__(self):
         return (Result, (self._names, self.dof_names, np.array(self._data), self.stats, self.contact_loss))

@@ -26,6 +26,7 @@ def simulate(system, *, duration: Optional[float] = None, revolutions: Optional[
     conditionally stable and a step beyond its limit is refused. ``linear_solver``: "low_rank"
     (Sherman-Morrison / Woodbury on the contact rank) or "dense_lu".
 
+    ``system`` is a Mechanism (camfollower.MechanismBuilder, camfollower.presets) or a CamFollowerModel.
     ``progress(steps_done, steps_planned)`` is called about every ``progress_interval`` seconds;
     returning False stops the run (the Result then holds what was recorded, ``stats["cancelled"]``
     is True). Ctrl-C stops a run within about a second with KeyboardInterrupt. The GIL is released

@@ -44,5 +44,6 @@ void bind_motion(py::module_& m);
 void bind_geometry(py::module_& m);
 void bind_model(py::module_& m);
 void bind_solver(py::module_& m);
+void bind_mechanism(py::module_& m);
 
 }  // namespace camfollower::python

@@ -7,4 +7,5 @@ PYBIND11_MODULE(_core, m) {
     camfollower::python::bind_geometry(m);
     camfollower::python::bind_model(m);
     camfollower::python::bind_solver(m);
+    camfollower::python::bind_mechanism(m);
 }

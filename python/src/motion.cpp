@@ -6,6 +6,22 @@
 
 namespace camfollower::python {
 
+namespace {
+MotionLaw law_from(const py::tuple& t) {
+    switch (LawKind(t[0].cast<int>())) {
+        case LawKind::dwell: return MotionLaw::dwell();
+        case LawKind::simple_harmonic: return MotionLaw::simple_harmonic();
+        case LawKind::cycloidal: return MotionLaw::cycloidal();
+        case LawKind::polynomial_345: return MotionLaw::polynomial_345();
+        case LawKind::polynomial_4567: return MotionLaw::polynomial_4567();
+        case LawKind::constant_acceleration: return MotionLaw::constant_acceleration();
+        case LawKind::sine_constant_cosine:
+            return MotionLaw::sine_constant_cosine(t[1].cast<double>(), t[2].cast<double>(), t[3].cast<double>());
+    }
+    detail::fail("MotionLaw: invalid pickled state");
+}
+}  // namespace
+
 void bind_motion(py::module_& m) {
     py::class_<PeakCoefficients>(m, "PeakCoefficients", "Peaks of |V|, |A|, |J| of a normalized law.")
         .def_readonly("velocity", &PeakCoefficients::velocity)
@@ -44,7 +60,9 @@ void bind_motion(py::module_& m) {
                 });
             },
             py::arg("x"), "S, V, A, J at x (scalar or array, each in [0, 1]) as a dict.")
-        .def("__repr__", [](const MotionLaw& law) { return "MotionLaw(" + law.name() + ")"; });
+        .def("__repr__", [](const MotionLaw& law) { return "MotionLaw(" + law.name() + ")"; })
+        .def(py::pickle([](const MotionLaw& law) { return py::make_tuple(int(law.kind()), law.b(), law.c(), law.d()); },
+                        [](const py::tuple& t) { return law_from(t); }));
 
     py::class_<Segment>(m, "Segment", "One segment of a motion program (angles in rad, lifts in m).")
         .def(py::init([](const MotionLaw& law, double theta_start, double theta_end, double h_start,
@@ -55,6 +73,11 @@ void bind_motion(py::module_& m) {
         .def_readonly("theta_end", &Segment::theta_end)
         .def_readonly("h_start", &Segment::h_start)
         .def_readonly("h_end", &Segment::h_end)
+        .def(py::pickle([](const Segment& s) { return py::make_tuple(s.law, s.theta_start, s.theta_end, s.h_start, s.h_end); },
+                        [](const py::tuple& t) {
+                            return Segment{t[0].cast<MotionLaw>(), t[1].cast<double>(), t[2].cast<double>(),
+                                           t[3].cast<double>(), t[4].cast<double>()};
+                        }))
         .def("__repr__", [](const Segment& s) {
             return detail::concat("Segment(", s.law.name(), ", ", radians_to_degrees(s.theta_start), "-",
                                   radians_to_degrees(s.theta_end), " deg, ", s.h_start, " -> ", s.h_end, " m)");
@@ -66,6 +89,8 @@ void bind_motion(py::module_& m) {
         .def_static("paper_default", &MotionProgram::paper_default, py::arg("total_rise") = 0.010,
                     "Paper Table 1: dwell 0-30, modified-trapezoid rise 30-180, dwell 180-210, return 210-360 deg.")
         .def_property_readonly("segments", &MotionProgram::segments)
+        .def(py::pickle([](const MotionProgram& p) { return py::make_tuple(p.segments()); },
+                        [](const py::tuple& t) { return MotionProgram(t[0].cast<std::vector<Segment>>()); }))
         .def("max_lift", &MotionProgram::max_lift)
         .def("min_lift", &MotionProgram::min_lift)
         .def(

@@ -298,7 +298,8 @@ private:
             v_ = v_pred_ + v_step * a_;
             nonlinear_force(system_, s.workspace, q_, v_, s.f);
             r_.noalias() = Aa_[level] * a_;
-            r_ += b_ + one_alpha * s.f;
+            r_ += b_;
+            r_ += one_alpha * s.f;
             residual = r_.cwiseAbs().maxCoeff();
             if (!std::isfinite(residual)) return fail_step(s);
             // Rounding floor of the residual: a few ulps of its largest terms.

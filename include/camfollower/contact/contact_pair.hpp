@@ -1,0 +1,128 @@
+// A cam-follower contact pair: a cam (its motion program and phase on the camshaft), a follower
+// kinematics type, a contact law, and the DOFs it couples:
+//   cam_x, cam_y   translation of the cam centre (ground frame), or ground
+//   follower       the follower's own coordinate s (m along a translating axis, rad of an arm)
+//   lateral        translation of a translating follower across its axis, or ground
+// Its penetration is linear in q with time-only coefficients (contact_geometry.hpp):
+//   delta = g(t)^T q + delta0(t),  g = n_x e_cam_x + n_y e_cam_y - n_x e_lateral - lever e_follower,
+//   delta0 = lever s(theta),       theta = omega t + phase.
+#pragma once
+
+#include <array>
+#include <string>
+#include <variant>
+
+#include "camfollower/contact/hertz.hpp"
+#include "camfollower/error.hpp"
+#include "camfollower/follower/oscillating_flat.hpp"
+#include "camfollower/follower/oscillating_roller.hpp"
+#include "camfollower/follower/profile.hpp"
+#include "camfollower/follower/translating_flat.hpp"
+#include "camfollower/follower/translating_roller.hpp"
+#include "camfollower/motion/program.hpp"
+
+namespace camfollower {
+
+using Follower = std::variant<TranslatingRoller, TranslatingFlat, OscillatingRoller, OscillatingFlat>;
+
+inline const char* follower_type_name(const Follower& f) {
+    static const char* names[] = {"translating_roller", "translating_flat", "oscillating_roller", "oscillating_flat"};
+    return names[f.index()];
+}
+inline bool is_translating(const Follower& f) {
+    return std::holds_alternative<TranslatingRoller>(f) || std::holds_alternative<TranslatingFlat>(f);
+}
+
+struct ContactPairSpec {
+    std::string name;
+    MotionProgram program;
+    Follower follower;
+    HertzContact law;
+    double phase = 0.0;  // rad: cam angle = omega t + phase
+    std::string cam_x = "ground", cam_y = "ground", follower_dof, lateral = "ground";
+};
+
+// The time-only terms of one pair at one instant: sparse g and its rate (up to four DOFs).
+struct ContactTerms {
+    double theta = 0.0;  // cam angle, rad
+    std::array<int, 4> dof{};
+    std::array<double, 4> g{}, g_dot{};
+    int count = 0;
+    double delta0 = 0.0, delta0_dot = 0.0;
+    double cos_alpha = 1.0, sin_alpha = 0.0;
+};
+
+// A pair with its DOFs resolved to indices (-1: ground), ready for the time loop.
+class ContactPair {
+public:
+    ContactPair(ContactPairSpec spec, int cam_x, int cam_y, int follower, int lateral)
+        : spec_(std::move(spec)), cam_x_(cam_x), cam_y_(cam_y), follower_(follower), lateral_(lateral) {
+        const std::string who = "contact '" + spec_.name + "'";
+        if (follower_ < 0) detail::fail(who, ": follower_dof must be a DOF, not ground");
+        if (lateral_ >= 0 && !is_translating(spec_.follower))
+            detail::fail(who, ": lateral is defined for translating followers only (", follower_type_name(spec_.follower), ")");
+        detail::require_positive(spec_.law.stiffness, (who + " contact stiffness").c_str(), "(N/m^n)");
+        detail::require_in_range(spec_.law.exponent, 1.0, 3.0, (who + " contact exponent").c_str());
+        detail::require_non_negative(spec_.law.damping_factor, (who + " contact damping factor").c_str(), "(s/m)");
+        detail::require_finite(spec_.phase, (who + " phase").c_str());
+        // The geometry must be followable: no undercut, no cusp, pressure angle below 90 deg.
+        std::visit([&](const auto& f) {
+            try {
+                check_undercut(spec_.program, f);
+            } catch (const std::invalid_argument& e) {
+                detail::fail(who, ": ", e.what());
+            }
+        }, spec_.follower);
+    }
+
+    const ContactPairSpec& spec() const { return spec_; }
+    const std::string& name() const { return spec_.name; }
+
+    void prepare(double t, double omega, ContactTerms& c) const {
+        c.theta = omega * t + spec_.phase;
+        const FollowerMotion m = spec_.program.evaluate(c.theta);
+        const ContactGeometry k = std::visit([&](const auto& f) { return f.contact(c.theta, m); }, spec_.follower);
+        c.count = 0;
+        add(c, cam_x_, k.normal.x(), omega * k.dnormal.x());
+        add(c, cam_y_, k.normal.y(), omega * k.dnormal.y());
+        add(c, lateral_, -k.normal.x(), -omega * k.dnormal.x());
+        add(c, follower_, -k.lever, -omega * k.dlever);
+        c.delta0 = k.lever * k.lift;
+        c.delta0_dot = omega * (k.dlever * k.lift + k.lever * k.dlift);
+        c.cos_alpha = k.cos_alpha, c.sin_alpha = k.sin_alpha;
+    }
+
+    template <class Vector>
+    static double penetration(const ContactTerms& c, const Vector& q) {
+        double d = c.delta0;
+        for (int i = 0; i < c.count; ++i) d += c.g[i] * q[c.dof[i]];
+        return d;
+    }
+    template <class Vector>
+    static double penetration_rate(const ContactTerms& c, const Vector& q, const Vector& v) {
+        double d = c.delta0_dot;
+        for (int i = 0; i < c.count; ++i) d += c.g[i] * v[c.dof[i]] + c.g_dot[i] * q[c.dof[i]];
+        return d;
+    }
+    template <class Vector>
+    ContactResponse response(const ContactTerms& c, const Vector& q, const Vector& v) const {
+        return spec_.law(penetration(c, q), penetration_rate(c, q, v));
+    }
+
+private:
+    static void add(ContactTerms& c, int dof, double g, double g_dot) {
+        if (dof < 0) return;
+        for (int i = 0; i < c.count; ++i)
+            if (c.dof[i] == dof) {  // one DOF in two roles: the coefficients add
+                c.g[i] += g, c.g_dot[i] += g_dot;
+                return;
+            }
+        c.dof[c.count] = dof, c.g[c.count] = g, c.g_dot[c.count] = g_dot;
+        ++c.count;
+    }
+
+    ContactPairSpec spec_;
+    int cam_x_, cam_y_, follower_, lateral_;
+};
+
+}  // namespace camfollower

@@ -1,0 +1,381 @@
+// Bindings for the open mechanism core: follower types, the mechanism builder, the immutable
+// Mechanism (fixed-size Eigen up to 8 DOFs, dynamic above), the paper preset. Everything pickles.
+#include <optional>
+#include <variant>
+
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+
+#include "bindings.hpp"
+#include "camfollower/model/mechanism.hpp"
+#include "camfollower/model/presets/paper.hpp"
+#include "run.hpp"
+
+namespace camfollower::python {
+
+// One Python type for every mechanism: the paper preset keeps its fixed-size fast path (its size is
+// known at compile time), other mechanisms are dynamic-size. More fixed sizes cost compile time
+// (minutes each) for a few tens of percent of speed on small models.
+class AnyMechanism {
+public:
+    using Variant = std::variant<Mechanism<presets::paper_dofs>, Mechanism<Eigen::Dynamic>>;
+
+    explicit AnyMechanism(Variant m) : m_(std::move(m)) {}
+    // A description of the preset's size runs on its fixed-size path (so a pickled preset, rebuilt from
+    // its description, integrates bit for bit as the original).
+    static AnyMechanism build(const MechanismBuilder& b) {
+        if (b.structure.size() == presets::paper_dofs) return AnyMechanism(Mechanism<presets::paper_dofs>(b));
+        return AnyMechanism(Mechanism<Eigen::Dynamic>(b));
+    }
+    template <class F>
+    decltype(auto) visit(F&& f) const {
+        return std::visit(std::forward<F>(f), m_);
+    }
+
+private:
+    Variant m_;
+};
+
+namespace {
+
+template <class F>
+py::class_<F> bind_follower(py::module_& m, const char* name, const char* doc) {
+    py::class_<F> c(m, name, doc);
+    c.def(
+         "contact",
+         [](const F& f, const MotionProgram& program, double theta) {
+             const ContactGeometry g = f.contact(theta, program.evaluate(theta));
+             py::dict d;
+             d["normal"] = Eigen::Vector2d(g.normal);
+             d["dnormal"] = Eigen::Vector2d(g.dnormal);
+             d["lever"] = g.lever;
+             d["dlever"] = g.dlever;
+             d["lift"] = g.lift;
+             d["dlift"] = g.dlift;
+             d["pressure_angle"] = g.pressure_angle();
+             return d;
+         },
+         py::arg("program"), py::arg("theta"),
+         "Contact geometry at cam angle theta (rad): unit normal (ground frame), lever, lift and their theta-rates.")
+        .def(
+            "profile",
+            [](const F& f, const MotionProgram& program, const DoubleArray& theta) {
+                return map_to_dict<8>(theta,
+                                      {"surface_x", "surface_y", "reference_x", "reference_y", "contact_x", "contact_y",
+                                       "surface_radius", "pressure_angle"},
+                                      [&](double t) {
+                                          const FollowerProfilePoint p = f.profile(t, program.evaluate(t));
+                                          return std::array<double, 8>{p.surface.x(), p.surface.y(), p.reference.x(),
+                                                                       p.reference.y(), p.contact_ground.x(),
+                                                                       p.contact_ground.y(), p.surface_radius,
+                                                                       p.pressure_angle};
+                                      });
+            },
+            py::arg("program"), py::arg("theta"),
+            "Cam profile at theta (rad, scalar or array): surface and reference points in the cam frame (m), the\n"
+            "contact point in the ground frame (m), surface radius of curvature (m, > 0 convex), pressure angle.")
+        .def(
+            "max_pressure_angle",
+            [](const F& f, const MotionProgram& program) {
+                const AngleExtremum e = max_pressure_angle(program, f);
+                return std::make_pair(e.theta, e.value);
+            },
+            py::arg("program"), "(theta, alpha) in rad of the largest |pressure angle| over the revolution.")
+        .def(
+            "min_surface_radius",
+            [](const F& f, const MotionProgram& program) {
+                const AngleExtremum e = min_surface_radius(program, f);
+                return std::make_pair(e.theta, e.value);
+            },
+            py::arg("program"), "(theta, radius) of the smallest convex cam-surface radius of curvature (m).")
+        .def(
+            "check", [](const F& f, const MotionProgram& program) { check_undercut(program, f); }, py::arg("program"),
+            "Raise ValueError naming the cam angle if the cam undercuts, has a cusp or the pressure angle reaches 90 deg.");
+    return c;
+}
+
+// std::variant of types without a default constructor has no pybind11 caster: convert by hand.
+Follower follower_from(const py::handle& f) {
+    if (py::isinstance<TranslatingRoller>(f)) return f.cast<TranslatingRoller>();
+    if (py::isinstance<TranslatingFlat>(f)) return f.cast<TranslatingFlat>();
+    if (py::isinstance<OscillatingRoller>(f)) return f.cast<OscillatingRoller>();
+    if (py::isinstance<OscillatingFlat>(f)) return f.cast<OscillatingFlat>();
+    detail::fail("follower must be a TranslatingRoller, TranslatingFlat, OscillatingRoller or OscillatingFlat, got ",
+                 std::string(py::str(py::type::of(f))));
+}
+py::object follower_to_python(const Follower& f) {
+    return std::visit([](const auto& x) { return py::cast(x); }, f);
+}
+
+std::string turn_name(ArmTurn t) { return t == ArmTurn::counter_clockwise ? "counter_clockwise" : "clockwise"; }
+ArmTurn turn_from(const std::string& s) {
+    if (s == "counter_clockwise" || s == "ccw") return ArmTurn::counter_clockwise;
+    if (s == "clockwise" || s == "cw") return ArmTurn::clockwise;
+    detail::fail("turn must be 'counter_clockwise' or 'clockwise', got '", s, "'");
+}
+
+// Builder state as plain Python data (pickling, and Mechanism.__reduce__).
+py::tuple builder_state(const MechanismBuilder& b) {
+    py::list dofs, springs, loads, contacts;
+    for (const DofSpec& d : b.structure.dofs()) dofs.append(py::make_tuple(d.name, d.mass, Eigen::Vector3d(d.direction)));
+    for (const SpringSpec& s : b.structure.springs())
+        springs.append(py::make_tuple(s.name, s.a, s.b, s.stiffness, s.damping, s.preload));
+    for (const LoadSpec& l : b.structure.loads()) loads.append(py::make_tuple(l.dof, l.force));
+    for (const ContactPairSpec& c : b.contacts)
+        contacts.append(py::make_tuple(c.name, c.program, follower_to_python(c.follower), c.law.stiffness, c.law.exponent, c.law.damping_factor,
+                                       c.phase, c.cam_x, c.cam_y, c.follower_dof, c.lateral));
+    return py::make_tuple(dofs, springs, loads, Eigen::Vector3d(b.structure.gravity()), b.structure.rayleigh_alpha(),
+                          b.structure.rayleigh_beta(), b.structure.modal_ratios(), contacts, b.camshaft_speed);
+}
+
+MechanismBuilder builder_from(const py::tuple& t) {
+    if (t.size() != 9) detail::fail("MechanismBuilder: invalid pickled state");
+    MechanismBuilder b;
+    for (const auto& d : t[0].cast<py::list>()) {
+        const auto x = d.cast<py::tuple>();
+        b.add_dof(x[0].cast<std::string>(), x[1].cast<double>(), x[2].cast<Eigen::Vector3d>());
+    }
+    for (const auto& s : t[1].cast<py::list>()) {
+        const auto x = s.cast<py::tuple>();
+        b.add_spring(x[0].cast<std::string>(), x[1].cast<std::string>(), x[2].cast<std::string>(), x[3].cast<double>(),
+                     x[4].cast<double>(), x[5].cast<double>());
+    }
+    for (const auto& l : t[2].cast<py::list>()) {
+        const auto x = l.cast<py::tuple>();
+        b.add_load(x[0].cast<std::string>(), x[1].cast<double>());
+    }
+    b.set_gravity(t[3].cast<Eigen::Vector3d>());
+    b.set_rayleigh_damping(t[4].cast<double>(), t[5].cast<double>());
+    b.set_modal_damping(t[6].cast<std::vector<double>>());
+    for (const auto& c : t[7].cast<py::list>()) {
+        const auto x = c.cast<py::tuple>();
+        b.add_contact({x[0].cast<std::string>(), x[1].cast<MotionProgram>(), follower_from(x[2]),
+                       HertzContact{x[3].cast<double>(), x[4].cast<double>(), x[5].cast<double>()}, x[6].cast<double>(),
+                       x[7].cast<std::string>(), x[8].cast<std::string>(), x[9].cast<std::string>(),
+                       x[10].cast<std::string>()});
+    }
+    b.camshaft_speed = t[8].cast<double>();
+    return b;
+}
+
+py::dict modal(const AnyMechanism& m, double theta) {
+    return m.visit([&](const auto& mech) {
+        using M = std::decay_t<decltype(mech)>;
+        const typename M::Vector q = mech.static_equilibrium(theta);
+        const typename M::Matrix kt = mech.tangent_stiffness(theta, q);
+        const Eigen::GeneralizedSelfAdjointEigenSolver<typename M::Matrix> eig(kt, mech.mass());
+        if (eig.info() != Eigen::Success) detail::fail("modal analysis: the eigen solver did not converge");
+        py::dict d;
+        d["frequencies_hz"] = Eigen::VectorXd(eig.eigenvalues().cwiseMax(0.0).cwiseSqrt() / two_pi);
+        d["mode_shapes"] = Eigen::MatrixXd(eig.eigenvectors());
+        d["tangent_stiffness"] = Eigen::MatrixXd(kt);
+        return d;
+    });
+}
+
+}  // namespace
+
+void bind_mechanism(py::module_& m) {
+    py::enum_<ArmTurn>(m, "ArmTurn", "Sense in which an oscillating follower's arm turns to lift.")
+        .value("counter_clockwise", ArmTurn::counter_clockwise)
+        .value("clockwise", ArmTurn::clockwise);
+
+    bind_follower<TranslatingRoller>(m, "TranslatingRoller",
+                                     "Translating roller follower with offset (m): the paper's follower.")
+        .def(py::init<double, double, double>(), py::arg("base_radius"), py::arg("roller_radius"), py::arg("offset") = 0.0)
+        .def_property_readonly("base_radius", &TranslatingRoller::base_radius)
+        .def_property_readonly("roller_radius", &TranslatingRoller::roller_radius)
+        .def_property_readonly("offset", &TranslatingRoller::offset)
+        .def(py::pickle([](const TranslatingRoller& f) { return py::make_tuple(f.base_radius(), f.roller_radius(), f.offset()); },
+                        [](const py::tuple& t) {
+                            return TranslatingRoller(t[0].cast<double>(), t[1].cast<double>(), t[2].cast<double>());
+                        }))
+        .def("__repr__", [](const TranslatingRoller& f) {
+            return detail::concat("TranslatingRoller(base_radius=", f.base_radius(), ", roller_radius=", f.roller_radius(),
+                                  ", offset=", f.offset(), ")");
+        });
+    bind_follower<TranslatingFlat>(m, "TranslatingFlat",
+                                   "Translating flat-faced follower: face angle (rad) from the normal to the axis, offset (m).")
+        .def(py::init<double, double, double>(), py::arg("base_radius"), py::arg("face_angle") = 0.0, py::arg("offset") = 0.0)
+        .def_property_readonly("base_radius", &TranslatingFlat::base_radius)
+        .def_property_readonly("face_angle", &TranslatingFlat::face_angle)
+        .def_property_readonly("offset", &TranslatingFlat::offset)
+        .def(py::pickle([](const TranslatingFlat& f) { return py::make_tuple(f.base_radius(), f.face_angle(), f.offset()); },
+                        [](const py::tuple& t) {
+                            return TranslatingFlat(t[0].cast<double>(), t[1].cast<double>(), t[2].cast<double>());
+                        }))
+        .def("__repr__", [](const TranslatingFlat& f) {
+            return detail::concat("TranslatingFlat(base_radius=", f.base_radius(), ", face_angle=", f.face_angle(),
+                                  ", offset=", f.offset(), ")");
+        });
+    bind_follower<OscillatingRoller>(m, "OscillatingRoller",
+                                     "Oscillating (swing-arm) roller follower: pivot (x, y) in m in the ground frame, arm "
+                                     "length (m); its lift program is the arm rotation in rad.")
+        .def(py::init([](double rb, double rr, const Eigen::Vector2d& pivot, double arm, const std::string& turn) {
+                 return OscillatingRoller(rb, rr, pivot, arm, turn_from(turn));
+             }),
+             py::arg("base_radius"), py::arg("roller_radius"), py::arg("pivot"), py::arg("arm_length"),
+             py::arg("turn") = "counter_clockwise")
+        .def_property_readonly("base_radius", &OscillatingRoller::base_radius)
+        .def_property_readonly("roller_radius", &OscillatingRoller::roller_radius)
+        .def_property_readonly("pivot", [](const OscillatingRoller& f) { return Eigen::Vector2d(f.pivot()); })
+        .def_property_readonly("arm_length", &OscillatingRoller::arm_length)
+        .def_property_readonly("turn", [](const OscillatingRoller& f) { return turn_name(f.turn()); })
+        .def_property_readonly("start_angle", &OscillatingRoller::start_angle, "arm angle on the base circle, rad")
+        .def(py::pickle(
+            [](const OscillatingRoller& f) {
+                return py::make_tuple(f.base_radius(), f.roller_radius(), Eigen::Vector2d(f.pivot()), f.arm_length(),
+                                      turn_name(f.turn()));
+            },
+            [](const py::tuple& t) {
+                return OscillatingRoller(t[0].cast<double>(), t[1].cast<double>(), t[2].cast<Eigen::Vector2d>(),
+                                         t[3].cast<double>(), turn_from(t[4].cast<std::string>()));
+            }));
+    bind_follower<OscillatingFlat>(m, "OscillatingFlat",
+                                   "Oscillating flat-faced follower: pivot (x, y) in m, face offset from the pivot (m); its "
+                                   "lift program is the arm rotation in rad.")
+        .def(py::init([](double rb, const Eigen::Vector2d& pivot, double face_offset, const std::string& turn) {
+                 return OscillatingFlat(rb, pivot, face_offset, turn_from(turn));
+             }),
+             py::arg("base_radius"), py::arg("pivot"), py::arg("face_offset") = 0.0, py::arg("turn") = "counter_clockwise")
+        .def_property_readonly("base_radius", &OscillatingFlat::base_radius)
+        .def_property_readonly("pivot", [](const OscillatingFlat& f) { return Eigen::Vector2d(f.pivot()); })
+        .def_property_readonly("face_offset", &OscillatingFlat::face_offset)
+        .def_property_readonly("turn", [](const OscillatingFlat& f) { return turn_name(f.turn()); })
+        .def_property_readonly("start_angle", &OscillatingFlat::start_angle, "face-normal angle on the base circle, rad")
+        .def(py::pickle(
+            [](const OscillatingFlat& f) {
+                return py::make_tuple(f.base_radius(), Eigen::Vector2d(f.pivot()), f.face_offset(), turn_name(f.turn()));
+            },
+            [](const py::tuple& t) {
+                return OscillatingFlat(t[0].cast<double>(), t[1].cast<Eigen::Vector2d>(), t[2].cast<double>(),
+                                       turn_from(t[3].cast<std::string>()));
+            }));
+
+    py::class_<MechanismBuilder>(
+        m, "MechanismBuilder",
+        "Describe a cam mechanism: DOFs with masses, springs and dampers between DOFs or to 'ground', loads,\n"
+        "gravity, global damping, and cam-follower contact pairs. build() makes the immutable Mechanism.\n"
+        "SI units: kg (kg m^2 for a rotation), N/m, N s/m, N; angles in rad.")
+        .def(py::init<>())
+        .def("add_dof", &MechanismBuilder::add_dof, py::arg("name"), py::arg("mass"),
+             py::arg("direction") = Eigen::Vector3d::Zero(),
+             "A DOF: mass (kg, or kg m^2 for a rotation) and, for a translation, its unit direction in space (for "
+             "gravity).")
+        .def("add_spring", &MechanismBuilder::add_spring, py::arg("name"), py::arg("a"), py::arg("b") = ground_name,
+             py::kw_only(), py::arg("stiffness"), py::arg("damping") = 0.0, py::arg("preload") = 0.0,
+             "Spring-damper between DOFs a and b (or 'ground'); force on a: -(preload + k (q_a - q_b) + c (v_a - v_b)).")
+        .def("add_damper", &MechanismBuilder::add_damper, py::arg("name"), py::arg("a"), py::arg("b") = ground_name,
+             py::kw_only(), py::arg("damping"))
+        .def("add_load", &MechanismBuilder::add_load, py::arg("dof"), py::arg("force"), "Constant load along +q (N).")
+        .def("set_gravity", &MechanismBuilder::set_gravity, py::arg("gravity"), "Gravity vector (m/s^2).")
+        .def("set_rayleigh_damping", &MechanismBuilder::set_rayleigh_damping, py::arg("alpha"), py::arg("beta"),
+             "C += alpha M + beta K.")
+        .def("set_modal_damping", &MechanismBuilder::set_modal_damping, py::arg("ratios"),
+             "C += modal damping with these ratios (one for all modes, or one per mode, ascending), over the modes "
+             "at the initial equilibrium with the contacts linearized.")
+        .def(
+            "add_contact",
+            [](MechanismBuilder& b, const std::string& name, const MotionProgram& program, const py::object& follower,
+               const std::string& follower_dof, double stiffness, double exponent, double damping_factor, double phase,
+               const std::string& cam_x, const std::string& cam_y, const std::string& lateral) {
+                b.add_contact({name, program, follower_from(follower), HertzContact{stiffness, exponent, damping_factor}, phase, cam_x,
+                               cam_y, follower_dof, lateral});
+            },
+            py::arg("name"), py::arg("program"), py::arg("follower"), py::kw_only(), py::arg("follower_dof"),
+            py::arg("stiffness"), py::arg("exponent") = 1.0, py::arg("damping_factor") = 0.0, py::arg("phase") = 0.0,
+            py::arg("cam_x") = ground_name, py::arg("cam_y") = ground_name, py::arg("lateral") = ground_name,
+            "A cam-follower contact pair: the cam's lift program (m, or rad for an oscillating follower), the follower\n"
+            "type, the DOF of the follower's coordinate, a Hertz law F = k delta^n (1 + chi delta'), the cam's\n"
+            "phase on the shaft (rad), the cam centre's DOFs and a translating follower's lateral DOF.")
+        .def_property("camshaft_speed_rpm", &MechanismBuilder::camshaft_speed_rpm, &MechanismBuilder::set_camshaft_speed_rpm)
+        .def_property_readonly("dof_names", [](const MechanismBuilder& b) {
+            std::vector<std::string> n;
+            for (const DofSpec& d : b.structure.dofs()) n.push_back(d.name);
+            return n;
+        })
+        .def("build", &AnyMechanism::build, "Validate and assemble the immutable Mechanism.")
+        .def(py::pickle(&builder_state, &builder_from));
+
+    py::class_<AnyMechanism>(m, "Mechanism",
+                             "An immutable cam mechanism (build one with MechanismBuilder, or camfollower.presets).\n"
+                             "simulate(mechanism, ...) integrates it; channels: theta and per contact <name>.force,\n"
+                             ".penetration, .stiffness, .pressure_angle, .cam_angle, .in_contact.")
+        .def(py::init(&AnyMechanism::build), py::arg("builder"))
+        .def_property_readonly("size", [](const AnyMechanism& a) { return a.visit([](const auto& x) { return x.size(); }); })
+        .def_property_readonly("dof_names", [](const AnyMechanism& a) { return a.visit([](const auto& x) { return x.dof_names(); }); })
+        .def_property_readonly("contact_names",
+                               [](const AnyMechanism& a) {
+                                   return a.visit([](const auto& x) {
+                                       std::vector<std::string> n;
+                                       for (const ContactPair& c : x.contacts()) n.push_back(c.name());
+                                       return n;
+                                   });
+                               })
+        .def_property_readonly("mass", [](const AnyMechanism& a) { return a.visit([](const auto& x) { return Eigen::MatrixXd(x.mass()); }); })
+        .def_property_readonly("damping", [](const AnyMechanism& a) { return a.visit([](const auto& x) { return Eigen::MatrixXd(x.damping()); }); })
+        .def_property_readonly("stiffness", [](const AnyMechanism& a) { return a.visit([](const auto& x) { return Eigen::MatrixXd(x.stiffness()); }); })
+        .def_property_readonly("initial_state",
+                               [](const AnyMechanism& a) { return a.visit([](const auto& x) { return Eigen::VectorXd(x.initial_displacement()); }); },
+                               "static equilibrium at t = 0 (m or rad per DOF)")
+        .def_property_readonly("omega", [](const AnyMechanism& a) { return a.visit([](const auto& x) { return x.omega(); }); }, "rad/s")
+        .def_property_readonly("period", [](const AnyMechanism& a) { return a.visit([](const auto& x) { return x.period(); }); },
+                               "one camshaft revolution, s")
+        .def_property_readonly("camshaft_speed_rpm",
+                               [](const AnyMechanism& a) { return a.visit([](const auto& x) { return x.description().camshaft_speed_rpm(); }); })
+        .def("static_equilibrium",
+             [](const AnyMechanism& a, double theta) {
+                 return a.visit([&](const auto& x) { return Eigen::VectorXd(x.static_equilibrium(theta)); });
+             },
+             py::arg("theta"), "Quasi-static equilibrium at camshaft angle theta (rad).")
+        .def("modal_analysis", &modal, py::arg("theta") = 0.0,
+             "Undamped natural frequencies (Hz, ascending), mass-normalized mode shapes and the tangent stiffness at\n"
+             "the quasi-static equilibrium at camshaft angle theta (rad), contacts linearized.")
+        .def("builder", [](const AnyMechanism& a) { return a.visit([](const auto& x) { return x.description(); }); },
+             "A copy of the description it was built from: change it and build() a changed mechanism.")
+        .def("with_camshaft_speed_rpm",
+             [](const AnyMechanism& a, double rpm) {
+                 MechanismBuilder b = a.visit([](const auto& x) { return x.description(); });
+                 b.set_camshaft_speed_rpm(rpm);
+                 return AnyMechanism::build(b);
+             },
+             py::arg("rpm"), "The same mechanism at another camshaft speed (a new object).")
+        .def(py::pickle([](const AnyMechanism& a) { return builder_state(a.visit([](const auto& x) { return x.description(); })); },
+                        [](const py::tuple& t) { return AnyMechanism::build(builder_from(t)); }))
+        .def("__repr__", [](const AnyMechanism& a) {
+            return a.visit([](const auto& x) {
+                return detail::concat("Mechanism(", x.size(), " DOFs, ", x.contacts().size(), " contacts, ",
+                                      x.description().camshaft_speed_rpm(), " rpm)");
+            });
+        });
+
+    m.def(
+        "paper_preset",
+        [](const std::optional<CamFollowerParameters>& p, const std::optional<MotionProgram>& program) {
+            return AnyMechanism(presets::paper(p.value_or(CamFollowerParameters{}),
+                                               program.value_or(MotionProgram::paper_default())));
+        },
+        py::arg("parameters") = py::none(), py::arg("program") = py::none(),
+        "The paper's 7-DOF model (Tounsi et al.) built from the mechanism parts; DOFs y1..y4, x1..x3,\n"
+        "contact 'cam'. Parameters as for CamFollowerModel (Table 2 defaults).");
+
+    m.def(
+        "_run",
+        [](const AnyMechanism& a, double duration, double time_step, std::size_t decimation, std::optional<double> gamma,
+           std::optional<double> beta, double hht_alpha, const std::string& linear_solver, double residual_tolerance,
+           double increment_tolerance, int max_iterations, int max_halvings, double record_from,
+           double max_output_bytes, const py::object& progress, double progress_interval) {
+            const NewmarkSettings s = settings_from(time_step, gamma, beta, hht_alpha, linear_solver, residual_tolerance,
+                                                    increment_tolerance, max_iterations, max_halvings);
+            return a.visit([&](const auto& mech) {
+                return run_system(mech, duration, s, decimation, record_from, max_output_bytes, progress,
+                                  progress_interval);
+            });
+        },
+        py::arg("system"), py::arg("duration"), py::arg("time_step"), py::arg("decimation"), py::arg("gamma"),
+        py::arg("beta"), py::arg("hht_alpha"), py::arg("linear_solver"), py::arg("residual_tolerance"),
+        py::arg("increment_tolerance"), py::arg("max_iterations"), py::arg("max_halvings"), py::arg("record_from"),
+        py::arg("max_output_bytes"), py::arg("progress"), py::arg("progress_interval"));
+}
+
+}  // namespace camfollower::python

@@ -1,0 +1,157 @@
+"""The open mechanism core from Python: builder, immutable picklable mechanisms, typed results, the
+paper preset against the original model, and the examples against closed forms."""
+
+import pickle
+import runpy
+import signal
+import threading
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import camfollower as cf
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+
+
+@pytest.fixture(scope="module")
+def one_dof():
+    return runpy.run_path(str(EXAMPLES / "one_dof_follower.py"))
+
+
+@pytest.mark.parametrize("tau", [0.75, 1.5, 2.5, 3.3, 5.5, 8.0])
+def test_one_dof_residual_vibration_matches_the_closed_form(one_dof, tau):
+    simulated, exact = one_dof["residual_amplitude"](tau), one_dof["closed_form"](tau)
+    print(f"tau {tau}: A/L simulated {simulated:.7f}, closed form {exact:.7f}")
+    assert abs(simulated - exact) < 1e-5
+
+
+def test_the_residual_vibration_check_can_fail(one_dof):
+    # A coarse step shifts the discrete natural frequency: the same comparison then misses.
+    simulated = one_dof["residual_amplitude"](2.5, steps_per_period=20)
+    assert abs(simulated - one_dof["closed_form"](2.5)) > 1e-5
+
+
+def test_paper_preset_matches_the_original_model():
+    old, preset = cf.CamFollowerModel(), cf.presets.paper()
+    assert preset.dof_names == ["y1", "y2", "y3", "y4", "x1", "x2", "x3"]
+    np.testing.assert_array_equal(preset.stiffness, old.stiffness_matrix)
+    np.testing.assert_allclose(preset.initial_state, old.initial_state, rtol=0, atol=1e-12 * np.abs(old.initial_state).max())
+    for theta in (0.0, np.radians(100), np.radians(290)):
+        np.testing.assert_allclose(preset.modal_analysis(theta)["frequencies_hz"],
+                                   old.modal_analysis(theta)["frequencies_hz"], rtol=1e-12)
+    a = cf.simulate(old, revolutions=1, decimation=10)
+    b = cf.simulate(preset, revolutions=1, decimation=10)
+    assert np.abs(a.q - b.q).max() <= 1e-12 * np.abs(a.q).max()
+    np.testing.assert_allclose(b["cam.force"], a["contact_force"], rtol=0, atol=1e-9 * a["contact_force"].max())
+
+
+def builder_1dof(speed_rpm=750.0):
+    b = cf.MechanismBuilder()
+    b.add_dof("y", 0.5, direction=(0, 1, 0))
+    b.add_spring("spring", "y", "ground", stiffness=2e4, preload=300.0)
+    b.add_contact("cam", cf.MotionProgram.paper_default(), cf.TranslatingRoller(0.03, 0.008, 0.0),
+                  follower_dof="y", stiffness=1e8)
+    b.camshaft_speed_rpm = speed_rpm
+    return b
+
+
+def test_mechanisms_are_immutable_and_changed_copies_are_new_objects():
+    mech = builder_1dof().build()
+    with pytest.raises(AttributeError):
+        mech.camshaft_speed_rpm = 3000
+    faster = mech.with_camshaft_speed_rpm(3000)
+    assert mech.camshaft_speed_rpm == pytest.approx(750) and faster.camshaft_speed_rpm == pytest.approx(3000)
+    assert faster.period == pytest.approx(mech.period / 4)
+    b = mech.builder()
+    b.add_load("y", -10.0)
+    assert mech.initial_state[0] != b.build().initial_state[0]  # the original did not change
+
+
+def test_mechanisms_and_results_pickle_and_give_identical_runs(tmp_path):
+    mech = cf.presets.paper()
+    copy = pickle.loads(pickle.dumps(mech))
+    np.testing.assert_array_equal(copy.initial_state, mech.initial_state)
+    r1 = cf.simulate(mech, duration=2e-3, decimation=10)
+    r2 = cf.simulate(copy, duration=2e-3, decimation=10)
+    np.testing.assert_array_equal(r1.q, r2.q)
+    r3 = pickle.loads(pickle.dumps(r1))
+    np.testing.assert_array_equal(r3.q, r1.q)
+    path = r1.save(tmp_path / "run.npz")
+    r4 = cf.Result.load(path)
+    assert r4.channels == r1.channels and r4.stats == r1.stats and r4.contact_loss == r1.contact_loss
+    np.testing.assert_array_equal(r4["cam.force"], r1["cam.force"])
+    assert not list(tmp_path.glob(".*tmp"))  # no temporary left behind
+    with pytest.raises(ValueError, match="npz"):
+        r1.save(tmp_path / "run.csv")
+
+
+def test_result_channels_are_named_views():
+    mech = cf.presets.paper()
+    r = cf.simulate(mech, duration=1e-3, time_step=1e-5, decimation=10)
+    assert r.q.shape == (11, 7) and r.dof_names == mech.dof_names
+    assert r.q.base is not None and not r.q.flags.writeable
+    assert "cam.pressure_angle" in r.channels and r["cam.in_contact"].dtype == bool
+    with pytest.raises(KeyError, match="recorded channels"):
+        r.channel("nope")
+
+
+def test_recording_window_and_progress_and_cancellation():
+    mech = cf.presets.paper()
+    full = cf.simulate(mech, revolutions=1, decimation=64)
+    last = cf.simulate(mech, revolutions=1, decimation=64, record_last_revolutions=0.25)
+    assert last.t[0] >= 0.75 * mech.period - 64 * 3e-6 and last.t[-1] == pytest.approx(full.t[-1])
+    np.testing.assert_array_equal(last.q, full.q[-last.rows:])
+    calls = []
+    stopped = cf.simulate(mech, revolutions=1, progress=lambda done, total: calls.append(done) or len(calls) < 2,
+                          progress_interval=1e-6)
+    assert stopped.stats["cancelled"] and len(calls) == 2 and stopped.rows < full.rows * 64
+
+
+def test_ctrl_c_stops_a_long_run_quickly():
+    mech = cf.presets.paper()
+    timer = threading.Timer(0.5, lambda: signal.raise_signal(signal.SIGINT))
+    start = time.monotonic()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        cf.simulate(mech, revolutions=2000, decimation=1000)  # ~3 min if not stopped
+    assert time.monotonic() - start < 1.5
+
+
+@pytest.mark.parametrize("change, message", [
+    (lambda b: b.add_spring("s", "nope", "ground", stiffness=1.0), "not defined"),
+    (lambda b: b.add_spring("s", "y", "y", stiffness=1.0), "to itself"),
+    (lambda b: b.add_dof("z", -1.0), "mass of DOF 'z'"),
+    (lambda b: b.set_modal_damping([-0.1]), "modal damping ratio"),
+    (lambda b: b.add_contact("cam2", cf.MotionProgram.paper_default(), cf.TranslatingRoller(0.03, 0.008),
+                             follower_dof="w", stiffness=1e8), "not defined"),
+])
+def test_bad_descriptions_name_the_element(change, message):
+    b = builder_1dof()
+    with pytest.raises(ValueError, match=message):
+        change(b)
+        b.build()
+
+
+def test_a_cusped_cam_is_refused_with_the_angle():
+    # 20 mm in 60 deg: on a 30 mm base circle the flat face would need a surface radius r_b + h + h'' < 0.
+    mt, dwell, d = cf.MotionLaw.modified_trapezoid(), cf.MotionLaw.dwell(), np.radians
+    fast = cf.MotionProgram([cf.Segment(dwell, 0, d(30), 0, 0), cf.Segment(mt, d(30), d(90), 0, 0.02),
+                             cf.Segment(dwell, d(90), d(180), 0.02, 0.02), cf.Segment(mt, d(180), 2 * np.pi, 0.02, 0)])
+    b = cf.MechanismBuilder()
+    b.add_dof("y", 0.5)
+    b.add_spring("spring", "y", "ground", stiffness=2e4, preload=300.0)
+    b.add_contact("cam", fast, cf.TranslatingFlat(0.03), follower_dof="y", stiffness=1e8)
+    with pytest.raises(ValueError, match=r"contact 'cam'.*cusp at theta = 67\.\d+ deg"):
+        b.build()
+
+
+def test_a_follower_not_held_in_place_is_reported():
+    b = cf.MechanismBuilder()
+    b.add_dof("y", 0.5)
+    b.add_dof("free", 0.1)
+    b.add_contact("cam", cf.MotionProgram.paper_default(), cf.TranslatingFlat(0.03), follower_dof="y", stiffness=1e8)
+    with pytest.raises(ValueError, match="not held in place"):
+        b.build()
