@@ -5,6 +5,8 @@
 #include <benchmark/benchmark.h>
 
 #include "camfollower/camfollower.hpp"
+#include "camfollower/model/mechanism.hpp"
+#include "camfollower/model/presets/paper.hpp"
 
 namespace cf = camfollower;
 using Model = cf::CamFollowerModel;
@@ -39,6 +41,33 @@ void BM_Steps(benchmark::State& state) {
                    (state.range(1) ? ", dense LU" : ", Sherman-Morrison"));
 }
 BENCHMARK(BM_Steps)->ArgsProduct({{0, 1, 2}, {0, 1}})->Unit(benchmark::kMillisecond);
+
+// The same 7-DOF model built by the mechanism builder (the paper preset): fixed size (as the preset
+// ships) and the same description at dynamic size (what any other user mechanism gets).
+template <class M>
+void steps_of(benchmark::State& state, const M& model) {
+    cf::Newmark<M> stepper(model, cf::NewmarkSettings{});
+    const auto steps = static_cast<std::int64_t>(model.period() / 3e-6);
+    cf::SolverStatistics stats;
+    for (auto _ : state) {
+        auto s = stepper.start(0.0, model.initial_displacement(), M::Vector::Zero(model.size()));
+        for (std::int64_t n = 0; n < steps; ++n) stepper.step(s, stats);
+        benchmark::DoNotOptimize(s.q.data());
+    }
+    state.SetItemsProcessed(state.iterations() * steps);
+    state.counters["iterations_per_step"] = stats.mean_iterations();
+}
+void BM_PresetSteps(benchmark::State& state) {
+    const auto preset = cf::presets::paper();
+    if (state.range(0) == 0) {
+        steps_of(state, preset);
+        state.SetLabel("paper preset, Mechanism<7>");
+    } else {
+        steps_of(state, cf::Mechanism<>(preset.description()));
+        state.SetLabel("paper preset, Mechanism<Dynamic>");
+    }
+}
+BENCHMARK(BM_PresetSteps)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 // A whole run with every step recorded (what simulate() does).
 void BM_RunRecorded(benchmark::State& state) {

@@ -73,6 +73,15 @@ public:
                 detail::fail(who, ": ", e.what());
             }
         }, spec_.follower);
+        // Where each role's coefficient goes in the sparse g (a DOF in two roles shares one slot).
+        const int roles[4] = {cam_x_, cam_y_, lateral_, follower_};
+        for (int r = 0; r < 4; ++r) {
+            slot_[r] = -1;
+            if (roles[r] < 0) continue;
+            for (int i = 0; i < count_; ++i)
+                if (dofs_[i] == roles[r]) slot_[r] = i;
+            if (slot_[r] < 0) dofs_[count_] = roles[r], slot_[r] = count_++;
+        }
     }
 
     const ContactPairSpec& spec() const { return spec_; }
@@ -82,11 +91,13 @@ public:
         c.theta = omega * t + spec_.phase;
         const FollowerMotion m = spec_.program.evaluate(c.theta);
         const ContactGeometry k = std::visit([&](const auto& f) { return f.contact(c.theta, m); }, spec_.follower);
-        c.count = 0;
-        add(c, cam_x_, k.normal.x(), omega * k.dnormal.x());
-        add(c, cam_y_, k.normal.y(), omega * k.dnormal.y());
-        add(c, lateral_, -k.normal.x(), -omega * k.dnormal.x());
-        add(c, follower_, -k.lever, -omega * k.dlever);
+        c.count = count_;
+        c.dof = dofs_;
+        c.g.fill(0.0), c.g_dot.fill(0.0);
+        const double g[4] = {k.normal.x(), k.normal.y(), -k.normal.x(), -k.lever};
+        const double g_dot[4] = {k.dnormal.x(), k.dnormal.y(), -k.dnormal.x(), -k.dlever};
+        for (int r = 0; r < 4; ++r)
+            if (slot_[r] >= 0) c.g[slot_[r]] += g[r], c.g_dot[slot_[r]] += omega * g_dot[r];
         c.delta0 = k.lever * k.lift;
         c.delta0_dot = omega * (k.dlever * k.lift + k.lever * k.dlift);
         c.cos_alpha = k.cos_alpha, c.sin_alpha = k.sin_alpha;
@@ -110,19 +121,10 @@ public:
     }
 
 private:
-    static void add(ContactTerms& c, int dof, double g, double g_dot) {
-        if (dof < 0) return;
-        for (int i = 0; i < c.count; ++i)
-            if (c.dof[i] == dof) {  // one DOF in two roles: the coefficients add
-                c.g[i] += g, c.g_dot[i] += g_dot;
-                return;
-            }
-        c.dof[c.count] = dof, c.g[c.count] = g, c.g_dot[c.count] = g_dot;
-        ++c.count;
-    }
-
     ContactPairSpec spec_;
     int cam_x_, cam_y_, follower_, lateral_;
+    std::array<int, 4> dofs_{}, slot_{};  // the distinct DOFs of g; slot of each role (-1: ground)
+    int count_ = 0;
 };
 
 }  // namespace camfollower

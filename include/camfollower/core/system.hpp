@@ -28,6 +28,10 @@
 //              void observe(const Workspace&, const Vector& q, const Vector& v, double* out) const;
 //                                                     the named output channels at an accepted state
 //
+// Call order within a step: prepare(t), then for each Newton iterate force(q, v) followed by
+// tangent(q, v) at the same q, v; after acceptance force() at the accepted state, then accepted(). A
+// system may therefore cache in the workspace what force() computed (mutable members) and reuse it in
+// tangent() and accepted().
 // A system without a Workspace is linear: f = -p(t). The tangent's rank is usually the number of
 // active contacts, which keeps the Newton update a low-rank correction of a matrix factored once per
 // time step size. Checked at compile time by check_system<S>() (static_assert with the missing member).

@@ -120,6 +120,7 @@ public:
         bool in_contact = true;
         double loss_start = 0.0;
         std::vector<std::pair<double, double>> contact_loss;  // [start, end) times
+        mutable Nonlinear last{};  // of the last force() call, reused by tangent() and accepted()
     };
     int size() const { return dofs; }
     const Matrix& mass() const { return M_; }
@@ -129,17 +130,18 @@ public:
     Workspace workspace() const { return {}; }
     void prepare(double t, Workspace& w) const { w.context = at_time(t); }
     void force(const Workspace& w, const Vector& q, const Vector& v, Vector& f) const {
-        f = nonlinear(w.context, q, v).force;
+        w.last = nonlinear(w.context, q, v);
+        f = w.last.force;
     }
     int max_rank() const { return 1; }
-    void tangent(const Workspace& w, const Vector& q, const Vector& v, double cq, double cv, LowRank<Vector>& uv) const {
-        const Nonlinear n = nonlinear(w.context, q, v);
+    void tangent(const Workspace& w, const Vector&, const Vector&, double cq, double cv, LowRank<Vector>& uv) const {
+        const Nonlinear& n = w.last;
         if (n.contact.in_contact && (n.contact.stiffness != 0.0 || n.contact.damping != 0.0))
             uv.add(w.context.g, (cq * n.contact.stiffness + cv * n.contact.damping) * w.context.g +
                                     (cq * n.contact.damping) * w.context.g_dot);
     }
-    void accepted(Workspace& w, const Vector& q, const Vector& v) const {
-        const bool contact = nonlinear(w.context, q, v).contact.in_contact;
+    void accepted(Workspace& w, const Vector&, const Vector&) const {
+        const bool contact = w.last.contact.in_contact;
         if (contact == w.in_contact) return;
         if (!contact) w.loss_start = w.context.t;
         else w.contact_loss.emplace_back(w.loss_start, w.context.t);

@@ -79,6 +79,9 @@ public:
         double t = 0.0;
         std::vector<ContactTerms> terms;     // one per contact pair
         std::vector<ContactMemory> memory;   // path memory: contact-loss intervals
+        // Contact responses of the last force() call, reused by tangent() and accepted() (which the
+        // stepper calls at the same q, v: core/system.hpp).
+        mutable std::vector<ContactResponse> last;
     };
 
     explicit Mechanism(MechanismBuilder description) : spec_(std::move(description)) {
@@ -116,6 +119,7 @@ public:
         Workspace w;
         w.terms.resize(contacts_.size());
         w.memory.resize(contacts_.size());
+        w.last.resize(contacts_.size());
         return w;
     }
     void prepare(double t, Workspace& w) const {
@@ -126,15 +130,16 @@ public:
         f = -load_;
         for (std::size_t i = 0; i < contacts_.size(); ++i) {
             const ContactTerms& c = w.terms[i];
-            const double F = contacts_[i].response(c, q, v).force;
+            w.last[i] = contacts_[i].response(c, q, v);
+            const double F = w.last[i].force;
             if (F == 0.0) continue;
             for (int k = 0; k < c.count; ++k) f[c.dof[k]] += F * c.g[k];
         }
     }
-    void tangent(const Workspace& w, const Vector& q, const Vector& v, double cq, double cv, LowRank<Vector>& uv) const {
+    void tangent(const Workspace& w, const Vector&, const Vector&, double cq, double cv, LowRank<Vector>& uv) const {
         for (std::size_t i = 0; i < contacts_.size(); ++i) {
             const ContactTerms& c = w.terms[i];
-            const ContactResponse r = contacts_[i].response(c, q, v);
+            const ContactResponse& r = w.last[i];
             if (!r.in_contact || (r.stiffness == 0.0 && r.damping == 0.0)) continue;
             const double a = cq * r.stiffness + cv * r.damping, b = cq * r.damping;
             auto u = uv.U.col(uv.rank);
@@ -147,10 +152,10 @@ public:
             ++uv.rank;
         }
     }
-    void accepted(Workspace& w, const Vector& q, const Vector& v) const {
+    void accepted(Workspace& w, const Vector&, const Vector&) const {
         for (std::size_t i = 0; i < contacts_.size(); ++i) {
             ContactMemory& m = w.memory[i];
-            const bool contact = contacts_[i].response(w.terms[i], q, v).in_contact;
+            const bool contact = w.last[i].in_contact;
             if (contact == m.in_contact) continue;
             if (!contact) m.loss_start = w.t;
             else m.losses.emplace_back(m.loss_start, w.t);
@@ -245,7 +250,8 @@ public:
         Workspace w = workspace();
         prepare(theta / spec_.camshaft_speed, w);
         LowRank<Vector> uv(n_, std::max(1, max_rank()));
-        uv.clear();
+        Vector f(n_);
+        force(w, q, Vector::Zero(n_), f);
         tangent(w, q, Vector::Zero(n_), 1.0, 0.0, uv);
         Matrix Kt = K_;
         if (uv.rank > 0) Kt += uv.U.leftCols(uv.rank) * uv.V.leftCols(uv.rank).transpose();

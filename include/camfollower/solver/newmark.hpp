@@ -278,9 +278,10 @@ private:
         q_pred_ = s.q + dt * s.v + (dt * dt * (0.5 - s_.beta)) * s.a;
         v_pred_ = s.v + (dt * (1.0 - s_.gamma)) * s.a;
         // r(a) = Aa a + b + (1 + alpha) f(q, v)
-        b_.noalias() = one_alpha * (C * v_pred_);
-        b_.noalias() += one_alpha * (K * q_pred_);
+        b_.noalias() = C * v_pred_;
+        b_.noalias() += K * q_pred_;
         if (alpha != 0.0) {
+            b_ *= one_alpha;
             b_.noalias() -= alpha * (C * s.v);
             b_.noalias() -= alpha * (K * s.q);
             b_ -= alpha * s.f;
@@ -302,13 +303,19 @@ private:
             r_ += one_alpha * s.f;
             residual = r_.cwiseAbs().maxCoeff();
             if (!std::isfinite(residual)) return fail_step(s);
-            // Rounding floor of the residual: a few ulps of its largest terms.
+            tangent(system_, s.workspace, q_, v_, 1.0, v_factor, uv_);
+            // Rounding floor of the residual: a few ulps of its largest terms, the contacts' included
+            // (a stiff contact turns the rounding of q into k eps |q| of force: preloads that balance
+            // each other leave no large term in the residual to hide it).
+            double norm_tangent = 0.0;
+            for (int k = 0; k < uv_.rank; ++k)
+                norm_tangent += uv_.U.col(k).cwiseAbs().maxCoeff() * uv_.V.col(k).cwiseAbs().sum();
+            const double q_max = q_.cwiseAbs().maxCoeff();
             const double floor = 64.0 * std::numeric_limits<double>::epsilon() *
                                  (norm_M_ * a_.cwiseAbs().maxCoeff() + norm_C_ * v_.cwiseAbs().maxCoeff() +
-                                  norm_K_ * q_.cwiseAbs().maxCoeff());
+                                  (norm_K_ + norm_tangent) * q_max);
             const bool residual_ok = residual <= std::max(r_tol, floor);
-            const double q_tol = s_.increment_tolerance * (q_.cwiseAbs().maxCoeff() + 1e-9);
-            tangent(system_, s.workspace, q_, v_, 1.0, v_factor, uv_);
+            const double q_tol = s_.increment_tolerance * (q_max + 1e-9);
             // Skip the confirming solve when the next increment is bounded below tolerance.
             if (iterations > 0 && residual_ok && inverse_bound_[level] > 0.0 &&
                 r_.norm() * inverse_bound_[level] <= q_tol && tangent_is_spd()) {
