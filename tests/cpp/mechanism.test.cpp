@@ -68,3 +68,148 @@ TEST_CASE("paper preset equals the original 7-DOF model: matrices, equilibrium, 
         CHECK((f - old_modes.frequencies_hz).cwiseAbs().maxCoeff() <= 1e-12 * old_modes.frequencies_hz.maxCoeff());
     }
 }
+
+namespace {
+
+// A small mechanism around one follower type: camshaft bearing (cam_x, cam_y), the follower coordinate
+// on its return spring, and for translating followers a lateral DOF in a guide. Damped Hertz contact
+// (exponent 1.5, chi > 0) so that every term of the tangent is exercised.
+template <class F>
+MechanismBuilder small_mechanism(const F& follower, const MotionProgram& program, bool lateral) {
+    MechanismBuilder b;
+    b.add_dof("cx", 1.0, {1, 0, 0});
+    b.add_dof("cy", 1.0, {0, 1, 0});
+    b.add_dof("s", lateral ? 0.2 : 2e-4);  // kg, or kg m^2 for an arm
+    b.add_spring("bearing_x", "cx", "ground", 1e8, 50.0);
+    b.add_spring("bearing_y", "cy", "ground", 1e8, 50.0);
+    b.add_spring("return", "s", "ground", lateral ? 2e4 : 20.0, 0.0, lateral ? 300.0 : 3.0);
+    ContactPairSpec c{"cam", program, follower, HertzContact{1e11, 1.5, 0.5}, 0.3, "cx", "cy", "s", "ground"};
+    if (lateral) {
+        b.add_dof("lat", 0.2, {1, 0, 0});
+        b.add_spring("guide", "lat", "ground", 1e8);
+        c.lateral = "lat";
+    }
+    b.add_contact(c);
+    return b;
+}
+
+// cq df/dq + cv df/dv (v following q as dv = vf dq) against central differences of force().
+template <class M>
+double tangent_error(const M& m, double t, const typename M::Vector& q0, const typename M::Vector& v0) {
+    using Vector = typename M::Vector;
+    auto w = m.workspace();
+    m.prepare(t, w);
+    const double vf = 1e5;
+    Vector f(m.size()), fp(m.size()), fm(m.size());
+    m.force(w, q0, v0, f);
+    LowRank<Vector> uv(m.size(), m.max_rank());
+    m.tangent(w, q0, v0, 1.0, vf, uv);
+    REQUIRE(uv.rank == 1);
+    const Eigen::MatrixXd analytic = uv.U.leftCols(1) * uv.V.leftCols(1).transpose();
+    double worst = 0.0;
+    for (int j = 0; j < m.size(); ++j) {
+        Vector e = Vector::Zero(m.size());
+        e[j] = 1e-12;
+        m.force(w, q0 + e, v0 + vf * e, fp);
+        m.force(w, q0 - e, v0 - vf * e, fm);
+        worst = std::max(worst, ((fp - fm) / 2e-12 - analytic.col(j)).norm());
+    }
+    return worst / analytic.norm();
+}
+
+template <class M>
+double penetration_rate_error(const M& m, double tc, const typename M::Vector& q0, const typename M::Vector& v0) {
+    auto delta = [&](double t) {
+        auto w = m.workspace();
+        m.prepare(t, w);
+        return ContactPair::penetration(w.terms[0], typename M::Vector(q0 + (t - tc) * v0));
+    };
+    auto w = m.workspace();
+    m.prepare(tc, w);
+    const double h = 1e-7, fd = (delta(tc + h) - delta(tc - h)) / (2 * h);
+    return std::abs(ContactPair::penetration_rate(w.terms[0], q0, v0) - fd) / std::max(std::abs(fd), 1e-3);
+}
+
+}  // namespace
+
+TEST_CASE("every follower type: contact tangent and penetration rate against finite differences") {
+    const MotionProgram lift = MotionProgram::paper_default(0.010), swing = MotionProgram::paper_default(0.2618);
+    const Eigen::Vector2d pivot(0.06, 0.05);
+    const MechanismBuilder cases[] = {
+        small_mechanism(TranslatingRoller(0.03, 0.008, 0.01), lift, true),
+        small_mechanism(TranslatingFlat(0.03, degrees_to_radians(5.0), 0.002), lift, true),
+        small_mechanism(OscillatingRoller(0.03, 0.008, pivot, 0.06), swing, false),
+        small_mechanism(OscillatingFlat(0.03, pivot, 0.0), swing, false),
+    };
+    for (const MechanismBuilder& b : cases) {
+        const Mechanism<> m(b);
+        INFO("follower " << follower_type_name(b.contacts[0].follower));
+        Mechanism<>::Vector v0 = Mechanism<>::Vector::Zero(m.size());
+        for (int k = 0; k < m.size(); ++k) v0[k] = 0.01 * (k + 1) * (k % 2 ? -1 : 1);
+        for (double theta_deg : {10.0, 80.0, 150.0, 250.0, 320.0}) {
+            const double t = degrees_to_radians(theta_deg) / m.omega();
+            const Mechanism<>::Vector q0 = m.static_equilibrium(degrees_to_radians(theta_deg));
+            INFO("theta = " << theta_deg << " deg");
+            CHECK(tangent_error(m, t, q0, v0) < 1e-5);
+            CHECK(penetration_rate_error(m, t, q0, v0) < 1e-6);
+        }
+    }
+}
+
+TEST_CASE("two cams on one shaft: rank-two Woodbury update equals the dense LU, contacts tracked apart") {
+    MechanismBuilder b;
+    b.add_dof("shaft", 1.1, {0, 1, 0});
+    b.add_spring("bearing", "shaft", "ground", 2.6e8, 750.0);
+    for (const char* name : {"a", "b"}) {
+        const std::string f = std::string("follower_") + name;
+        b.add_dof(f, 0.4, {0, 1, 0});
+        b.add_spring("spring_" + std::string(name), f, "ground", 1.4e4, 0.0, 180.0);
+        b.add_contact({std::string("cam_") + name, MotionProgram::paper_default(), TranslatingRoller(0.03, 0.008, 0.01),
+                       HertzContact{1.9e8, 1.0, 0.0}, name[0] == 'a' ? 0.0 : pi, "ground", "shaft", f, "ground"});
+    }
+    const Mechanism<> m(b);
+    REQUIRE(m.max_rank() == 2);
+    NewmarkSettings s;
+    const auto low_rank = run(m, s, m.period(), 10);
+    s.linear_solver = LinearSolver::dense_lu;
+    const auto dense = run(m, s, m.period(), 10);
+    double dq = 0, qmax = 0;
+    for (std::size_t i = 0; i < low_rank.q.size(); ++i)
+        dq = std::max(dq, std::abs(low_rank.q[i] - dense.q[i])), qmax = std::max(qmax, std::abs(low_rank.q[i]));
+    CHECK(dq <= 1e-12 * qmax);
+    CHECK(low_rank.stats.mean_iterations() < 2.5);
+    // Each cam lifts its own follower, half a revolution apart.
+    const std::size_t quarter = low_rank.rows / 4;
+    CHECK(low_rank.channel("cam_a.cam_angle")[quarter] ==
+          Approx(low_rank.channel("cam_b.cam_angle")[quarter] - pi).margin(1e-12));
+    CHECK(low_rank.channel("cam_a.force")[0] > 0.0);
+    CHECK(low_rank.channel("cam_b.force")[0] > 0.0);
+}
+
+TEST_CASE("bad descriptions: a clear error naming the element, and nothing half-built") {
+    MechanismBuilder b;
+    b.add_dof("y", 1.0);
+    CHECK_THROWS_WITH(b.add_dof("y", 2.0), Catch::Contains("DOF 'y' is defined twice"));
+    CHECK_THROWS_WITH(b.add_dof("z", 0.0), Catch::Contains("mass of DOF 'z'"));
+    CHECK_THROWS_WITH(b.add_spring("k", "y", "y", 1.0), Catch::Contains("connects DOF 'y' to itself"));
+    CHECK_THROWS_WITH(b.add_spring("k", "y", "ground", -1.0), Catch::Contains("stiffness of 'k'"));
+    CHECK_THROWS_WITH(b.set_modal_damping({0.02, -0.1}), Catch::Contains("modal damping ratio [1]"));
+    CHECK_THROWS_WITH(b.set_gravity({0, NAN, 0}), Catch::Contains("gravity"));
+    b.add_spring("k", "y", "nowhere", 1.0);
+    CHECK_THROWS_WITH(Mechanism<>(b), Catch::Contains("spring 'k' refers to DOF 'nowhere'"));
+    MechanismBuilder c;
+    c.add_dof("y", 1.0);
+    c.add_spring("k", "y", "ground", 1e4, 0.0, 100.0);
+    c.add_contact({"cam", MotionProgram::paper_default(), TranslatingRoller(0.03, 0.008, 0.0), HertzContact{}, 0.0,
+                   "ground", "ground", "w", "ground"});
+    CHECK_THROWS_WITH(Mechanism<>(c), Catch::Contains("contact 'cam' follower_dof refers to DOF 'w'"));
+    CHECK_THROWS_WITH(Mechanism<3>(b), Catch::Contains("Mechanism<3> built from a description with 1 DOFs"));
+    MechanismBuilder osc;
+    osc.add_dof("arm", 1e-4);
+    osc.add_spring("k", "arm", "ground", 10.0, 0.0, 1.0);
+    osc.add_dof("x", 1.0);
+    osc.add_spring("kx", "x", "ground", 1e6);
+    osc.add_contact({"cam", MotionProgram::paper_default(0.2), OscillatingRoller(0.03, 0.008, {0.06, 0.05}, 0.06),
+                     HertzContact{}, 0.0, "ground", "ground", "arm", "x"});
+    CHECK_THROWS_WITH(Mechanism<>(osc), Catch::Contains("lateral is defined for translating followers only"));
+}

@@ -208,32 +208,27 @@ public:
         return out;
     }
 
-    // Quasi-static equilibrium at camshaft angle theta (zero velocity): K q + sum F_i g_i = p.
-    // Newton from the contact-free deflection (or the nominal follower positions when the structure
-    // alone is singular), on the exact tangent K + sum k_i g_i g_i^T.
+    // Quasi-static equilibrium at camshaft angle theta, at rest: K q + sum F_i(delta_i, 0) g_i = p (the
+    // contact laws at zero penetration rate: a static state has no impact damping). Newton from the
+    // contact-free deflection (or zero when the structure alone is singular) on the exact tangent.
     Vector static_equilibrium(double theta) const {
         detail::require_finite(theta, "theta");
         Workspace w = workspace();
         prepare(theta / spec_.camshaft_speed, w);
-        const Vector zero = Vector::Zero(n_);
         Vector q = Vector::Zero(n_);
         const Eigen::PartialPivLU<Matrix> k_lu(K_);
-        const double norm_K = K_.cwiseAbs().rowwise().sum().maxCoeff();
-        if (std::abs(k_lu.determinant()) > 0.0 && std::isfinite(k_lu.determinant())) q = k_lu.solve(load_);
+        const double det = k_lu.determinant();
+        if (std::isfinite(det) && det != 0.0) q = k_lu.solve(load_);
         const double scale = load_.cwiseAbs().maxCoeff() + 1.0;
-        LowRank<Vector> uv(n_, std::max(1, max_rank()));
-        Vector f(n_);
+        const double norm_K = K_.cwiseAbs().rowwise().sum().maxCoeff();
+        Vector r(n_);
+        Matrix Kt(n_, n_);
         for (int it = 0; it < 200; ++it) {
-            force(w, q, zero, f);
-            const Vector r = K_ * q + f;
-            uv.clear();
-            tangent(w, q, zero, 1.0, 0.0, uv);
-            Matrix Kt = K_;
-            if (uv.rank > 0) Kt += uv.U.leftCols(uv.rank) * uv.V.leftCols(uv.rank).transpose();
+            static_residual(w, q, r, Kt);
             // 1e-12 of the load, or the rounding floor of K q when the lift makes q large.
             const double tolerance =
                 std::max(1e-12 * scale, 64.0 * std::numeric_limits<double>::epsilon() * norm_K * q.cwiseAbs().maxCoeff());
-            if (r.cwiseAbs().maxCoeff() <= tolerance && it > 0) return q;
+            if (r.cwiseAbs().maxCoeff() <= tolerance) return q;
             const Eigen::FullPivLU<Matrix> lu(Kt);
             if (!lu.isInvertible())
                 detail::fail("static equilibrium at theta = ", radians_to_degrees(theta),
@@ -245,20 +240,32 @@ public:
                                               " deg did not converge in 200 Newton iterations"));
     }
 
-    // Tangent stiffness K + sum k_i g_i g_i^T at the static equilibrium at theta (modal analysis).
+    // Tangent stiffness K + sum k_i g_i g_i^T at rest at camshaft angle theta and displacement q
+    // (for modal analysis about a static equilibrium).
     Matrix tangent_stiffness(double theta, const Vector& q) const {
         Workspace w = workspace();
         prepare(theta / spec_.camshaft_speed, w);
-        LowRank<Vector> uv(n_, std::max(1, max_rank()));
-        Vector f(n_);
-        force(w, q, Vector::Zero(n_), f);
-        tangent(w, q, Vector::Zero(n_), 1.0, 0.0, uv);
-        Matrix Kt = K_;
-        if (uv.rank > 0) Kt += uv.U.leftCols(uv.rank) * uv.V.leftCols(uv.rank).transpose();
+        Vector r(n_);
+        Matrix Kt(n_, n_);
+        static_residual(w, q, r, Kt);
         return Kt;
     }
 
 private:
+    // r = K q + sum F_i(delta_i, 0) g_i - p and its Jacobian.
+    void static_residual(const Workspace& w, const Vector& q, Vector& r, Matrix& Kt) const {
+        r.noalias() = K_ * q - load_;
+        Kt = K_;
+        for (std::size_t i = 0; i < contacts_.size(); ++i) {
+            const ContactTerms& c = w.terms[i];
+            const ContactResponse f = contacts_[i].spec().law(ContactPair::penetration(c, q), 0.0);
+            for (int a = 0; a < c.count; ++a) {
+                r[c.dof[a]] += f.force * c.g[a];
+                for (int b = 0; b < c.count; ++b) Kt(c.dof[a], c.dof[b]) += f.stiffness * c.g[a] * c.g[b];
+            }
+        }
+    }
+
     Matrix dense(const NetworkSpec::Triplets& t) const {
         Matrix A = Matrix::Zero(n_, n_);
         for (const auto& e : t) A(e.row(), e.col()) += e.value();
