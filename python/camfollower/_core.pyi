@@ -189,124 +189,82 @@ class Parameters:
         ...
     def get(self, name: str) -> float:
         ...
-    def set(self, name: str, value: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def replace(self, **kwargs) -> Parameters:
         """
-        Set one parameter by name; validated (ValueError names the parameter and its range).
+        A copy with the given parameters changed (validated); Parameters are immutable.
         """
     def to_dict(self) -> dict:
         ...
     @property
     def base_radius(self) -> float:
         """
-        base_radius (m)
+        base_radius (m); read-only: use replace(base_radius=...)
         """
-    @base_radius.setter
-    def base_radius(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
     @property
     def bearing_damping_horizontal(self) -> float:
         """
-        bearing_damping_horizontal (N s/m)
+        bearing_damping_horizontal (N s/m); read-only: use replace(bearing_damping_horizontal=...)
         """
-    @bearing_damping_horizontal.setter
-    def bearing_damping_horizontal(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
     @property
     def bearing_damping_vertical(self) -> float:
         """
-        bearing_damping_vertical (N s/m)
+        bearing_damping_vertical (N s/m); read-only: use replace(bearing_damping_vertical=...)
         """
-    @bearing_damping_vertical.setter
-    def bearing_damping_vertical(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
     @property
     def bearing_stiffness_horizontal(self) -> float:
         """
-        bearing_stiffness_horizontal (N/m)
+        bearing_stiffness_horizontal (N/m); read-only: use replace(bearing_stiffness_horizontal=...)
         """
-    @bearing_stiffness_horizontal.setter
-    def bearing_stiffness_horizontal(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
     @property
     def bearing_stiffness_vertical(self) -> float:
         """
-        bearing_stiffness_vertical (N/m)
+        bearing_stiffness_vertical (N/m); read-only: use replace(bearing_stiffness_vertical=...)
         """
-    @bearing_stiffness_vertical.setter
-    def bearing_stiffness_vertical(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
     @property
     def camshaft_mass(self) -> float:
         """
-        camshaft_mass (kg)
+        camshaft_mass (kg); read-only: use replace(camshaft_mass=...)
         """
-    @camshaft_mass.setter
-    def camshaft_mass(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
     @property
     def camshaft_speed_rpm(self) -> float:
         """
-        camshaft_speed_rpm (rpm)
+        camshaft_speed_rpm (rpm); read-only: use replace(camshaft_speed_rpm=...)
         """
-    @camshaft_speed_rpm.setter
-    def camshaft_speed_rpm(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
     @property
     def contact_exponent(self) -> float:
         """
-        contact_exponent (-)
+        contact_exponent (-); read-only: use replace(contact_exponent=...)
         """
-    @contact_exponent.setter
-    def contact_exponent(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
     @property
     def contact_stiffness(self) -> float:
         """
-        contact_stiffness (N/m^n)
+        contact_stiffness (N/m^n); read-only: use replace(contact_stiffness=...)
         """
-    @contact_stiffness.setter
-    def contact_stiffness(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
     @property
     def follower_mass(self) -> float:
         """
-        follower_mass (kg)
+        follower_mass (kg); read-only: use replace(follower_mass=...)
         """
-    @follower_mass.setter
-    def follower_mass(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
     @property
     def follower_rod_mass(self) -> float:
         """
-        follower_rod_mass (kg)
+        follower_rod_mass (kg); read-only: use replace(follower_rod_mass=...)
         """
-    @follower_rod_mass.setter
-    def follower_rod_mass(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
     @property
     def gravity(self) -> float:
         """
-        gravity (m/s^2)
+        gravity (m/s^2); read-only: use replace(gravity=...)
         """
-    @gravity.setter
-    def gravity(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
     @property
     def guide_stiffness(self) -> float:
         """
-        guide_stiffness (N/m)
+        guide_stiffness (N/m); read-only: use replace(guide_stiffness=...)
         """
-    @guide_stiffness.setter
-    def guide_stiffness(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
     @property
     def offset(self) -> float:
         """
-        offset (m)
+        offset (m); read-only: use replace(offset=...)
         """
-    @offset.setter
-    def offset(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
     @property
     def omega(self) -> float:
         """
@@ -315,83 +273,53 @@ class Parameters:
     @property
     def reference_speed(self) -> float:
         """
-        reference_speed (m/s)
+        reference_speed (m/s); read-only: use replace(reference_speed=...)
         """
-    @reference_speed.setter
-    def reference_speed(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
     @property
     def restitution(self) -> float:
         """
-        restitution (-)
+        restitution (-); read-only: use replace(restitution=...)
         """
-    @restitution.setter
-    def restitution(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
     @property
     def rod_damping(self) -> float:
         """
-        rod_damping (N s/m)
+        rod_damping (N s/m); read-only: use replace(rod_damping=...)
         """
-    @rod_damping.setter
-    def rod_damping(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
     @property
     def rod_stiffness(self) -> float:
         """
-        rod_stiffness (N/m)
+        rod_stiffness (N/m); read-only: use replace(rod_stiffness=...)
         """
-    @rod_stiffness.setter
-    def rod_stiffness(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
     @property
     def roller_mass(self) -> float:
         """
-        roller_mass (kg)
+        roller_mass (kg); read-only: use replace(roller_mass=...)
         """
-    @roller_mass.setter
-    def roller_mass(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
     @property
     def roller_pin_stiffness_horizontal(self) -> float:
         """
-        roller_pin_stiffness_horizontal (N/m)
+        roller_pin_stiffness_horizontal (N/m); read-only: use replace(roller_pin_stiffness_horizontal=...)
         """
-    @roller_pin_stiffness_horizontal.setter
-    def roller_pin_stiffness_horizontal(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
     @property
     def roller_pin_stiffness_vertical(self) -> float:
         """
-        roller_pin_stiffness_vertical (N/m)
+        roller_pin_stiffness_vertical (N/m); read-only: use replace(roller_pin_stiffness_vertical=...)
         """
-    @roller_pin_stiffness_vertical.setter
-    def roller_pin_stiffness_vertical(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
     @property
     def roller_radius(self) -> float:
         """
-        roller_radius (m)
+        roller_radius (m); read-only: use replace(roller_radius=...)
         """
-    @roller_radius.setter
-    def roller_radius(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
     @property
     def spring_preload_deflection(self) -> float:
         """
-        spring_preload_deflection (m)
+        spring_preload_deflection (m); read-only: use replace(spring_preload_deflection=...)
         """
-    @spring_preload_deflection.setter
-    def spring_preload_deflection(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
     @property
     def spring_stiffness(self) -> float:
         """
-        spring_stiffness (N/m)
+        spring_stiffness (N/m); read-only: use replace(spring_stiffness=...)
         """
-    @spring_stiffness.setter
-    def spring_stiffness(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
 class Defects:
     """
     Camshaft eccentricity and follower backlash (m; phase and switch width in rad). Both off by default.
@@ -433,6 +361,10 @@ class CamFollowerModel:
     def static_equilibrium(self, theta: typing.SupportsFloat | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[7, 1]"]:
         """
         Quasi-static equilibrium at cam angle theta (rad).
+        """
+    def with_parameters(self, **kwargs) -> CamFollowerModel:
+        """
+        A new model with the given parameters changed (the model itself is immutable).
         """
     @property
     def cam(self) -> DiskCam:

@@ -46,8 +46,19 @@ void bind_model(py::module_& m) {
     params.def(py::init(&parameters_from_kwargs))
         .def_static("names", &parameter_names)
         .def("get", &CamFollowerParameters::get, py::arg("name"))
-        .def("set", &CamFollowerParameters::set, py::arg("name"), py::arg("value"),
-             "Set one parameter by name; validated (ValueError names the parameter and its range).")
+        .def(
+            "replace",
+            [](const CamFollowerParameters& p, const py::kwargs& kwargs) {
+                CamFollowerParameters q = p;
+                for (const auto& item : kwargs) {
+                    const std::string name = py::str(item.first);
+                    if (name == "contact_damping") detail::fail("replace: give contact_damping to Parameters(...)");
+                    q.ref(name) = item.second.cast<double>();
+                }
+                q.validate();
+                return q;
+            },
+            "A copy with the given parameters changed (validated); Parameters are immutable.")
         .def("to_dict", [](const CamFollowerParameters& p) {
             py::dict d;
             for (const auto& f : CamFollowerParameters::fields()) d[f.name] = p.get(f.name);
@@ -65,10 +76,9 @@ void bind_model(py::module_& m) {
         });
     for (const auto& f : CamFollowerParameters::fields()) {
         const std::string name = f.name;
-        params.def_property(
+        params.def_property_readonly(
             f.name, [name](const CamFollowerParameters& p) { return p.get(name); },
-            [name](CamFollowerParameters& p, double v) { p.set(name, v); },
-            detail::concat(f.name, " (", f.unit, ")").c_str());
+            detail::concat(f.name, " (", f.unit, "); read-only: use replace(", f.name, "=...)").c_str());
     }
 
     py::class_<Defects>(m, "Defects",
@@ -102,7 +112,16 @@ void bind_model(py::module_& m) {
                                          defects.value_or(Defects{}));
              }),
              py::arg("parameters") = py::none(), py::arg("program") = py::none(), py::arg("defects") = py::none())
-        .def_property_readonly("parameters", &CamFollowerModel::parameters)
+        .def_property_readonly("parameters", &CamFollowerModel::parameters, py::return_value_policy::copy)
+        .def(
+            "with_parameters",
+            [](const CamFollowerModel& m, const py::kwargs& kwargs) {
+                CamFollowerParameters q = m.parameters();
+                for (const auto& item : kwargs) q.ref(py::str(item.first)) = item.second.cast<double>();
+                q.validate();
+                return CamFollowerModel(q, m.cam().program(), m.defects());
+            },
+            "A new model with the given parameters changed (the model itself is immutable).")
         .def_property_readonly("defects", &CamFollowerModel::defects)
         .def_property_readonly("cam", &CamFollowerModel::cam)
         .def_property_readonly("mass_matrix", &CamFollowerModel::mass_matrix)

@@ -151,7 +151,46 @@ def test_a_cusped_cam_is_refused_with_the_angle():
 def test_a_follower_not_held_in_place_is_reported():
     b = cf.MechanismBuilder()
     b.add_dof("y", 0.5)
-    b.add_dof("free", 0.1)
+    b.add_dof("free", 0.1, direction=(0, 1, 0))  # falls under gravity: nothing holds it
+    b.set_gravity((0, -9.81, 0))
     b.add_contact("cam", cf.MotionProgram.paper_default(), cf.TranslatingFlat(0.03), follower_dof="y", stiffness=1e8)
     with pytest.raises(ValueError, match="not held in place"):
         b.build()
+
+
+def test_model_parameters_cannot_be_changed_behind_the_models_back():
+    model = cf.CamFollowerModel()
+    with pytest.raises(AttributeError):
+        model.parameters.camshaft_speed_rpm = 3000  # was accepted and silently ignored
+    faster = model.with_parameters(camshaft_speed_rpm=3000)
+    assert faster.period == pytest.approx(model.period / 4) and model.parameters.camshaft_speed_rpm == 750
+    p = cf.Parameters().replace(contact_stiffness=2e8)
+    assert p.contact_stiffness == 2e8 and cf.Parameters().contact_stiffness == 1.9e8
+    with pytest.raises(ValueError, match="roller_mass must be finite and > 0"):
+        cf.Parameters().replace(roller_mass=-1.0)
+    with pytest.raises(ValueError, match="unknown parameter 'stiffnes'"):
+        model.with_parameters(stiffnes=1.0)
+
+
+def test_a_follower_held_only_by_gravity_finds_its_equilibrium_and_edge_cases_of_the_review():
+    b = cf.MechanismBuilder()
+    b.add_dof("y", 0.5, direction=(0, 1, 0))
+    b.set_gravity((0, -9.81, 0))
+    b.add_contact("cam", cf.MotionProgram.paper_default(), cf.TranslatingFlat(0.03), follower_dof="y", stiffness=1e8)
+    mech = b.build()
+    assert mech.initial_state[0] == pytest.approx(-0.5 * 9.81 / 1e8, rel=1e-9)  # weight / contact stiffness
+    with pytest.raises(ValueError, match="not on 'ground'"):
+        b.add_load("ground", 1.0)
+    r = cf.simulate(mech, duration=1e-4, time_step=1e-5, record_from=float("inf"))
+    assert r.rows == 0
+    lifted = builder_1dof()
+    lifted.add_load("y", 400.0)  # lifts the follower off the cam: contact open from the start
+    r = cf.simulate(lifted.build(), duration=1e-4, time_step=1e-5)
+    assert r.contact_loss["cam"] == [(0.0, pytest.approx(1e-4))]
+    clash = cf.MechanismBuilder()
+    clash.add_dof("force", 0.5)
+    clash.add_spring("k", "force", "ground", stiffness=1e4, preload=100.0)
+    clash.add_contact("q", cf.MotionProgram.paper_default(), cf.TranslatingFlat(0.03), follower_dof="force",
+                      stiffness=1e8)
+    with pytest.raises(ValueError, match="both named 'q.force'"):
+        cf.simulate(clash.build(), duration=1e-4)

@@ -178,10 +178,12 @@ def test_bad_parameters_raise_value_error(kwargs, message):
 def test_parameters_by_name_and_defects_validation():
     p = cf.Parameters(contact_exponent=1.5, contact_stiffness=1e11)
     assert p.get("contact_exponent") == 1.5
-    p.roller_mass = 0.08
+    p = p.replace(roller_mass=0.08)
     assert p.to_dict()["roller_mass"] == 0.08
     with pytest.raises(ValueError, match="roller_mass"):
-        p.roller_mass = -1
+        p.replace(roller_mass=-1)
+    with pytest.raises(AttributeError):
+        p.roller_mass = 0.09  # immutable
     assert "contact_stiffness" in cf.Parameters.names()
     # Hertz point contact runs too (K in N/m^1.5), from its own static equilibrium.
     r = cf.simulate(cf.CamFollowerModel(p), revolutions=0.5, decimation=100)

@@ -144,6 +144,9 @@ constexpr bool check_system() {
                       "Vector& v, double cq, double cv, LowRank<Vector>&) const`");
         static_assert(detail::has_channels<S>::value == detail::has_observe<S>::value,
                       "system: channel_names() and observe(...) go together");
+    } else {
+        static_assert(!detail::has_channels<S>::value,
+                      "system: channel_names() needs observe(const Workspace&, ...), i.e. a Workspace");
     }
     return true;
 }

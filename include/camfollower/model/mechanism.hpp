@@ -210,7 +210,8 @@ public:
 
     // Quasi-static equilibrium at camshaft angle theta, at rest: K q + sum F_i(delta_i, 0) g_i = p (the
     // contact laws at zero penetration rate: a static state has no impact damping). Newton from the
-    // contact-free deflection (or zero when the structure alone is singular) on the exact tangent.
+    // contact-free deflection (or zero when the structure alone is singular) on the exact tangent,
+    // with an all-contacts-closed step where that tangent is singular.
     Vector static_equilibrium(double theta) const {
         detail::require_finite(theta, "theta");
         Workspace w = workspace();
@@ -229,7 +230,11 @@ public:
             const double tolerance =
                 std::max(1e-12 * scale, 64.0 * std::numeric_limits<double>::epsilon() * norm_K * q.cwiseAbs().maxCoeff());
             if (r.cwiseAbs().maxCoeff() <= tolerance) return q;
-            const Eigen::FullPivLU<Matrix> lu(Kt);
+            Eigen::FullPivLU<Matrix> lu(Kt);
+            // A follower held only by its contact (gravity or a load, no spring) starts with the
+            // contact just touching, where the law has no stiffness: take the step as if every
+            // contact were closed (the active-set guess), with the law's stiffness at 1 um.
+            if (!lu.isInvertible()) lu.compute(Kt + closed_contact_stiffness(w));
             if (!lu.isInvertible())
                 detail::fail("static equilibrium at theta = ", radians_to_degrees(theta),
                              " deg: the structure with its active contacts is not held in place (a DOF with no "
@@ -264,6 +269,17 @@ private:
                 for (int b = 0; b < c.count; ++b) Kt(c.dof[a], c.dof[b]) += f.stiffness * c.g[a] * c.g[b];
             }
         }
+    }
+
+    Matrix closed_contact_stiffness(const Workspace& w) const {
+        Matrix Kc = Matrix::Zero(n_, n_);
+        for (std::size_t i = 0; i < contacts_.size(); ++i) {
+            const ContactTerms& c = w.terms[i];
+            const double k = contacts_[i].spec().law(1e-6, 0.0).stiffness;
+            for (int a = 0; a < c.count; ++a)
+                for (int b = 0; b < c.count; ++b) Kc(c.dof[a], c.dof[b]) += k * c.g[a] * c.g[b];
+        }
+        return Kc;
     }
 
     Matrix dense(const NetworkSpec::Triplets& t) const {

@@ -106,7 +106,8 @@ public:
         : system_(system), s_(settings), n_(system.size()), uv_(n_, std::max(1, max_rank(system))) {
         s_.validate();
         const Matrix& M = system.mass();
-        if (M.rows() != n_ || M.cols() != n_ || system.damping().rows() != n_ || system.stiffness().rows() != n_)
+        if (M.rows() != n_ || M.cols() != n_ || system.damping().rows() != n_ || system.damping().cols() != n_ ||
+            system.stiffness().rows() != n_ || system.stiffness().cols() != n_)
             detail::fail("system: mass, damping and stiffness must be ", n_, " x ", n_, " (size())");
         for (int k = 0; k < n_; ++k)
             if (!(M(k, k) > 0.0)) detail::fail("system: mass matrix diagonal must be > 0, got M(", k, ", ", k, ") = ", M(k, k));
@@ -160,6 +161,7 @@ public:
         s.a = system_.mass().partialPivLu().solve(-(system_.damping() * s.v + system_.stiffness() * s.q + s.f));
         force_scale_ = std::max({1.0, (system_.stiffness() * s.q).cwiseAbs().maxCoeff(), s.f.cwiseAbs().maxCoeff()});
         check_stability_limit(s);
+        accepted(system_, s.workspace, s.q, s.v);  // path memory starts from the initial state
         return s;
     }
 

@@ -64,10 +64,19 @@ public:
         for (const std::string& c : extra_) out_.names.push_back(c);
         row_.resize(extra_.size());
         // Rows are taken at step indices that are multiples of the decimation, from the window on.
-        const double first = std::isfinite(options.from_time) ? std::ceil((options.from_time - t0) / dt - 1e-9) : 0.0;
-        first_step_ = first <= 0.0 ? 0 : static_cast<std::uint64_t>(std::min(first, 1e19));
+        for (std::size_t a = 0; a < out_.names.size(); ++a)
+            for (std::size_t b = a + 1; b < out_.names.size(); ++b)
+                if (out_.names[a] == out_.names[b])
+                    detail::fail("two recorded channels are both named '", out_.names[a],
+                                 "': rename a DOF or a contact (channels: t, q.<dof>, v.<dof>, a.<dof>, then the system's)");
+        // From the window's start on (+inf: nothing), on multiples of the decimation.
+        const double first = options.from_time == -std::numeric_limits<double>::infinity()
+                                 ? 0.0
+                                 : std::ceil((options.from_time - t0) / dt - 1e-9);
+        const bool none = first > double(planned_steps);
+        first_step_ = none ? planned_steps + 1 : first <= 0.0 ? 0 : static_cast<std::uint64_t>(first);
         first_step_ = (first_step_ + decimation_ - 1) / decimation_ * decimation_;
-        const std::uint64_t rows = first_step_ > planned_steps ? 0 : (planned_steps - first_step_) / decimation_ + 1;
+        const std::uint64_t rows = none || first_step_ > planned_steps ? 0 : (planned_steps - first_step_) / decimation_ + 1;
         const double bytes = double(rows) * 8.0 * double(out_.names.size());
         if (bytes > options.max_bytes)
             detail::fail(planned_steps, " steps at decimation ", decimation_, " would store ", rows, " rows of ",

@@ -60,6 +60,7 @@ public:
     }
 
     void add_load(const std::string& dof, double force) {
+        if (dof == ground_name) detail::fail("a load acts on a DOF, not on '", ground_name, "'");
         detail::require_finite(force, ("load on '" + dof + "'").c_str());
         loads_.push_back({dof, force});
     }
