@@ -765,7 +765,9 @@ def _run(system: CamFollowerModel, duration: typing.SupportsFloat | typing.Suppo
     """
 @typing.overload
 def _run(system: Mechanism, duration: typing.SupportsFloat | typing.SupportsIndex, time_step: typing.SupportsFloat | typing.SupportsIndex, decimation: typing.SupportsInt | typing.SupportsIndex, gamma: typing.SupportsFloat | typing.SupportsIndex | None, beta: typing.SupportsFloat | typing.SupportsIndex | None, hht_alpha: typing.SupportsFloat | typing.SupportsIndex, linear_solver: str, residual_tolerance: typing.SupportsFloat | typing.SupportsIndex, increment_tolerance: typing.SupportsFloat | typing.SupportsIndex, max_iterations: typing.SupportsInt | typing.SupportsIndex, max_halvings: typing.SupportsInt | typing.SupportsIndex, record_from: typing.SupportsFloat | typing.SupportsIndex, max_output_bytes: typing.SupportsFloat | typing.SupportsIndex, progress: typing.Any, progress_interval: typing.SupportsFloat | typing.SupportsIndex) -> dict:
-    ...
+    """
+    Internal: camfollower.simulate() calls this and wraps the output in a Result.
+    """
 def paper_preset(parameters: Parameters | None = None, program: MotionProgram | None = None) -> Mechanism:
     """
     The paper's 7-DOF model (Tounsi et al.) built from the mechanism parts; DOFs y1..y4, x1..x3,

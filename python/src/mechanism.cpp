@@ -359,23 +359,9 @@ void bind_mechanism(py::module_& m) {
         "The paper's 7-DOF model (Tounsi et al.) built from the mechanism parts; DOFs y1..y4, x1..x3,\n"
         "contact 'cam'. Parameters as for CamFollowerModel (Table 2 defaults).");
 
-    m.def(
-        "_run",
-        [](const AnyMechanism& a, double duration, double time_step, std::size_t decimation, std::optional<double> gamma,
-           std::optional<double> beta, double hht_alpha, const std::string& linear_solver, double residual_tolerance,
-           double increment_tolerance, int max_iterations, int max_halvings, double record_from,
-           double max_output_bytes, const py::object& progress, double progress_interval) {
-            const NewmarkSettings s = settings_from(time_step, gamma, beta, hht_alpha, linear_solver, residual_tolerance,
-                                                    increment_tolerance, max_iterations, max_halvings);
-            return a.visit([&](const auto& mech) {
-                return run_system(mech, duration, s, decimation, record_from, max_output_bytes, progress,
-                                  progress_interval);
-            });
-        },
-        py::arg("system"), py::arg("duration"), py::arg("time_step"), py::arg("decimation"), py::arg("gamma"),
-        py::arg("beta"), py::arg("hht_alpha"), py::arg("linear_solver"), py::arg("residual_tolerance"),
-        py::arg("increment_tolerance"), py::arg("max_iterations"), py::arg("max_halvings"), py::arg("record_from"),
-        py::arg("max_output_bytes"), py::arg("progress"), py::arg("progress_interval"));
+    bind_run<AnyMechanism>(m, [](const AnyMechanism& a, auto&&... args) {
+        return a.visit([&](const auto& mech) { return run_system(mech, args...); });
+    });
 }
 
 }  // namespace camfollower::python

@@ -122,4 +122,26 @@ py::dict run_system(const System& system, double duration, const NewmarkSettings
 }
 
 
+// Binds _run(system, ...) for one system type: camfollower.simulate() calls it and wraps the output in
+// a Result. `run` is run_system or a dispatcher over several system types.
+template <class System, class Run>
+void bind_run(py::module_& m, Run run) {
+    m.def(
+        "_run",
+        [run](const System& system, double duration, double time_step, std::size_t decimation,
+              std::optional<double> gamma, std::optional<double> beta, double hht_alpha,
+              const std::string& linear_solver, double residual_tolerance, double increment_tolerance,
+              int max_iterations, int max_halvings, double record_from, double max_output_bytes,
+              const py::object& progress, double progress_interval) {
+            const NewmarkSettings s = settings_from(time_step, gamma, beta, hht_alpha, linear_solver, residual_tolerance,
+                                                    increment_tolerance, max_iterations, max_halvings);
+            return run(system, duration, s, decimation, record_from, max_output_bytes, progress, progress_interval);
+        },
+        py::arg("system"), py::arg("duration"), py::arg("time_step"), py::arg("decimation"), py::arg("gamma"),
+        py::arg("beta"), py::arg("hht_alpha"), py::arg("linear_solver"), py::arg("residual_tolerance"),
+        py::arg("increment_tolerance"), py::arg("max_iterations"), py::arg("max_halvings"), py::arg("record_from"),
+        py::arg("max_output_bytes"), py::arg("progress"), py::arg("progress_interval"),
+        "Internal: camfollower.simulate() calls this and wraps the output in a Result.");
+}
+
 }  // namespace camfollower::python

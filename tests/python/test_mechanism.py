@@ -194,3 +194,20 @@ def test_a_follower_held_only_by_gravity_finds_its_equilibrium_and_edge_cases_of
                       stiffness=1e8)
     with pytest.raises(ValueError, match="both named 'q.force'"):
         cf.simulate(clash.build(), duration=1e-4)
+
+
+def test_rayleigh_and_modal_damping_against_their_definitions():
+    m, k, kc = 0.5, 2e4, 1e8  # the contact (n = 1) adds kc to the stiffness in contact
+    b = builder_1dof()
+    b.set_rayleigh_damping(3.0, 2e-6)
+    mech = b.build()
+    np.testing.assert_allclose(mech.damping, [[3.0 * m + 2e-6 * k]], rtol=1e-14)  # alpha M + beta K
+    b = builder_1dof()
+    b.set_modal_damping([0.05])
+    mech = b.build()
+    # One DOF: C = 2 zeta omega m with omega from K + contact stiffness at the initial equilibrium.
+    np.testing.assert_allclose(mech.damping, [[2 * 0.05 * np.sqrt((k + kc) / m) * m]], rtol=1e-12)
+    with pytest.raises(ValueError, match="one ratio or one per mode"):
+        b = builder_1dof()
+        b.set_modal_damping([0.05, 0.02])
+        b.build()

@@ -1,5 +1,6 @@
-// The paper's 7-DOF flexible cam-follower model (section 1.1; spec: shared/design/model.md, as
-// implemented: docs/model.md).
+// The paper's 7-DOF flexible cam-follower model (section 1.1; as implemented: docs/model.md). The
+// same model is built from the mechanism parts by presets::paper (model/presets/paper.hpp); this class
+// stays for the paper's imposed defects until they are rebuilt on those parts.
 //
 // q = <y1, y2, y3, y4, x1, x2, x3> (paper order): y along the follower axis, x across it towards the
 // offset side. Bodies: 1 camshaft on its bearings, 2 roller centre, 3 follower rod at its guide,
@@ -29,6 +30,7 @@
 
 #include "camfollower/contact/hertz.hpp"
 #include "camfollower/core/system.hpp"
+#include "camfollower/detail/secant.hpp"
 #include "camfollower/geometry/disk_cam.hpp"
 #include "camfollower/model/defects.hpp"
 #include "camfollower/model/network.hpp"
@@ -288,15 +290,10 @@ private:
             preload_ = P;
             return P + parameters_.spring_stiffness * static_equilibrium(0.0)[y4] - target;
         };
-        double p0 = target, f0 = residual(p0);
-        double p1 = target - f0, f1 = residual(p1);
-        for (int it = 0; it < 50 && std::abs(f1) > 1e-12 * target; ++it) {
-            const double p2 = f1 == f0 ? p1 : p1 - f1 * (p1 - p0) / (f1 - f0);
-            p0 = p1, f0 = f1;
-            p1 = p2, f1 = residual(p1);
-        }
+        const detail::SecantRoot root = detail::secant_root(residual, target, 1e-12 * target);
+        const double f1 = root.residual;
         defects_ = saved;
-        preload_ = p1;
+        preload_ = root.x;
         if (!(std::abs(f1) <= 1e-9 * target))
             throw ConvergenceError(detail::concat("spring preload calibration did not converge: spring force ",
                                                   target + f1, " N against K_rs delta_rs = ", target, " N"));

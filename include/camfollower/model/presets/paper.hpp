@@ -9,6 +9,7 @@
 
 #include <cmath>
 
+#include "camfollower/detail/secant.hpp"
 #include "camfollower/model/mechanism.hpp"
 #include "camfollower/model/parameters.hpp"
 
@@ -58,17 +59,11 @@ inline Mechanism<paper_dofs> paper(const CamFollowerParameters& p = {},
     auto residual = [&](double P) {
         return P + p.spring_stiffness * Mechanism<paper_dofs>(paper_spec(p, program, P)).initial_displacement()[y4] - target;
     };
-    double p0 = target, f0 = residual(p0);
-    double p1 = target - f0, f1 = residual(p1);
-    for (int it = 0; it < 50 && std::abs(f1) > 1e-12 * target; ++it) {
-        const double p2 = f1 == f0 ? p1 : p1 - f1 * (p1 - p0) / (f1 - f0);
-        p0 = p1, f0 = f1;
-        p1 = p2, f1 = residual(p1);
-    }
-    if (!(std::abs(f1) <= 1e-9 * target))
-        throw ConvergenceError(detail::concat("spring preload calibration did not converge: spring force ", target + f1,
-                                              " N against K_rs delta_rs = ", target, " N"));
-    return Mechanism<paper_dofs>(paper_spec(p, program, p1));
+    const detail::SecantRoot root = detail::secant_root(residual, target, 1e-12 * target);
+    if (!(std::abs(root.residual) <= 1e-9 * target))
+        throw ConvergenceError(detail::concat("spring preload calibration did not converge: spring force ",
+                                              target + root.residual, " N against K_rs delta_rs = ", target, " N"));
+    return Mechanism<paper_dofs>(paper_spec(p, program, root.x));
 }
 
 }  // namespace camfollower::presets
