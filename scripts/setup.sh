@@ -40,7 +40,7 @@ need "numpy, matplotlib, pybind11, scikit_build_core" numpy matplotlib "pybind11
 # Rebuild the package only when its sources changed.
 stamp=$(cat pyproject.toml CMakeLists.txt cmake/* $(find include python -type f \( -name '*.hpp' -o -name '*.cpp' -o -name '*.py' -o -name '*.txt' -o -name '*.pyi' \) | sort) | sha256sum | cut -c1-16)
 if [ "$(cat .venv/.camfollower-stamp 2>/dev/null)" != "$stamp" ]; then
-  echo "setup: building and installing the camfollower Python package (about 30 s)"
+  echo "setup: building and installing the camfollower Python package (about 2 min)"
   .venv/bin/python -m pip install -q --no-build-isolation --no-deps .
   echo "$stamp" > .venv/.camfollower-stamp
 fi

@@ -640,11 +640,11 @@ class MechanismBuilder:
     gravity, global damping, and cam-follower contact pairs. build() makes the immutable Mechanism.
     SI units: kg (kg m^2 for a rotation), N/m, N s/m, N; angles in rad.
     """
-    def __getstate__(self) -> tuple:
+    def __getstate__(self) -> dict:
         ...
     def __init__(self) -> None:
         ...
-    def __setstate__(self, arg0: tuple) -> None:
+    def __setstate__(self, arg0: dict) -> None:
         ...
     def add_contact(self, name: str, program: MotionProgram, follower: typing.Any, *, follower_dof: str, stiffness: typing.SupportsFloat | typing.SupportsIndex, exponent: typing.SupportsFloat | typing.SupportsIndex = 1.0, damping_factor: typing.SupportsFloat | typing.SupportsIndex = 0.0, phase: typing.SupportsFloat | typing.SupportsIndex = 0.0, cam_x: str = 'ground', cam_y: str = 'ground', lateral: str = 'ground') -> None:
         """
@@ -697,13 +697,13 @@ class Mechanism:
     simulate(mechanism, ...) integrates it; channels: theta and per contact <name>.force,
     .penetration, .stiffness, .pressure_angle, .cam_angle, .in_contact.
     """
-    def __getstate__(self) -> tuple:
+    def __getstate__(self) -> dict:
         ...
     def __init__(self, builder: MechanismBuilder) -> None:
         ...
     def __repr__(self) -> str:
         ...
-    def __setstate__(self, arg0: tuple) -> None:
+    def __setstate__(self, arg0: dict) -> None:
         ...
     def builder(self) -> MechanismBuilder:
         """

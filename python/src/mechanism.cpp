@@ -114,47 +114,58 @@ ArmTurn turn_from(const std::string& s) {
     detail::fail("turn must be 'counter_clockwise' or 'clockwise', got '", s, "'");
 }
 
-// Builder state as plain Python data (pickling, and Mechanism.__reduce__).
-py::tuple builder_state(const MechanismBuilder& b) {
+// Builder state as plain, self-describing Python data (pickling, and Mechanism.__reduce__).
+py::dict builder_state(const MechanismBuilder& b) {
     py::list dofs, springs, loads, contacts;
-    for (const DofSpec& d : b.structure.dofs()) dofs.append(py::make_tuple(d.name, d.mass, Eigen::Vector3d(d.direction)));
+    for (const DofSpec& d : b.structure.dofs())
+        dofs.append(py::dict(py::arg("name") = d.name, py::arg("mass") = d.mass,
+                             py::arg("direction") = Eigen::Vector3d(d.direction)));
     for (const SpringSpec& s : b.structure.springs())
-        springs.append(py::make_tuple(s.name, s.a, s.b, s.stiffness, s.damping, s.preload));
-    for (const LoadSpec& l : b.structure.loads()) loads.append(py::make_tuple(l.dof, l.force));
+        springs.append(py::dict(py::arg("name") = s.name, py::arg("a") = s.a, py::arg("b") = s.b,
+                                py::arg("stiffness") = s.stiffness, py::arg("damping") = s.damping,
+                                py::arg("preload") = s.preload));
+    for (const LoadSpec& l : b.structure.loads()) loads.append(py::dict(py::arg("dof") = l.dof, py::arg("force") = l.force));
     for (const ContactPairSpec& c : b.contacts)
-        contacts.append(py::make_tuple(c.name, c.program, follower_to_python(c.follower), c.law.stiffness, c.law.exponent, c.law.damping_factor,
-                                       c.phase, c.cam_x, c.cam_y, c.follower_dof, c.lateral));
-    return py::make_tuple(dofs, springs, loads, Eigen::Vector3d(b.structure.gravity()), b.structure.rayleigh_alpha(),
-                          b.structure.rayleigh_beta(), b.structure.modal_ratios(), contacts, b.camshaft_speed);
+        contacts.append(py::dict(py::arg("name") = c.name, py::arg("program") = c.program,
+                                 py::arg("follower") = follower_to_python(c.follower), py::arg("stiffness") = c.law.stiffness,
+                                 py::arg("exponent") = c.law.exponent, py::arg("damping_factor") = c.law.damping_factor,
+                                 py::arg("phase") = c.phase, py::arg("cam_x") = c.cam_x, py::arg("cam_y") = c.cam_y,
+                                 py::arg("follower_dof") = c.follower_dof, py::arg("lateral") = c.lateral));
+    return py::dict(py::arg("dofs") = dofs, py::arg("springs") = springs, py::arg("loads") = loads,
+                    py::arg("gravity") = Eigen::Vector3d(b.structure.gravity()),
+                    py::arg("rayleigh_alpha") = b.structure.rayleigh_alpha(),
+                    py::arg("rayleigh_beta") = b.structure.rayleigh_beta(),
+                    py::arg("modal_ratios") = b.structure.modal_ratios(), py::arg("contacts") = contacts,
+                    py::arg("camshaft_speed") = b.camshaft_speed);
 }
 
-MechanismBuilder builder_from(const py::tuple& t) {
-    if (t.size() != 9) detail::fail("MechanismBuilder: invalid pickled state");
+MechanismBuilder builder_from(const py::dict& t) {
     MechanismBuilder b;
-    for (const auto& d : t[0].cast<py::list>()) {
-        const auto x = d.cast<py::tuple>();
-        b.add_dof(x[0].cast<std::string>(), x[1].cast<double>(), x[2].cast<Eigen::Vector3d>());
+    for (const auto& item : t["dofs"].cast<py::list>()) {
+        const auto d = item.cast<py::dict>();
+        b.add_dof(d["name"].cast<std::string>(), d["mass"].cast<double>(), d["direction"].cast<Eigen::Vector3d>());
     }
-    for (const auto& s : t[1].cast<py::list>()) {
-        const auto x = s.cast<py::tuple>();
-        b.add_spring(x[0].cast<std::string>(), x[1].cast<std::string>(), x[2].cast<std::string>(), x[3].cast<double>(),
-                     x[4].cast<double>(), x[5].cast<double>());
+    for (const auto& item : t["springs"].cast<py::list>()) {
+        const auto s = item.cast<py::dict>();
+        b.add_spring(s["name"].cast<std::string>(), s["a"].cast<std::string>(), s["b"].cast<std::string>(),
+                     s["stiffness"].cast<double>(), s["damping"].cast<double>(), s["preload"].cast<double>());
     }
-    for (const auto& l : t[2].cast<py::list>()) {
-        const auto x = l.cast<py::tuple>();
-        b.add_load(x[0].cast<std::string>(), x[1].cast<double>());
+    for (const auto& item : t["loads"].cast<py::list>()) {
+        const auto l = item.cast<py::dict>();
+        b.add_load(l["dof"].cast<std::string>(), l["force"].cast<double>());
     }
-    b.set_gravity(t[3].cast<Eigen::Vector3d>());
-    b.set_rayleigh_damping(t[4].cast<double>(), t[5].cast<double>());
-    b.set_modal_damping(t[6].cast<std::vector<double>>());
-    for (const auto& c : t[7].cast<py::list>()) {
-        const auto x = c.cast<py::tuple>();
-        b.add_contact({x[0].cast<std::string>(), x[1].cast<MotionProgram>(), follower_from(x[2]),
-                       HertzContact{x[3].cast<double>(), x[4].cast<double>(), x[5].cast<double>()}, x[6].cast<double>(),
-                       x[7].cast<std::string>(), x[8].cast<std::string>(), x[9].cast<std::string>(),
-                       x[10].cast<std::string>()});
+    b.set_gravity(t["gravity"].cast<Eigen::Vector3d>());
+    b.set_rayleigh_damping(t["rayleigh_alpha"].cast<double>(), t["rayleigh_beta"].cast<double>());
+    b.set_modal_damping(t["modal_ratios"].cast<std::vector<double>>());
+    for (const auto& item : t["contacts"].cast<py::list>()) {
+        const auto c = item.cast<py::dict>();
+        b.add_contact({c["name"].cast<std::string>(), c["program"].cast<MotionProgram>(), follower_from(c["follower"]),
+                       HertzContact{c["stiffness"].cast<double>(), c["exponent"].cast<double>(),
+                                    c["damping_factor"].cast<double>()},
+                       c["phase"].cast<double>(), c["cam_x"].cast<std::string>(), c["cam_y"].cast<std::string>(),
+                       c["follower_dof"].cast<std::string>(), c["lateral"].cast<std::string>()});
     }
-    b.camshaft_speed = t[8].cast<double>();
+    b.camshaft_speed = t["camshaft_speed"].cast<double>();
     return b;
 }
 
@@ -341,7 +352,7 @@ void bind_mechanism(py::module_& m) {
              },
              py::arg("rpm"), "The same mechanism at another camshaft speed (a new object).")
         .def(py::pickle([](const AnyMechanism& a) { return builder_state(a.visit([](const auto& x) { return x.description(); })); },
-                        [](const py::tuple& t) { return AnyMechanism::build(builder_from(t)); }))
+                        [](const py::dict& t) { return AnyMechanism::build(builder_from(t)); }))
         .def("__repr__", [](const AnyMechanism& a) {
             return a.visit([](const auto& x) {
                 return detail::concat("Mechanism(", x.size(), " DOFs, ", x.contacts().size(), " contacts, ",
