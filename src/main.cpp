@@ -2,6 +2,7 @@
 //   camfollower kinematics [rpm]         the paper cam's kinematic summary
 //   camfollower run CONFIG [-o FILE]     simulate a case from a config file (see examples/), CSV out
 //   camfollower modes [theta_deg]        natural frequencies of the paper model (config-free)
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -51,9 +52,11 @@ int modes(double theta_deg) {
     const auto without = cf::modal_analysis(model, 0.0, false);
     std::printf("natural frequencies of the paper model (Hz); contact linearized at theta = %g deg\n", theta_deg);
     std::printf("%-6s %12s %12s %12s\n", "mode", "contact", "no contact", "Table 3");
-    const int table3[7] = {2447, 2447, 5711, 12777, 13990, 17009, 17009};
-    for (int k = 0; k < 7; ++k)
-        std::printf("f0%-4d %12.1f %12.1f %12d\n", k + 1, with.frequencies_hz[k], without.frequencies_hz[k], table3[k]);
+    // The paper's Table 3, one value per mode of its model.
+    const std::array<int, cf::presets::paper_dofs> table3 = {2447, 2447, 5711, 12777, 13990, 17009, 17009};
+    for (std::size_t k = 0; k < table3.size(); ++k)
+        std::printf("f0%-4zu %12.1f %12.1f %12d\n", k + 1, with.frequencies_hz[Eigen::Index(k)],
+                    without.frequencies_hz[Eigen::Index(k)], table3[k]);
     return 0;
 }
 
