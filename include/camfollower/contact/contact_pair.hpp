@@ -6,12 +6,16 @@
 // Its penetration is linear in q with time-only coefficients (contact_geometry.hpp):
 //   delta = g(t)^T q + delta0(t),  g = n_x e_cam_x + n_y e_cam_y - n_x e_lateral - lever e_follower,
 //   delta0 = lever s(theta),       theta = omega t + phase.
+// An eccentric cam (contact/eccentricity.hpp) changes the time-only terms (exact geometry of the
+// displaced profile) and may add time-only loads p(t) on the pair's DOFs (unbalance, or the paper's
+// literal force).
 #pragma once
 
 #include <array>
 #include <string>
 #include <variant>
 
+#include "camfollower/contact/eccentricity.hpp"
 #include "camfollower/contact/hertz.hpp"
 #include "camfollower/error.hpp"
 #include "camfollower/follower/oscillating_flat.hpp"
@@ -40,6 +44,7 @@ struct ContactPairSpec {
     HertzContact law;
     double phase = 0.0;  // rad: cam angle = omega t + phase
     std::string cam_x = "ground", cam_y = "ground", follower_dof, lateral = "ground";
+    CamEccentricity eccentricity;  // none by default
 };
 
 // The time-only terms of one pair at one instant: sparse g and its rate (up to four DOFs).
@@ -50,6 +55,8 @@ struct ContactTerms {
     int count = 0;
     double delta0 = 0.0, delta0_dot = 0.0;
     double cos_alpha = 1.0, sin_alpha = 0.0;
+    std::array<double, 4> p{}, p_dot{};  // time-only external loads on the same slots, N, N/s
+    bool loaded = false;                 // any p != 0
 };
 
 // A pair with its DOFs resolved to indices (-1: ground), ready for the time loop.
@@ -73,6 +80,18 @@ public:
                 detail::fail(who, ": ", e.what());
             }
         }, spec_.follower);
+        const CamEccentricity& ecc = spec_.eccentricity;
+        ecc.validate(who);
+        if (ecc.paper_force() && ecc.any()) {
+            if (!is_translating(spec_.follower))
+                detail::fail(who, ": the paper's eccentricity force (", eccentricity_formulation_name(ecc.formulation),
+                             ") acts along a translating follower's axis; use 'exact' for ", follower_type_name(spec_.follower));
+            if (ecc.formulation != EccentricityFormulation::paper_force_roller && cam_y_ < 0)
+                detail::fail(who, ": ", eccentricity_formulation_name(ecc.formulation),
+                             " loads the camshaft, so cam_y must be a DOF, not ground");
+        }
+        if (ecc.unbalance_mass > 0.0 && cam_x_ < 0 && cam_y_ < 0)
+            detail::fail(who, ": an unbalance mass loads the cam centre, so cam_x or cam_y must be a DOF");
         // Where each role's coefficient goes in the sparse g (a DOF in two roles shares one slot).
         const int roles[4] = {cam_x_, cam_y_, lateral_, follower_};
         for (int r = 0; r < 4; ++r) {
@@ -82,6 +101,17 @@ public:
                 if (dofs_[i] == roles[r]) slot_[r] = i;
             if (slot_[r] < 0) dofs_[count_] = roles[r], slot_[r] = count_++;
         }
+        // The displaced profile must be followable all the way round (the shape is unchanged, so
+        // undercut is not affected; the pressure angle and the roller's position are).
+        if (ecc.any() && !ecc.paper_force())
+            for (int i = 0; i < 720; ++i) {
+                const double theta = two_pi * i / 720.0;
+                const ContactGeometry k = geometry(theta);
+                if (!(std::abs(k.pressure_angle()) < 0.5 * pi) || !std::isfinite(k.lift))
+                    detail::fail(who, ": with eccentricity radius ", ecc.radius, " m the pressure angle reaches ",
+                                 radians_to_degrees(k.pressure_angle()), " deg at theta = ", radians_to_degrees(theta),
+                                 " deg (must stay below 90 deg)");
+            }
     }
 
     const ContactPairSpec& spec() const { return spec_; }
@@ -89,8 +119,7 @@ public:
 
     void prepare(double t, double omega, ContactTerms& c) const {
         c.theta = omega * t + spec_.phase;
-        const FollowerMotion m = spec_.program.evaluate(c.theta);
-        const ContactGeometry k = std::visit([&](const auto& f) { return f.contact(c.theta, m); }, spec_.follower);
+        const ContactGeometry k = geometry(c.theta);
         c.count = count_;
         c.dof = dofs_;
         c.g.fill(0.0), c.g_dot.fill(0.0);
@@ -101,6 +130,50 @@ public:
         c.delta0 = k.lever * k.lift;
         c.delta0_dot = omega * (k.dlever * k.lift + k.lever * k.dlift);
         c.cos_alpha = k.cos_alpha, c.sin_alpha = k.sin_alpha;
+        const CamEccentricity& ecc = spec_.eccentricity;
+        c.loaded = false;
+        c.p.fill(0.0), c.p_dot.fill(0.0);
+        if (!ecc.any()) return;
+        const Eigen::Vector2d u = ecc.offset(c.theta), du = ecc.offset_rate(c.theta);
+        if (!ecc.paper_force() && !std::holds_alternative<TranslatingRoller>(spec_.follower)) {
+            // n . u: exact for flat faces, first order for the oscillating roller.
+            c.delta0 += k.normal.dot(u);
+            c.delta0_dot += omega * (k.dnormal.dot(u) + k.normal.dot(du));
+        }
+        // Loads along +q of each role, and their time rates (d/dt = omega d/dtheta).
+        double p[4] = {0.0, 0.0, 0.0, 0.0}, p_dot[4] = {0.0, 0.0, 0.0, 0.0};
+        const double centrifugal = ecc.unbalance_mass * omega * omega;
+        p[0] = centrifugal * u.x(), p_dot[0] = omega * centrifugal * du.x();
+        p[1] = centrifugal * u.y(), p_dot[1] = omega * centrifugal * du.y();
+        if (ecc.paper_force()) {
+            const double F = spec_.law.stiffness * u.y(), F_dot = omega * spec_.law.stiffness * du.y();
+            const bool on_cam = ecc.formulation != EccentricityFormulation::paper_force_roller;
+            const bool on_roller = ecc.formulation != EccentricityFormulation::paper_force_camshaft;
+            if (on_cam) p[1] -= F, p_dot[1] -= F_dot;
+            if (on_roller) p[3] += F, p_dot[3] += F_dot;
+        }
+        for (int r = 0; r < 4; ++r)
+            if (slot_[r] >= 0 && (p[r] != 0.0 || p_dot[r] != 0.0)) {
+                c.p[slot_[r]] += p[r], c.p_dot[slot_[r]] += p_dot[r];
+                c.loaded = true;
+            }
+    }
+
+    // Amplitude of the paper's literal eccentricity force K_h epsilon (0 for the other formulations).
+    double paper_force_amplitude() const {
+        const CamEccentricity& ecc = spec_.eccentricity;
+        return ecc.paper_force() ? spec_.law.stiffness * ecc.radius : 0.0;
+    }
+
+    // Contact geometry at cam angle theta: nominal, or the displaced profile's for a translating roller
+    // on an eccentric cam (exact; the other followers add n . u in prepare()).
+    ContactGeometry geometry(double theta) const {
+        const CamEccentricity& ecc = spec_.eccentricity;
+        if (ecc.any() && !ecc.paper_force())
+            if (const auto* roller = std::get_if<TranslatingRoller>(&spec_.follower))
+                return eccentric_contact(*roller, spec_.program, theta, ecc);
+        const FollowerMotion m = spec_.program.evaluate(theta);
+        return std::visit([&](const auto& f) { return f.contact(theta, m); }, spec_.follower);
     }
 
     template <class Vector>

@@ -20,7 +20,8 @@
 //              void tangent(const Workspace&, const Vector& q, const Vector& v, double cq, double cv,
 //                           LowRank<Vector>&) const;  cq df/dq + cv df/dv = U V^T, rank <= max_rank()
 //              std::vector<std::string> dof_names() const;  DOF names for outputs (absent: "0", "1", ...)
-//              Vector initial_displacement() const;      where a run starts (absent: zero), at rest
+//              Vector initial_displacement() const;      where a run starts (absent: zero)
+//              Vector initial_velocity() const;          its velocity there (absent: zero, at rest)
 //              -- optional with a Workspace --
 //              void accepted(Workspace&, const Vector& q, const Vector& v) const;
 //                                                     after each accepted step (path-dependent elements)
@@ -111,6 +112,8 @@ CAMFOLLOWER_DETECT(has_dof_names,
                    std::declval<std::vector<std::string>&>() = std::declval<const S&>().dof_names())
 CAMFOLLOWER_DETECT(has_initial_displacement,
                    std::declval<vector_t<S>&>() = std::declval<const S&>().initial_displacement())
+CAMFOLLOWER_DETECT(has_initial_velocity,
+                   std::declval<vector_t<S>&>() = std::declval<const S&>().initial_velocity())
 CAMFOLLOWER_DETECT(has_observe, std::declval<const S&>().observe(std::declval<const typename S::Workspace&>(),
                                                                  std::declval<const vector_t<S>&>(),
                                                                  std::declval<const vector_t<S>&>(),
@@ -233,6 +236,12 @@ std::vector<std::string> dof_names(const S& s) {
 template <class S>
 typename S::Vector initial_displacement(const S& s) {
     if constexpr (detail::has_initial_displacement<S>::value) return s.initial_displacement();
+    else return S::Vector::Zero(s.size());
+}
+
+template <class S>
+typename S::Vector initial_velocity(const S& s) {
+    if constexpr (detail::has_initial_velocity<S>::value) return s.initial_velocity();
     else return S::Vector::Zero(s.size());
 }
 

@@ -22,6 +22,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 
+#include "camfollower/contact/clearance.hpp"
 #include "camfollower/contact/contact_pair.hpp"
 #include "camfollower/core/system.hpp"
 #include "camfollower/error.hpp"
@@ -33,6 +34,7 @@ namespace camfollower {
 struct MechanismBuilder {
     NetworkSpec structure;
     std::vector<ContactPairSpec> contacts;
+    std::vector<ClearanceSpec> clearances;
     double camshaft_speed = 750.0 * two_pi / 60.0;  // rad/s
 
     // The structure's elements (structure/network.hpp), by DOF name ("ground" for the frame).
@@ -56,6 +58,16 @@ struct MechanismBuilder {
         for (const ContactPairSpec& other : contacts)
             if (other.name == c.name) detail::fail("contact '", c.name, "' is defined twice");
         contacts.push_back(c);
+    }
+    // A radial clearance (contact/clearance.hpp); add_guide adds one per bushing.
+    void add_clearance(const ClearanceSpec& c) {
+        c.validate();
+        for (const ClearanceSpec& other : clearances)
+            if (other.name == c.name) detail::fail("clearance '", c.name, "' is defined twice");
+        clearances.push_back(c);
+    }
+    void add_guide(const GuideSpec& g) {
+        for (const ClearanceSpec& c : g.clearances()) add_clearance(c);
     }
     void set_camshaft_speed_rpm(double rpm) {
         detail::require_positive(rpm, "camshaft_speed_rpm", "(rpm)");
@@ -82,6 +94,7 @@ public:
         // Contact responses of the last force() call, reused by tangent() and accepted() (which the
         // stepper calls at the same q, v: core/system.hpp).
         mutable std::vector<ContactResponse> last;
+        mutable std::vector<ClearanceResponse> last_clearance;
     };
 
     explicit Mechanism(MechanismBuilder description) : spec_(std::move(description)) {
@@ -101,10 +114,35 @@ public:
             contacts_.emplace_back(c, net.index(c.cam_x, who + " cam_x"), net.index(c.cam_y, who + " cam_y"),
                                    net.index(c.follower_dof, who + " follower_dof"), net.index(c.lateral, who + " lateral"));
         }
+        for (const ClearanceSpec& c : spec_.clearances) {
+            c.validate();
+            const std::string who = "clearance '" + c.name + "'";
+            std::vector<int> dofs;
+            for (const auto& term : c.gap) {
+                dofs.push_back(net.index(term.first, who + " gap DOF"));
+                if (dofs.back() < 0) detail::fail(who, ": the gap coordinate's DOFs must not be ground");
+            }
+            const int sliding = c.friction > 0.0 ? net.index(c.sliding_dof, who + " sliding_dof") : -1;
+            if (c.friction > 0.0 && sliding < 0) detail::fail(who, ": sliding_dof must be a DOF, not ground");
+            clearances_.emplace_back(c, dofs, sliding);
+            max_rank_ += clearances_.back().max_rank();
+        }
+        max_rank_ += int(contacts_.size());
         if (net.rayleigh_alpha() != 0.0 || net.rayleigh_beta() != 0.0)
             C_ += net.rayleigh_alpha() * M_ + net.rayleigh_beta() * K_;
         initial_ = static_equilibrium(0.0);
         if (!net.modal_ratios().empty()) add_modal_damping(net.modal_ratios());
+        initial_velocity_ = quasi_static_velocity(0.0, initial_);
+        for (const ContactPair& c : contacts_) {
+            const double amplitude = c.paper_force_amplitude();
+            if (amplitude == 0.0) continue;
+            const double held = static_contact_force(0.0, initial_, contact_index(c.name()));
+            if (amplitude > held)
+                warnings_.push_back(detail::concat(
+                    "contact '", c.name(), "': the paper's literal eccentricity force K_h epsilon = ", amplitude,
+                    " N exceeds the static contact force ", held, " N (what the return spring's preload holds): "
+                    "the formulation, not the defect, would open the contact"));
+        }
     }
 
     // --- the system contract ---
@@ -113,13 +151,17 @@ public:
     const Matrix& damping() const { return C_; }
     const Matrix& stiffness() const { return K_; }
     const Vector& initial_displacement() const { return initial_; }
-    int max_rank() const { return int(contacts_.size()); }
+    // The quasi-static velocity at the start: the static equilibrium's rate as the cam turns (zero on
+    // a dwell of a true cam; the run-out rate of an eccentric one), so a run starts without a kick.
+    const Vector& initial_velocity() const { return initial_velocity_; }
+    int max_rank() const { return max_rank_; }
 
     Workspace workspace() const {
         Workspace w;
         w.terms.resize(contacts_.size());
         w.memory.resize(contacts_.size());
         w.last.resize(contacts_.size());
+        w.last_clearance.resize(clearances_.size());
         return w;
     }
     void prepare(double t, Workspace& w) const {
@@ -132,8 +174,14 @@ public:
             const ContactTerms& c = w.terms[i];
             w.last[i] = contacts_[i].response(c, q, v);
             const double F = w.last[i].force;
+            if (c.loaded)
+                for (int k = 0; k < c.count; ++k) f[c.dof[k]] -= c.p[k];
             if (F == 0.0) continue;
             for (int k = 0; k < c.count; ++k) f[c.dof[k]] += F * c.g[k];
+        }
+        for (std::size_t i = 0; i < clearances_.size(); ++i) {
+            w.last_clearance[i] = clearances_[i].response(q, v);
+            clearances_[i].add_force(w.last_clearance[i], f);
         }
     }
     void tangent(const Workspace& w, const Vector&, const Vector&, double cq, double cv, LowRank<Vector>& uv) const {
@@ -149,6 +197,30 @@ public:
                 u[c.dof[k]] = c.g[k];
                 vv[c.dof[k]] = a * c.g[k] + b * c.g_dot[k];
             }
+            ++uv.rank;
+        }
+        for (std::size_t i = 0; i < clearances_.size(); ++i) {
+            const Clearance& cl = clearances_[i];
+            const ClearanceResponse& r = w.last_clearance[i];
+            if (r.side == 0 || (r.wall.stiffness == 0.0 && r.wall.damping == 0.0)) continue;
+            const std::vector<int>& dofs = cl.dofs();
+            const std::vector<double>& c = cl.coefficients();
+            // Normal: c (cq N_delta + cv N_rate) c^T.
+            auto u = uv.U.col(uv.rank);
+            auto vv = uv.V.col(uv.rank);
+            u.setZero(), vv.setZero();
+            const double a = cq * r.wall.stiffness + cv * r.wall.damping;
+            for (std::size_t j = 0; j < dofs.size(); ++j) u[dofs[j]] = c[j], vv[dofs[j]] = a * c[j];
+            ++uv.rank;
+            if (!cl.has_friction()) continue;
+            // Friction row w: mu T sign(u) (cq N_delta + cv N_rate) c^T + cv mu N T' e_w^T.
+            const double mu = cl.spec().friction;
+            auto uf = uv.U.col(uv.rank);
+            auto vf = uv.V.col(uv.rank);
+            uf.setZero(), vf.setZero();
+            uf[cl.sliding()] = 1.0;
+            for (std::size_t j = 0; j < dofs.size(); ++j) vf[dofs[j]] = mu * r.slip * r.side * a * c[j];
+            vf[cl.sliding()] += cv * mu * r.wall.force * r.dslip;
             ++uv.rank;
         }
     }
@@ -169,12 +241,17 @@ public:
     }
     // Per contact: <name>.force (N), .penetration (m), .stiffness (dF/d delta, N/m), .pressure_angle
     // (rad), .cam_angle (rad), .in_contact (0/1).
+    // Per clearance: <name>.force (wall force, N, >= 0), .side (-1, 0 free, +1), .gap (u, m),
+    // .friction (N, along +sliding DOF on the rod).
     static constexpr int channels_per_contact = 6;
+    static constexpr int channels_per_clearance = 4;
     std::vector<std::string> channel_names() const {
         std::vector<std::string> names{"theta"};
         for (const ContactPair& c : contacts_)
             for (const char* s : {".force", ".penetration", ".stiffness", ".pressure_angle", ".cam_angle", ".in_contact"})
                 names.push_back(c.name() + s);
+        for (const Clearance& c : clearances_)
+            for (const char* s : {".force", ".side", ".gap", ".friction"}) names.push_back(c.name() + s);
         return names;
     }
     void observe(const Workspace& w, const Vector& q, const Vector& v, double* out) const {
@@ -190,12 +267,34 @@ public:
             *out++ = c.theta;
             *out++ = r.in_contact ? 1.0 : 0.0;
         }
+        for (const Clearance& cl : clearances_) {
+            const ClearanceResponse r = cl.response(q, v);
+            *out++ = r.wall.force;
+            *out++ = r.side;
+            *out++ = r.u;
+            *out++ = cl.has_friction() ? -cl.spec().friction * r.wall.force * r.slip : 0.0;
+        }
     }
 
     // --- queries ---
     // The description it was built from: copy, change and build again for a changed mechanism.
     const MechanismBuilder& description() const { return spec_; }
     const std::vector<ContactPair>& contacts() const { return contacts_; }
+    const std::vector<Clearance>& clearances() const { return clearances_; }
+    // What the model's user should know about its formulation (e.g. the paper's literal eccentricity
+    // force exceeding the static contact force). Python turns each into a UserWarning.
+    const std::vector<std::string>& warnings() const { return warnings_; }
+    std::size_t contact_index(const std::string& name) const {
+        for (std::size_t i = 0; i < contacts_.size(); ++i)
+            if (contacts_[i].name() == name) return i;
+        detail::fail("no contact named '", name, "'");
+    }
+    // Contact force of contact i at rest at camshaft angle theta and displacement q, N.
+    double static_contact_force(double theta, const Vector& q, std::size_t i) const {
+        Workspace w = workspace();
+        prepare(theta / spec_.camshaft_speed, w);
+        return contacts_.at(i).spec().law(ContactPair::penetration(w.terms[i], q), 0.0).force;
+    }
     double omega() const { return spec_.camshaft_speed; }
     double period() const { return two_pi / spec_.camshaft_speed; }
     const Vector& constant_load() const { return load_; }
@@ -233,8 +332,13 @@ public:
             Eigen::FullPivLU<Matrix> lu(Kt);
             // A follower held only by its contact (gravity or a load, no spring) starts with the
             // contact just touching, where the law has no stiffness: take the step as if every
-            // contact were closed (the active-set guess), with the law's stiffness at 1 um.
-            if (!lu.isInvertible()) lu.compute(Kt + closed_contact_stiffness(w));
+            // contact were closed (the active-set guess), with the law's stiffness at 1 um, and every
+            // free clearance seated on the wall its load pushes it to.
+            if (!lu.isInvertible()) {
+                Kt += closed_contact_stiffness(w);
+                close_free_clearances(q, r, Kt);
+                lu.compute(Kt);
+            }
             if (!lu.isInvertible())
                 detail::fail("static equilibrium at theta = ", radians_to_degrees(theta),
                              " deg: the structure with its active contacts is not held in place (a DOF with no "
@@ -265,10 +369,59 @@ private:
             const ContactTerms& c = w.terms[i];
             const ContactResponse f = contacts_[i].spec().law(ContactPair::penetration(c, q), 0.0);
             for (int a = 0; a < c.count; ++a) {
-                r[c.dof[a]] += f.force * c.g[a];
+                r[c.dof[a]] += f.force * c.g[a] - c.p[a];
                 for (int b = 0; b < c.count; ++b) Kt(c.dof[a], c.dof[b]) += f.stiffness * c.g[a] * c.g[b];
             }
         }
+        for (const Clearance& cl : clearances_) {
+            const ClearanceResponse f = cl.response(q, q, true);
+            cl.add_force(f, r);
+            const std::vector<int>& d = cl.dofs();
+            const std::vector<double>& c = cl.coefficients();
+            for (std::size_t a = 0; a < d.size(); ++a)
+                for (std::size_t b = 0; b < d.size(); ++b) Kt(d[a], d[b]) += f.wall.stiffness * c[a] * c[b];
+        }
+    }
+
+    // The active-set guess for a clearance that is free (|u| <= c): seated on the side the residual
+    // pushes it to, with the wall law's stiffness at 1 um: r += k (u - side c) c, Kt += k c c^T.
+    void close_free_clearances(const Vector& q, Vector& r, Matrix& Kt) const {
+        for (const Clearance& cl : clearances_) {
+            const double u = cl.gap(q);
+            if (std::abs(u) > cl.spec().clearance) continue;
+            const std::vector<int>& d = cl.dofs();
+            const std::vector<double>& c = cl.coefficients();
+            double push = 0.0;  // generalized load along +u
+            for (std::size_t a = 0; a < d.size(); ++a) push -= c[a] * r[d[a]];
+            const double side = push != 0.0 ? (push > 0.0 ? 1.0 : -1.0) : (u < 0.0 ? -1.0 : 1.0);
+            const double k = cl.spec().wall(1e-6, 0.0).stiffness;
+            for (std::size_t a = 0; a < d.size(); ++a) {
+                r[d[a]] += k * (u - side * cl.spec().clearance) * c[a];
+                for (std::size_t b = 0; b < d.size(); ++b) Kt(d[a], d[b]) += k * c[a] * c[b];
+            }
+        }
+    }
+
+    // d q_static / dt at (theta, q): Kt dq/dt = -(d r / dt at fixed q), the time-only terms' rates.
+    Vector quasi_static_velocity(double theta, const Vector& q) const {
+        Workspace w = workspace();
+        prepare(theta / spec_.camshaft_speed, w);
+        Vector r(n_);
+        Matrix Kt(n_, n_);
+        static_residual(w, q, r, Kt);
+        Vector rate = Vector::Zero(n_);
+        for (std::size_t i = 0; i < contacts_.size(); ++i) {
+            const ContactTerms& c = w.terms[i];
+            const ContactResponse f = contacts_[i].spec().law(ContactPair::penetration(c, q), 0.0);
+            double delta_rate = c.delta0_dot;  // d delta / dt at fixed q
+            for (int a = 0; a < c.count; ++a) delta_rate += c.g_dot[a] * q[c.dof[a]];
+            for (int a = 0; a < c.count; ++a)
+                rate[c.dof[a]] += f.stiffness * delta_rate * c.g[a] + f.force * c.g_dot[a] - c.p_dot[a];
+        }
+        if (rate.isZero(0.0)) return Vector::Zero(n_);
+        const Eigen::FullPivLU<Matrix> lu(Kt);
+        if (!lu.isInvertible()) return Vector::Zero(n_);  // not held statically: start at rest
+        return -lu.solve(rate);
     }
 
     Matrix closed_contact_stiffness(const Workspace& w) const {
@@ -306,8 +459,11 @@ private:
     MechanismBuilder spec_;
     int n_ = 0;
     Matrix M_, C_, K_;
-    Vector load_, initial_;
+    Vector load_, initial_, initial_velocity_;
     std::vector<ContactPair> contacts_;
+    std::vector<Clearance> clearances_;
+    int max_rank_ = 0;
+    std::vector<std::string> warnings_;
 };
 
 }  // namespace camfollower

@@ -1,4 +1,4 @@
-// One call for the common case: start a system at rest in its initial displacement (or a given
+// One call for the common case: start a system in its initial state (or a given
 // state), integrate with Newmark/HHT for a duration, record named channels, report progress and
 // honour cancellation.
 #pragma once
@@ -39,7 +39,7 @@ RunResult<System> simulate(const System& system, const NewmarkSettings& settings
     Newmark<System> stepper(system, settings);
     const std::uint64_t steps = steps_for(options.duration, settings.time_step);
     const Vector q = q0 ? *q0 : initial_displacement(system);
-    const Vector v = v0 ? *v0 : Vector(Vector::Zero(system.size()));
+    const Vector v = v0 ? *v0 : initial_velocity(system);
     RunResult<System> result;
     result.final_state = stepper.start(0.0, q, v);
     Recorder<System> recorder(system, options.record, steps, 0.0, settings.time_step);
