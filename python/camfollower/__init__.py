@@ -13,6 +13,7 @@ import numpy as _numpy  # noqa: F401  (imported here, not lazily inside the firs
 
 from ._core import (
     ArmTurn,
+    CamEccentricity,
     CamFollowerModel,
     Defects,
     DiskCam,
@@ -24,6 +25,7 @@ from ._core import (
     OscillatingRoller,
     Parameters,
     PeakCoefficients,
+    ProfileError,
     Segment,
     TranslatingFlat,
     TranslatingRoller,
@@ -34,6 +36,7 @@ from .simulation import simulate
 
 __all__ = [
     "ArmTurn",
+    "CamEccentricity",
     "CamFollowerModel",
     "Defects",
     "DiskCam",
@@ -45,6 +48,7 @@ __all__ = [
     "OscillatingRoller",
     "Parameters",
     "PeakCoefficients",
+    "ProfileError",
     "Result",
     "Segment",
     "TranslatingFlat",

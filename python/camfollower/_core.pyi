@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['ArmTurn', 'CamFollowerModel', 'Defects', 'DiskCam', 'Mechanism', 'MechanismBuilder', 'MotionLaw', 'MotionProgram', 'OscillatingFlat', 'OscillatingRoller', 'Parameters', 'PeakCoefficients', 'Segment', 'TranslatingFlat', 'TranslatingRoller', 'paper_preset']
+__all__: list[str] = ['ArmTurn', 'CamEccentricity', 'CamFollowerModel', 'Defects', 'DiskCam', 'Mechanism', 'MechanismBuilder', 'MotionLaw', 'MotionProgram', 'OscillatingFlat', 'OscillatingRoller', 'Parameters', 'PeakCoefficients', 'ProfileError', 'Segment', 'TranslatingFlat', 'TranslatingRoller', 'paper_preset', 'realistic_damping_ratio']
 class PeakCoefficients:
     """
     Peaks of |V|, |A|, |J| of a normalized law.
@@ -108,6 +108,65 @@ class Segment:
     @property
     def theta_start(self) -> float:
         ...
+class ProfileError:
+    """
+    Manufacturing error of a cam as a lift error e(theta) (m, + = lift higher), as a cam-measuring machine
+    reports it probing with the follower's own roller or face. An immutable sum of components (waviness,
+    dent, Fourier series / fitted table) combined with +; attach it with MotionProgram.with_profile_error.
+    ProfileError() is no error.
+    """
+    @staticmethod
+    def dent(centre: typing.SupportsFloat | typing.SupportsIndex, width: typing.SupportsFloat | typing.SupportsIndex, depth: typing.SupportsFloat | typing.SupportsIndex) -> ProfileError:
+        """
+        Local dent e = -depth (1 - x^2)^4, x = (theta - centre) / (width / 2), zero for |x| >= 1 (C3 at
+        its edges). centre and width in rad (0 < width <= pi), depth in m (> 0: material missing,
+        < 0: a bump).
+        """
+    @staticmethod
+    def fourier(mean: typing.SupportsFloat | typing.SupportsIndex, cos: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], sin: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> ProfileError:
+        """
+        e = mean + sum_k cos[k-1] cos(k theta) + sin[k-1] sin(k theta), k = 1..K (m).
+        """
+    @staticmethod
+    def table(theta: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], error: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], max_harmonic: typing.SupportsInt | typing.SupportsIndex | None = None) -> ProfileError:
+        """
+        Least-squares Fourier fit of a measured table: theta (rad, >= 3 points, strictly increasing in
+        [0, 2 pi), any spacing), error (m). max_harmonic in [1, (N - 1) // 2], default the upper end
+        (interpolation for an odd number of equally spaced points); lower it to smooth a noisy table.
+        """
+    @staticmethod
+    def waviness(amplitude: typing.SupportsFloat | typing.SupportsIndex, order: typing.SupportsInt | typing.SupportsIndex, phase: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> ProfileError:
+        """
+        e = amplitude cos(order theta + phase): amplitude in m, order an integer >= 1 (waves per
+        revolution), phase in rad.
+        """
+    def __add__(self, arg0: ProfileError) -> ProfileError:
+        ...
+    def __bool__(self) -> bool:
+        ...
+    def __getstate__(self) -> tuple:
+        ...
+    def __init__(self) -> None:
+        ...
+    def __len__(self) -> int:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
+        ...
+    def evaluate(self, theta: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> dict:
+        """
+        Lift error e (m) and de/dtheta, d2e/dtheta2, d3e/dtheta3 at theta (rad; scalar or array) as a dict.
+        """
+    def features(self) -> list[float]:
+        """
+        Angles (rad, ascending, in [0, 2 pi)) a sampled check must visit: dent centres and edges.
+        """
+    @property
+    def components(self) -> list:
+        """
+        The components as dicts: {'kind': 'waviness' | 'dent' | 'fourier', and its parameters}.
+        """
 class MotionProgram:
     """
     Segments tiling one revolution; h(theta) and its theta-derivatives.
@@ -117,7 +176,7 @@ class MotionProgram:
         """
         Paper Table 1: dwell 0-30, modified-trapezoid rise 30-180, dwell 180-210, return 210-360 deg.
         """
-    def __getstate__(self) -> tuple[list[Segment]]:
+    def __getstate__(self) -> tuple[list[Segment], typing.Any]:
         ...
     def __init__(self, segments: collections.abc.Sequence[Segment]) -> None:
         ...
@@ -128,9 +187,23 @@ class MotionProgram:
         Lift h (m) and dh/dtheta, d2h/dtheta2, d3h/dtheta3 at theta (rad; scalar or array) as a dict.
         """
     def max_lift(self) -> float:
-        ...
+        """
+        Largest lift over the revolution, profile error included (m).
+        """
     def min_lift(self) -> float:
-        ...
+        """
+        Smallest lift over the revolution, profile error included (m).
+        """
+    def with_profile_error(self, error: ProfileError) -> MotionProgram:
+        """
+        A copy whose lift carries the cam's manufacturing error (replacing any it carries; ProfileError()
+        removes it). It reaches evaluate, the contacts and the undercut / pressure-angle checks.
+        """
+    @property
+    def profile_error(self) -> ProfileError | None:
+        """
+        The manufacturing error the lift carries, None for the design program.
+        """
     @property
     def segments(self) -> list[Segment]:
         ...
@@ -634,6 +707,41 @@ class OscillatingFlat:
     @property
     def turn(self) -> str:
         ...
+class CamEccentricity:
+    """
+    An eccentric cam: its geometric centre at `radius` (m) from the bearing axis, in the direction `phase`
+    (rad) of the cam frame, so at epsilon (cos(theta + phase), sin(theta + phase)) in the ground frame.
+    formulation: 'exact' (the displaced profile's contact geometry; physical), or the paper's literal
+    force K_h epsilon sin(theta + phase) on the camshaft, the roller or both ('paper_force_camshaft',
+    'paper_force_roller', 'paper_force_both'; not physically derived, kept to reproduce the paper).
+    unbalance_mass (kg): a rotating unbalance m epsilon omega^2 on the cam centre's DOFs.
+    """
+    def __getstate__(self) -> tuple[float, float, str, float]:
+        ...
+    def __init__(self, radius: typing.SupportsFloat | typing.SupportsIndex, phase: typing.SupportsFloat | typing.SupportsIndex = 0.0, formulation: str = 'exact', unbalance_mass: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
+        ...
+    @property
+    def formulation(self) -> str:
+        ...
+    @property
+    def phase(self) -> float:
+        """
+        rad
+        """
+    @property
+    def radius(self) -> float:
+        """
+        m
+        """
+    @property
+    def unbalance_mass(self) -> float:
+        """
+        kg
+        """
 class MechanismBuilder:
     """
     Describe a cam mechanism: DOFs with masses, springs and dampers between DOFs or to 'ground', loads,
@@ -646,17 +754,30 @@ class MechanismBuilder:
         ...
     def __setstate__(self, arg0: dict) -> None:
         ...
-    def add_contact(self, name: str, program: MotionProgram, follower: typing.Any, *, follower_dof: str, stiffness: typing.SupportsFloat | typing.SupportsIndex, exponent: typing.SupportsFloat | typing.SupportsIndex = 1.0, damping_factor: typing.SupportsFloat | typing.SupportsIndex = 0.0, phase: typing.SupportsFloat | typing.SupportsIndex = 0.0, cam_x: str = 'ground', cam_y: str = 'ground', lateral: str = 'ground') -> None:
+    def add_clearance(self, name: str, gap: collections.abc.Sequence[tuple[str, typing.SupportsFloat | typing.SupportsIndex]], *, clearance: typing.SupportsFloat | typing.SupportsIndex, stiffness: typing.SupportsFloat | typing.SupportsIndex, exponent: typing.SupportsFloat | typing.SupportsIndex = 1.0, damping_factor: typing.SupportsFloat | typing.SupportsIndex = 0.0, friction: typing.SupportsFloat | typing.SupportsIndex = 0.0, sliding_dof: str = '', slip_velocity: typing.SupportsFloat | typing.SupportsIndex = 0.001) -> None:
+        """
+        A radial clearance: the gap coordinate u = sum c_j q_j (gap: [(dof, c_j), ...], m) is free for |u| <= clearance
+        (m) and meets a wall law F = k delta^n (1 + chi delta') beyond; with friction > 0, regularized Coulomb
+        friction mu F tanh(v / slip_velocity) on sliding_dof. Channels <name>.force, .side, .gap, .friction.
+        """
+    def add_contact(self, name: str, program: MotionProgram, follower: typing.Any, *, follower_dof: str, stiffness: typing.SupportsFloat | typing.SupportsIndex, exponent: typing.SupportsFloat | typing.SupportsIndex = 1.0, damping_factor: typing.SupportsFloat | typing.SupportsIndex = 0.0, phase: typing.SupportsFloat | typing.SupportsIndex = 0.0, cam_x: str = 'ground', cam_y: str = 'ground', lateral: str = 'ground', eccentricity: CamEccentricity | None = None) -> None:
         """
         A cam-follower contact pair: the cam's lift program (m, or rad for an oscillating follower), the follower
         type, the DOF of the follower's coordinate, a Hertz law F = k delta^n (1 + chi delta'), the cam's
-        phase on the shaft (rad), the cam centre's DOFs and a translating follower's lateral DOF.
+        phase on the shaft (rad), the cam centre's DOFs, a translating follower's lateral DOF and an optional
+        CamEccentricity.
         """
     def add_damper(self, name: str, a: str, b: str = 'ground', *, damping: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     def add_dof(self, name: str, mass: typing.SupportsFloat | typing.SupportsIndex, direction: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"] = ...) -> None:
         """
         A DOF: mass (kg, or kg m^2 for a rotation) and, for a translation, its unit direction in space (for gravity).
+        """
+    def add_guide(self, name: str, lateral_dof: str, *, clearance: typing.SupportsFloat | typing.SupportsIndex, length: typing.SupportsFloat | typing.SupportsIndex, bushings: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], tilt_dof: str = '', tilt_reference: typing.SupportsFloat | typing.SupportsIndex = 0.0, stiffness: typing.SupportsFloat | typing.SupportsIndex, exponent: typing.SupportsFloat | typing.SupportsIndex = 1.0, damping_factor: typing.SupportsFloat | typing.SupportsIndex = 0.0, friction: typing.SupportsFloat | typing.SupportsIndex = 0.0, sliding_dof: str = '', slip_velocity: typing.SupportsFloat | typing.SupportsIndex = 0.001) -> None:
+        """
+        A rod in a guide of `length` (m) with one or two bushings at axial positions (m, in [0, length]); two
+        bushings need the rod's tilt DOF (rad, about tilt_reference). One clearance per bushing
+        (<name>, or <name>.bushing1/.bushing2).
         """
     def add_load(self, dof: str, force: typing.SupportsFloat | typing.SupportsIndex) -> None:
         """
@@ -726,6 +847,9 @@ class Mechanism:
     def camshaft_speed_rpm(self) -> float:
         ...
     @property
+    def clearance_names(self) -> list[str]:
+        ...
+    @property
     def contact_names(self) -> list[str]:
         ...
     @property
@@ -735,9 +859,19 @@ class Mechanism:
     def dof_names(self) -> list[str]:
         ...
     @property
+    def follower_dofs(self) -> list[str]:
+        """
+        the follower DOF of each contact
+        """
+    @property
     def initial_state(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         """
         static equilibrium at t = 0 (m or rad per DOF)
+        """
+    @property
+    def initial_velocity(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        quasi-static velocity at t = 0 (the rate of the static equilibrium as the cam turns)
         """
     @property
     def mass(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
@@ -758,18 +892,27 @@ class Mechanism:
     @property
     def stiffness(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
         ...
+    @property
+    def warnings(self) -> list[str]:
+        """
+        what the formulation warns about (also issued as UserWarning when built)
+        """
 @typing.overload
-def _run(system: CamFollowerModel, duration: typing.SupportsFloat | typing.SupportsIndex, time_step: typing.SupportsFloat | typing.SupportsIndex, decimation: typing.SupportsInt | typing.SupportsIndex, gamma: typing.SupportsFloat | typing.SupportsIndex | None, beta: typing.SupportsFloat | typing.SupportsIndex | None, hht_alpha: typing.SupportsFloat | typing.SupportsIndex, linear_solver: str, residual_tolerance: typing.SupportsFloat | typing.SupportsIndex, increment_tolerance: typing.SupportsFloat | typing.SupportsIndex, max_iterations: typing.SupportsInt | typing.SupportsIndex, max_halvings: typing.SupportsInt | typing.SupportsIndex, record_from: typing.SupportsFloat | typing.SupportsIndex, max_output_bytes: typing.SupportsFloat | typing.SupportsIndex, progress: typing.Any, progress_interval: typing.SupportsFloat | typing.SupportsIndex) -> dict:
+def _run(system: CamFollowerModel, duration: typing.SupportsFloat | typing.SupportsIndex, time_step: typing.SupportsFloat | typing.SupportsIndex, decimation: typing.SupportsInt | typing.SupportsIndex, gamma: typing.SupportsFloat | typing.SupportsIndex | None, beta: typing.SupportsFloat | typing.SupportsIndex | None, hht_alpha: typing.SupportsFloat | typing.SupportsIndex, linear_solver: str, residual_tolerance: typing.SupportsFloat | typing.SupportsIndex, increment_tolerance: typing.SupportsFloat | typing.SupportsIndex, max_iterations: typing.SupportsInt | typing.SupportsIndex, max_halvings: typing.SupportsInt | typing.SupportsIndex, record_from: typing.SupportsFloat | typing.SupportsIndex, max_output_bytes: typing.SupportsFloat | typing.SupportsIndex, progress: typing.Any, progress_interval: typing.SupportsFloat | typing.SupportsIndex, settle_period: typing.SupportsFloat | typing.SupportsIndex | None = None, settle_dofs: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex] = [], settle_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, settle_min_revolutions: typing.SupportsInt | typing.SupportsIndex = 2, settle_max_revolutions: typing.SupportsInt | typing.SupportsIndex = 200) -> dict:
     """
     Internal: camfollower.simulate() calls this and wraps the output in a Result.
     """
 @typing.overload
-def _run(system: Mechanism, duration: typing.SupportsFloat | typing.SupportsIndex, time_step: typing.SupportsFloat | typing.SupportsIndex, decimation: typing.SupportsInt | typing.SupportsIndex, gamma: typing.SupportsFloat | typing.SupportsIndex | None, beta: typing.SupportsFloat | typing.SupportsIndex | None, hht_alpha: typing.SupportsFloat | typing.SupportsIndex, linear_solver: str, residual_tolerance: typing.SupportsFloat | typing.SupportsIndex, increment_tolerance: typing.SupportsFloat | typing.SupportsIndex, max_iterations: typing.SupportsInt | typing.SupportsIndex, max_halvings: typing.SupportsInt | typing.SupportsIndex, record_from: typing.SupportsFloat | typing.SupportsIndex, max_output_bytes: typing.SupportsFloat | typing.SupportsIndex, progress: typing.Any, progress_interval: typing.SupportsFloat | typing.SupportsIndex) -> dict:
+def _run(system: Mechanism, duration: typing.SupportsFloat | typing.SupportsIndex, time_step: typing.SupportsFloat | typing.SupportsIndex, decimation: typing.SupportsInt | typing.SupportsIndex, gamma: typing.SupportsFloat | typing.SupportsIndex | None, beta: typing.SupportsFloat | typing.SupportsIndex | None, hht_alpha: typing.SupportsFloat | typing.SupportsIndex, linear_solver: str, residual_tolerance: typing.SupportsFloat | typing.SupportsIndex, increment_tolerance: typing.SupportsFloat | typing.SupportsIndex, max_iterations: typing.SupportsInt | typing.SupportsIndex, max_halvings: typing.SupportsInt | typing.SupportsIndex, record_from: typing.SupportsFloat | typing.SupportsIndex, max_output_bytes: typing.SupportsFloat | typing.SupportsIndex, progress: typing.Any, progress_interval: typing.SupportsFloat | typing.SupportsIndex, settle_period: typing.SupportsFloat | typing.SupportsIndex | None = None, settle_dofs: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex] = [], settle_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, settle_min_revolutions: typing.SupportsInt | typing.SupportsIndex = 2, settle_max_revolutions: typing.SupportsInt | typing.SupportsIndex = 200) -> dict:
     """
     Internal: camfollower.simulate() calls this and wraps the output in a Result.
     """
-def paper_preset(parameters: Parameters | None = None, program: MotionProgram | None = None) -> Mechanism:
+def paper_preset(parameters: Parameters | None = None, program: MotionProgram | None = None, *, eccentricity: CamEccentricity | None = None, guide_clearance: typing.SupportsFloat | typing.SupportsIndex = 0.0, guide_wall_damping_factor: typing.SupportsFloat | typing.SupportsIndex = 0.0, guide_friction: typing.SupportsFloat | typing.SupportsIndex = 0.0, modal_damping_ratio: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> Mechanism:
     """
     The paper's 7-DOF model (Tounsi et al.) built from the mechanism parts; DOFs y1..y4, x1..x3,
-    contact 'cam'. Parameters as for CamFollowerModel (Table 2 defaults).
+    contact 'cam'. Parameters as for CamFollowerModel (Table 2 defaults). Options: a CamEccentricity;
+    guide_clearance (m, radial) > 0 puts the rod x3 in a gap with walls of stiffness K_rb (clearance
+    'guide'; wall damping factor chi in s/m, Coulomb friction on y3); modal_damping_ratio in (0, 1)
+    damps every mode at that ratio in place of the paper's element dampers.
     """
+realistic_damping_ratio: float = 0.03

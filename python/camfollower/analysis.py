@@ -143,3 +143,28 @@ def contact_loss_intervals(t, in_contact) -> list[tuple[float, float]]:
     if lost[-1]:
         ends.append(t.size - 1)
     return [(float(t[a]), float(t[b])) for a, b in zip(starts, ends)]
+
+
+def clearance_statistics(result, name: str, period: float) -> dict:
+    """What a clearance did over a recorded run, per revolution of ``period`` (s): the free-flight
+    time (s, rod touching neither wall), impacts (a free rod meeting a wall, or a jump from one wall
+    to the other between two rows), wall changes (arrivals on the other wall than the last one), and
+    the peak and mean seat force (N). Counted from the recorded rows of ``<name>.side`` and
+    ``<name>.force``: record every step (decimation 1) or short impacts may be missed."""
+    side = np.asarray(result[f"{name}.side"], dtype=float)
+    force = np.asarray(result[f"{name}.force"], dtype=float)
+    t = np.asarray(result["t"], dtype=float)
+    if t.size < 2:
+        raise ValueError(f"clearance '{name}': need at least two recorded rows, got {t.size}")
+    dt = float(t[1] - t[0])
+    revolutions = (t[-1] - t[0] + dt) / period
+    if not revolutions > 0:
+        raise ValueError(f"period must be > 0 s, got {period}")
+    arrivals = (side[1:] != 0) & (side[1:] != side[:-1])
+    seated = side[side != 0]
+    wall_changes = int(np.count_nonzero(seated[1:] != seated[:-1])) if seated.size else 0
+    return {"free_flight_time_per_revolution_s": float(np.count_nonzero(side == 0) * dt / revolutions),
+            "impacts_per_revolution": float(np.count_nonzero(arrivals) / revolutions),
+            "wall_changes_per_revolution": float(wall_changes / revolutions),
+            "peak_seat_force_N": float(force.max()),
+            "mean_seat_force_N": float(force.mean())}

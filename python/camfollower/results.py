@@ -2,10 +2,11 @@
 
 from __future__ import annotations
 
+import json
 import os
 import tempfile
 from pathlib import Path
-from typing import Any, Dict, List, Sequence, Tuple
+from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -22,10 +23,14 @@ class Result:
     ``stats`` holds the solver statistics, ``contact_loss`` maps each contact's name to the (start, end)
     times in s of its intervals without contact (checked at every step, not only at recorded rows). Arrays are read-only views on
     the run's buffer; ``save(path)`` / ``Result.load(path)`` round-trip through an NPZ file.
+    ``settle`` is None, or (after ``simulate(..., settle=True)``) a dict: ``settled`` (bool),
+    ``revolutions`` simulated to settle, ``change`` (the last revolution-to-revolution change of the
+    watched accelerations relative to their peak), ``change_absolute`` (m/s^2), ``tolerance``,
+    ``history`` (the change per revolution) and ``dofs`` (the watched DOFs).
     """
 
     def __init__(self, names: Sequence[str], dofs: Sequence[str], data: np.ndarray, stats: Dict[str, Any],
-                 contact_loss: Dict[str, Sequence[Tuple[float, float]]]):
+                 contact_loss: Dict[str, Sequence[Tuple[float, float]]], settle: Optional[Dict[str, Any]] = None):
         self._names: List[str] = list(names)
         self._index = {n: i for i, n in enumerate(self._names)}
         self.dof_names: List[str] = list(dofs)
@@ -37,6 +42,7 @@ class Result:
         self.stats: Dict[str, Any] = dict(stats)
         self.contact_loss: Dict[str, List[Tuple[float, float]]] = {
             str(name): [(float(a), float(b)) for a, b in intervals] for name, intervals in dict(contact_loss).items()}
+        self.settle: Optional[Dict[str, Any]] = None if settle is None else dict(settle)
 
     # --- channels ---
     @property
@@ -117,6 +123,7 @@ class Result:
                          data=np.ascontiguousarray(self._data), stats_keys=np.array(list(self.stats)),
                          stats_values=np.array([float(v) for v in self.stats.values()]),
                          contact_names=np.array(list(self.contact_loss), dtype=str),
+                         settle=np.array(json.dumps(self.settle)),
                          **{f"contact_loss_{i}": np.array(v, dtype=float).reshape(-1, 2)
                             for i, v in enumerate(self.contact_loss.values())})
             os.replace(tmp, path)
@@ -135,7 +142,8 @@ class Result:
             for k, v in zip(z["stats_keys"], z["stats_values"]):
                 stats[str(k)] = _STAT_TYPES.get(str(k), float)(v)
             losses = {str(n): [tuple(x) for x in z[f"contact_loss_{i}"]] for i, n in enumerate(z["contact_names"])}
-            return cls([str(n) for n in z["names"]], [str(d) for d in z["dofs"]], z["data"], stats, losses)
+            settle = json.loads(str(z["settle"])) if "settle" in z else None
+            return cls([str(n) for n in z["names"]], [str(d) for d in z["dofs"]], z["data"], stats, losses, settle)
 
     def __reduce__(self):
-        return (Result, (self._names, self.dof_names, np.array(self._data), self.stats, self.contact_loss))
+        return (Result, (self._names, self.dof_names, np.array(self._data), self.stats, self.contact_loss, self.settle))

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from typing import Callable, Optional
+from typing import Callable, Optional, Sequence
 
 from . import _core
 from .results import Result
@@ -16,7 +16,9 @@ def simulate(system, *, duration: Optional[float] = None, revolutions: Optional[
              residual_tolerance: float = 1e-10, increment_tolerance: float = 1e-10, max_iterations: int = 25,
              max_halvings: int = 6, max_output_bytes: float = 4.0 * 1024 ** 3,
              progress: Optional[Callable[[int, int], Optional[bool]]] = None,
-             progress_interval: float = 0.2) -> Result:
+             progress_interval: float = 0.2, settle: bool = False, settle_tolerance: float = 1e-4,
+             settle_dofs: Optional[Sequence[str]] = None, settle_min_revolutions: int = 2,
+             settle_max_revolutions: int = 200) -> Result:
     """Integrate ``system`` from its initial state (static equilibrium, at rest) and return a Result.
 
     Give ``duration`` (s) or ``revolutions`` (of the camshaft, for systems with a ``period``). One row
@@ -31,6 +33,15 @@ def simulate(system, *, duration: Optional[float] = None, revolutions: Optional[
     returning False stops the run (the Result then holds what was recorded, ``stats["cancelled"]``
     is True). Ctrl-C stops a run within about a second with KeyboardInterrupt. The GIL is released
     while the run integrates.
+
+    ``settle=True`` (systems with a ``period``) first runs whole revolutions until the largest change of
+    the watched accelerations between two successive revolutions, relative to their peak, is at most
+    ``settle_tolerance`` (the periodic steady state), or ``settle_max_revolutions`` have run; then
+    ``duration``/``revolutions`` and ``record_from``/``record_last_revolutions`` count from the settled
+    state (recorded times stay absolute) and ``result.settle`` reports it (``settled`` False: the
+    response never became periodic: chaos, chatter or an undamped mode). Watched: ``settle_dofs`` (names),
+    by default each contact's follower DOF (every DOF for systems without contacts). The time step must
+    divide the period.
 
     Raises ValueError for bad input and RuntimeError when Newton fails after ``max_halvings``.
     """
@@ -53,7 +64,25 @@ def simulate(system, *, duration: Optional[float] = None, revolutions: Optional[
         if not (math.isfinite(record_last_revolutions) and record_last_revolutions > 0):
             raise ValueError(f"record_last_revolutions must be finite and > 0, got {record_last_revolutions!r}")
         start = duration - record_last_revolutions * period
+    settle_args = {}
+    if settle:
+        period = getattr(system, "period", None)
+        if period is None:
+            raise ValueError(f"settle needs a periodic system: {type(system).__name__} has no camshaft period")
+        names = list(getattr(system, "dof_names", []))
+        if settle_dofs is None:
+            settle_dofs = list(dict.fromkeys(getattr(system, "follower_dofs", []))) or names
+        unknown = [d for d in settle_dofs if d not in names]
+        if unknown:
+            raise ValueError(f"settle_dofs: unknown DOF(s) {unknown}; the system's DOFs are {names}")
+        settle_args = dict(settle_period=float(period), settle_dofs=[names.index(d) for d in settle_dofs],
+                           settle_tolerance=settle_tolerance, settle_min_revolutions=settle_min_revolutions,
+                           settle_max_revolutions=settle_max_revolutions)
     raw = _core._run(system, float(duration), time_step, decimation, gamma, beta, hht_alpha, linear_solver,
                      residual_tolerance, increment_tolerance, max_iterations, max_halvings, start,
-                     max_output_bytes, progress, progress_interval)
-    return Result(raw["names"], raw["dofs"], raw["data"], raw["stats"], raw["contact_loss"])
+                     max_output_bytes, progress, progress_interval, **settle_args)
+    stats = dict(raw["stats"])
+    report = stats.pop("settle", None)
+    if report is not None:
+        report["dofs"] = list(settle_dofs)
+    return Result(raw["names"], raw["dofs"], raw["data"], stats, raw["contact_loss"], report)

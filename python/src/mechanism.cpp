@@ -24,8 +24,16 @@ public:
     // A description of the preset's size runs on its fixed-size path (so a pickled preset, rebuilt from
     // its description, integrates bit for bit as the original).
     static AnyMechanism build(const MechanismBuilder& b) {
-        if (b.structure.size() == presets::paper_dofs) return AnyMechanism(Mechanism<presets::paper_dofs>(b));
-        return AnyMechanism(Mechanism<Eigen::Dynamic>(b));
+        AnyMechanism a = b.structure.size() == presets::paper_dofs ? AnyMechanism(Mechanism<presets::paper_dofs>(b))
+                                                                    : AnyMechanism(Mechanism<Eigen::Dynamic>(b));
+        a.warn();
+        return a;
+    }
+    // The model's formulation warnings (Mechanism::warnings) as Python UserWarnings.
+    void warn() const {
+        const std::vector<std::string> warnings = std::visit([](const auto& x) { return x.warnings(); }, m_);
+        for (const std::string& w : warnings)
+            if (PyErr_WarnEx(PyExc_UserWarning, w.c_str(), 2) != 0) throw py::error_already_set();
     }
     template <class F>
     decltype(auto) visit(F&& f) const {
@@ -130,8 +138,15 @@ py::dict builder_state(const MechanismBuilder& b) {
                                  py::arg("follower") = follower_to_python(c.follower), py::arg("stiffness") = c.law.stiffness,
                                  py::arg("exponent") = c.law.exponent, py::arg("damping_factor") = c.law.damping_factor,
                                  py::arg("phase") = c.phase, py::arg("cam_x") = c.cam_x, py::arg("cam_y") = c.cam_y,
-                                 py::arg("follower_dof") = c.follower_dof, py::arg("lateral") = c.lateral));
-    return py::dict(py::arg("dofs") = dofs, py::arg("springs") = springs, py::arg("loads") = loads,
+                                 py::arg("follower_dof") = c.follower_dof, py::arg("lateral") = c.lateral,
+                                 py::arg("eccentricity") = c.eccentricity));
+    py::list clearances;
+    for (const ClearanceSpec& c : b.clearances)
+        clearances.append(py::dict(py::arg("name") = c.name, py::arg("gap") = c.gap, py::arg("clearance") = c.clearance,
+                                   py::arg("stiffness") = c.wall.stiffness, py::arg("exponent") = c.wall.exponent,
+                                   py::arg("damping_factor") = c.wall.damping_factor, py::arg("friction") = c.friction,
+                                   py::arg("sliding_dof") = c.sliding_dof, py::arg("slip_velocity") = c.slip_velocity));
+    return py::dict(py::arg("clearances") = clearances, py::arg("dofs") = dofs, py::arg("springs") = springs, py::arg("loads") = loads,
                     py::arg("gravity") = Eigen::Vector3d(b.structure.gravity()),
                     py::arg("rayleigh_alpha") = b.structure.rayleigh_alpha(),
                     py::arg("rayleigh_beta") = b.structure.rayleigh_beta(),
@@ -163,8 +178,19 @@ MechanismBuilder builder_from(const py::dict& t) {
                        HertzContact{c["stiffness"].cast<double>(), c["exponent"].cast<double>(),
                                     c["damping_factor"].cast<double>()},
                        c["phase"].cast<double>(), c["cam_x"].cast<std::string>(), c["cam_y"].cast<std::string>(),
-                       c["follower_dof"].cast<std::string>(), c["lateral"].cast<std::string>()});
+                       c["follower_dof"].cast<std::string>(), c["lateral"].cast<std::string>(),
+                       c.contains("eccentricity") ? c["eccentricity"].cast<CamEccentricity>() : CamEccentricity{}});
     }
+    if (t.contains("clearances"))
+        for (const auto& item : t["clearances"].cast<py::list>()) {
+            const auto c = item.cast<py::dict>();
+            b.add_clearance({c["name"].cast<std::string>(), c["gap"].cast<std::vector<std::pair<std::string, double>>>(),
+                             c["clearance"].cast<double>(),
+                             HertzContact{c["stiffness"].cast<double>(), c["exponent"].cast<double>(),
+                                          c["damping_factor"].cast<double>()},
+                             c["friction"].cast<double>(), c["sliding_dof"].cast<std::string>(),
+                             c["slip_velocity"].cast<double>()});
+        }
     b.camshaft_speed = t["camshaft_speed"].cast<double>();
     return b;
 }
@@ -263,6 +289,37 @@ void bind_mechanism(py::module_& m) {
                                        turn_from(t[3].cast<std::string>()));
             }));
 
+    py::class_<CamEccentricity>(
+        m, "CamEccentricity",
+        "An eccentric cam: its geometric centre at `radius` (m) from the bearing axis, in the direction `phase`\n"
+        "(rad) of the cam frame, so at epsilon (cos(theta + phase), sin(theta + phase)) in the ground frame.\n"
+        "formulation: 'exact' (the displaced profile's contact geometry; physical), or the paper's literal\n"
+        "force K_h epsilon sin(theta + phase) on the camshaft, the roller or both ('paper_force_camshaft',\n"
+        "'paper_force_roller', 'paper_force_both'; not physically derived, kept to reproduce the paper).\n"
+        "unbalance_mass (kg): a rotating unbalance m epsilon omega^2 on the cam centre's DOFs.")
+        .def(py::init([](double radius, double phase, const std::string& formulation, double unbalance_mass) {
+                 CamEccentricity e{radius, phase, eccentricity_formulation_from(formulation), unbalance_mass};
+                 e.validate("CamEccentricity");
+                 return e;
+             }),
+             py::arg("radius"), py::arg("phase") = 0.0, py::arg("formulation") = "exact", py::arg("unbalance_mass") = 0.0)
+        .def_readonly("radius", &CamEccentricity::radius, "m")
+        .def_readonly("phase", &CamEccentricity::phase, "rad")
+        .def_property_readonly("formulation", [](const CamEccentricity& e) { return std::string(eccentricity_formulation_name(e.formulation)); })
+        .def_readonly("unbalance_mass", &CamEccentricity::unbalance_mass, "kg")
+        .def(py::pickle(
+            [](const CamEccentricity& e) {
+                return py::make_tuple(e.radius, e.phase, std::string(eccentricity_formulation_name(e.formulation)), e.unbalance_mass);
+            },
+            [](const py::tuple& t) {
+                return CamEccentricity{t[0].cast<double>(), t[1].cast<double>(),
+                                       eccentricity_formulation_from(t[2].cast<std::string>()), t[3].cast<double>()};
+            }))
+        .def("__repr__", [](const CamEccentricity& e) {
+            return detail::concat("CamEccentricity(radius=", e.radius, ", phase=", e.phase, ", formulation='",
+                                  eccentricity_formulation_name(e.formulation), "', unbalance_mass=", e.unbalance_mass, ")");
+        });
+
     py::class_<MechanismBuilder>(
         m, "MechanismBuilder",
         "Describe a cam mechanism: DOFs with masses, springs and dampers between DOFs or to 'ground', loads,\n"
@@ -289,16 +346,48 @@ void bind_mechanism(py::module_& m) {
             "add_contact",
             [](MechanismBuilder& b, const std::string& name, const MotionProgram& program, const py::object& follower,
                const std::string& follower_dof, double stiffness, double exponent, double damping_factor, double phase,
-               const std::string& cam_x, const std::string& cam_y, const std::string& lateral) {
+               const std::string& cam_x, const std::string& cam_y, const std::string& lateral,
+               const std::optional<CamEccentricity>& eccentricity) {
                 b.add_contact({name, program, follower_from(follower), HertzContact{stiffness, exponent, damping_factor}, phase, cam_x,
-                               cam_y, follower_dof, lateral});
+                               cam_y, follower_dof, lateral, eccentricity.value_or(CamEccentricity{})});
             },
             py::arg("name"), py::arg("program"), py::arg("follower"), py::kw_only(), py::arg("follower_dof"),
             py::arg("stiffness"), py::arg("exponent") = 1.0, py::arg("damping_factor") = 0.0, py::arg("phase") = 0.0,
             py::arg("cam_x") = ground_name, py::arg("cam_y") = ground_name, py::arg("lateral") = ground_name,
+            py::arg("eccentricity") = py::none(),
             "A cam-follower contact pair: the cam's lift program (m, or rad for an oscillating follower), the follower\n"
             "type, the DOF of the follower's coordinate, a Hertz law F = k delta^n (1 + chi delta'), the cam's\n"
-            "phase on the shaft (rad), the cam centre's DOFs and a translating follower's lateral DOF.")
+            "phase on the shaft (rad), the cam centre's DOFs, a translating follower's lateral DOF and an optional\n"
+            "CamEccentricity.")
+        .def(
+            "add_clearance",
+            [](MechanismBuilder& b, const std::string& name, const std::vector<std::pair<std::string, double>>& gap,
+               double clearance, double stiffness, double exponent, double damping_factor, double friction,
+               const std::string& sliding_dof, double slip_velocity) {
+                b.add_clearance({name, gap, clearance, HertzContact{stiffness, exponent, damping_factor}, friction,
+                                 sliding_dof, slip_velocity});
+            },
+            py::arg("name"), py::arg("gap"), py::kw_only(), py::arg("clearance"), py::arg("stiffness"),
+            py::arg("exponent") = 1.0, py::arg("damping_factor") = 0.0, py::arg("friction") = 0.0,
+            py::arg("sliding_dof") = "", py::arg("slip_velocity") = 1e-3,
+            "A radial clearance: the gap coordinate u = sum c_j q_j (gap: [(dof, c_j), ...], m) is free for |u| <= clearance\n"
+            "(m) and meets a wall law F = k delta^n (1 + chi delta') beyond; with friction > 0, regularized Coulomb\n"
+            "friction mu F tanh(v / slip_velocity) on sliding_dof. Channels <name>.force, .side, .gap, .friction.")
+        .def(
+            "add_guide",
+            [](MechanismBuilder& b, const std::string& name, const std::string& lateral_dof, double clearance, double length,
+               const std::vector<double>& bushings, const std::string& tilt_dof, double tilt_reference, double stiffness,
+               double exponent, double damping_factor, double friction, const std::string& sliding_dof, double slip_velocity) {
+                b.add_guide({name, lateral_dof, tilt_dof, sliding_dof, length, bushings, tilt_reference, clearance,
+                             HertzContact{stiffness, exponent, damping_factor}, friction, slip_velocity});
+            },
+            py::arg("name"), py::arg("lateral_dof"), py::kw_only(), py::arg("clearance"), py::arg("length"),
+            py::arg("bushings"), py::arg("tilt_dof") = "", py::arg("tilt_reference") = 0.0, py::arg("stiffness"),
+            py::arg("exponent") = 1.0, py::arg("damping_factor") = 0.0, py::arg("friction") = 0.0,
+            py::arg("sliding_dof") = "", py::arg("slip_velocity") = 1e-3,
+            "A rod in a guide of `length` (m) with one or two bushings at axial positions (m, in [0, length]); two\n"
+            "bushings need the rod's tilt DOF (rad, about tilt_reference). One clearance per bushing\n"
+            "(<name>, or <name>.bushing1/.bushing2).")
         .def_property("camshaft_speed_rpm", &MechanismBuilder::camshaft_speed_rpm, &MechanismBuilder::set_camshaft_speed_rpm)
         .def_property_readonly("dof_names", [](const MechanismBuilder& b) {
             std::vector<std::string> n;
@@ -323,6 +412,28 @@ void bind_mechanism(py::module_& m) {
                                        return n;
                                    });
                                })
+        .def_property_readonly("clearance_names",
+                               [](const AnyMechanism& a) {
+                                   return a.visit([](const auto& x) {
+                                       std::vector<std::string> n;
+                                       for (const Clearance& c : x.clearances()) n.push_back(c.name());
+                                       return n;
+                                   });
+                               })
+        .def_property_readonly("follower_dofs",
+                               [](const AnyMechanism& a) {
+                                   return a.visit([](const auto& x) {
+                                       std::vector<std::string> n;
+                                       for (const ContactPair& c : x.contacts()) n.push_back(c.spec().follower_dof);
+                                       return n;
+                                   });
+                               },
+                               "the follower DOF of each contact")
+        .def_property_readonly("warnings", [](const AnyMechanism& a) { return a.visit([](const auto& x) { return x.warnings(); }); },
+                               "what the formulation warns about (also issued as UserWarning when built)")
+        .def_property_readonly("initial_velocity",
+                               [](const AnyMechanism& a) { return a.visit([](const auto& x) { return Eigen::VectorXd(x.initial_velocity()); }); },
+                               "quasi-static velocity at t = 0 (the rate of the static equilibrium as the cam turns)")
         .def_property_readonly("mass", [](const AnyMechanism& a) { return a.visit([](const auto& x) { return Eigen::MatrixXd(x.mass()); }); })
         .def_property_readonly("damping", [](const AnyMechanism& a) { return a.visit([](const auto& x) { return Eigen::MatrixXd(x.damping()); }); })
         .def_property_readonly("stiffness", [](const AnyMechanism& a) { return a.visit([](const auto& x) { return Eigen::MatrixXd(x.stiffness()); }); })
@@ -360,15 +471,31 @@ void bind_mechanism(py::module_& m) {
             });
         });
 
+    m.attr("realistic_damping_ratio") = presets::realistic_damping_ratio;
     m.def(
         "paper_preset",
-        [](const std::optional<CamFollowerParameters>& p, const std::optional<MotionProgram>& program) {
-            return AnyMechanism(presets::paper(p.value_or(CamFollowerParameters{}),
-                                               program.value_or(MotionProgram::paper_default())));
+        [](const std::optional<CamFollowerParameters>& p, const std::optional<MotionProgram>& program,
+           const std::optional<CamEccentricity>& eccentricity, double guide_clearance, double guide_wall_damping_factor,
+           double guide_friction, double modal_damping_ratio) {
+            presets::PaperOptions o;
+            o.eccentricity = eccentricity.value_or(CamEccentricity{});
+            o.guide_clearance = guide_clearance;
+            o.guide_wall_damping_factor = guide_wall_damping_factor;
+            o.guide_friction = guide_friction;
+            o.modal_damping_ratio = modal_damping_ratio;
+            AnyMechanism a(presets::paper(p.value_or(CamFollowerParameters{}),
+                                          program.value_or(MotionProgram::paper_default()), o));
+            a.warn();
+            return a;
         },
-        py::arg("parameters") = py::none(), py::arg("program") = py::none(),
+        py::arg("parameters") = py::none(), py::arg("program") = py::none(), py::kw_only(),
+        py::arg("eccentricity") = py::none(), py::arg("guide_clearance") = 0.0, py::arg("guide_wall_damping_factor") = 0.0,
+        py::arg("guide_friction") = 0.0, py::arg("modal_damping_ratio") = 0.0,
         "The paper's 7-DOF model (Tounsi et al.) built from the mechanism parts; DOFs y1..y4, x1..x3,\n"
-        "contact 'cam'. Parameters as for CamFollowerModel (Table 2 defaults).");
+        "contact 'cam'. Parameters as for CamFollowerModel (Table 2 defaults). Options: a CamEccentricity;\n"
+        "guide_clearance (m, radial) > 0 puts the rod x3 in a gap with walls of stiffness K_rb (clearance\n"
+        "'guide'; wall damping factor chi in s/m, Coulomb friction on y3); modal_damping_ratio in (0, 1)\n"
+        "damps every mode at that ratio in place of the paper's element dampers.");
 
     bind_run<AnyMechanism>(m, [](const AnyMechanism& a, auto&&... args) {
         return a.visit([&](const auto& mech) { return run_system(mech, args...); });

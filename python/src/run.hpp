@@ -58,8 +58,9 @@ py::dict losses_of(const Mechanism<N>& m, const State<Mechanism<N>>& s) {
 template <class System>
 py::dict run_system(const System& system, double duration, const NewmarkSettings& settings, std::size_t decimation,
                     double record_from, double max_output_bytes, const py::object& progress,
-                    double progress_interval) {
+                    double progress_interval, const SettleOptions& settle) {
     RunOptions options;
+    options.settle = settle;
     options.duration = duration;
     options.record.decimation = decimation;
     options.record.from_time = record_from;
@@ -115,6 +116,17 @@ py::dict run_system(const System& system, double duration, const NewmarkSettings
     stats["time_step"] = result->time_step;
     stats["decimation"] = result->decimation;
     stats["cancelled"] = result->report.cancelled;
+    const SettleReport& sr = result->settle;
+    if (sr.requested) {
+        py::dict st;
+        st["settled"] = sr.settled;
+        st["revolutions"] = sr.revolutions;
+        st["change"] = sr.change;
+        st["change_absolute"] = sr.change_absolute;
+        st["tolerance"] = settle.tolerance;
+        st["history"] = sr.history;
+        stats["settle"] = st;
+    }
     d["stats"] = stats;
     d["contact_loss"] = losses_of(system, result->final_state);
     d["final_time"] = result->final_state.t;
@@ -132,15 +144,28 @@ void bind_run(py::module_& m, Run run) {
               std::optional<double> gamma, std::optional<double> beta, double hht_alpha,
               const std::string& linear_solver, double residual_tolerance, double increment_tolerance,
               int max_iterations, int max_halvings, double record_from, double max_output_bytes,
-              const py::object& progress, double progress_interval) {
+              const py::object& progress, double progress_interval, std::optional<double> settle_period,
+              const std::vector<int>& settle_dofs, double settle_tolerance, int settle_min_revolutions,
+              int settle_max_revolutions) {
             const NewmarkSettings s = settings_from(time_step, gamma, beta, hht_alpha, linear_solver, residual_tolerance,
                                                     increment_tolerance, max_iterations, max_halvings);
-            return run(system, duration, s, decimation, record_from, max_output_bytes, progress, progress_interval);
+            SettleOptions settle;
+            if (settle_period) {
+                settle.enabled = true;
+                settle.period = *settle_period;
+                settle.dofs = settle_dofs;
+                settle.tolerance = settle_tolerance;
+                settle.min_revolutions = settle_min_revolutions;
+                settle.max_revolutions = settle_max_revolutions;
+            }
+            return run(system, duration, s, decimation, record_from, max_output_bytes, progress, progress_interval, settle);
         },
         py::arg("system"), py::arg("duration"), py::arg("time_step"), py::arg("decimation"), py::arg("gamma"),
         py::arg("beta"), py::arg("hht_alpha"), py::arg("linear_solver"), py::arg("residual_tolerance"),
         py::arg("increment_tolerance"), py::arg("max_iterations"), py::arg("max_halvings"), py::arg("record_from"),
-        py::arg("max_output_bytes"), py::arg("progress"), py::arg("progress_interval"),
+        py::arg("max_output_bytes"), py::arg("progress"), py::arg("progress_interval"), py::arg("settle_period") = py::none(),
+        py::arg("settle_dofs") = std::vector<int>{}, py::arg("settle_tolerance") = 1e-4,
+        py::arg("settle_min_revolutions") = 2, py::arg("settle_max_revolutions") = 200,
         "Internal: camfollower.simulate() calls this and wraps the output in a Result.");
 }
 

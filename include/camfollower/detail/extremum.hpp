@@ -2,8 +2,11 @@
 // right bracket, then golden-section refinement (the value converges quadratically, so ~1e-15).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
+#include <vector>
 
 namespace camfollower::detail {
 
@@ -43,6 +46,27 @@ Extremum maximize(const F& f, double a, double b, std::size_t samples = 400) {
         if (v > e.value) e = {x, v};
     }
     return e;
+}
+
+// Samples for a piece of length span: `samples`, or more so that no step exceeds max_step (a narrow
+// feature, e.g. a dent in the cam, must not fall between two samples).
+inline std::size_t samples_for(double span, std::size_t samples, double max_step) {
+    if (!(max_step > 0.0 && std::isfinite(max_step))) return samples;
+    return std::max(samples, static_cast<std::size_t>(std::ceil(span / max_step)));
+}
+
+// Largest f over consecutive pieces [breaks[i], breaks[i + 1]]: f is smooth inside each piece, kinks
+// and narrow features sit on the breaks. Ties keep the earliest piece.
+template <class F>
+Extremum maximize_piecewise(const F& f, const std::vector<double>& breaks, std::size_t samples,
+                            double max_step) {
+    Extremum best{breaks.front(), -std::numeric_limits<double>::infinity()};
+    for (std::size_t i = 0; i + 1 < breaks.size(); ++i) {
+        const double a = breaks[i], b = breaks[i + 1];
+        const Extremum e = maximize(f, a, b, samples_for(b - a, samples, max_step));
+        if (e.value > best.value) best = e;
+    }
+    return best;
 }
 
 }  // namespace camfollower::detail

@@ -38,28 +38,25 @@ struct FollowerProfilePoint {
 
 namespace detail {
 
-// Largest value of f(theta) over the revolution, located per program segment (f is smooth inside a
-// segment, kinks sit on segment ends). detail::maximize skips a NaN silently (NaN > x is false), so
-// a non-finite sample is recorded and refused here: an undefined geometry must not pass a check.
+// Largest value of f(theta) over the revolution, located per smooth piece of the program (segments,
+// split further at a profile error's dents, which would otherwise fall between samples; kinks sit on
+// the piece ends). detail::maximize skips a NaN silently (NaN > x is false), so a non-finite sample
+// is recorded and refused here: an undefined geometry must not pass a check.
 template <class F>
 AngleExtremum max_over_revolution(const MotionProgram& program, const F& f, const char* what) {
-    AngleExtremum best{0.0, -std::numeric_limits<double>::infinity()};
-    for (const Segment& segment : program.segments()) {
-        bool finite = true;
-        double bad_theta = 0.0;
-        const auto guarded = [&](double theta) {
-            const double v = f(theta);
-            if (!std::isfinite(v) && finite) finite = false, bad_theta = theta;
-            return v;
-        };
-        const Extremum e = maximize(guarded, segment.theta_start, segment.theta_end, 600);
-        if (!finite)
-            fail(what, " is not finite at theta = ", radians_to_degrees(bad_theta),
-                 " deg: the follower geometry is undefined there (check the motion program's speed "
-                 "and the follower parameters)");
-        if (e.value > best.value) best = {e.x, e.value};
-    }
-    return best;
+    bool finite = true;
+    double bad_theta = 0.0;
+    const auto guarded = [&](double theta) {
+        const double v = f(theta);
+        if (!std::isfinite(v) && finite) finite = false, bad_theta = theta;
+        return v;
+    };
+    const Extremum e = maximize_piecewise(guarded, program.breakpoints(), 600, program.sampling_step());
+    if (!finite)
+        fail(what, " is not finite at theta = ", radians_to_degrees(bad_theta),
+             " deg: the follower geometry is undefined there (check the motion program's speed "
+             "and the follower parameters)");
+    return {e.x, e.value};
 }
 
 }  // namespace detail

@@ -1,15 +1,20 @@
 // A cam motion program: segments that tile one revolution, giving the follower lift h(theta) and its
 // derivatives with respect to the cam angle (m, m/rad, m/rad^2, m/rad^3). Periodic in theta.
+// The program may carry the cam's manufacturing error (profile_error.hpp), added to the design lift.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
+#include <memory>
 #include <utility>
 #include <vector>
 
+#include "camfollower/detail/extremum.hpp"
 #include "camfollower/error.hpp"
 #include "camfollower/motion/laws.hpp"
+#include "camfollower/motion/profile_error.hpp"
 
 namespace camfollower {
 
@@ -73,19 +78,62 @@ public:
         const Segment& s = segments_[segment_index(t)];
         const double beta = s.span(), dh = s.lift();
         const LawValue v = s.law.evaluate((t - s.theta_start) / beta);
-        return {s.h_start + dh * v.S, dh * v.V / beta, dh * v.A / (beta * beta),
-                dh * v.J / (beta * beta * beta)};
+        FollowerMotion m{s.h_start + dh * v.S, dh * v.V / beta, dh * v.A / (beta * beta),
+                         dh * v.J / (beta * beta * beta)};
+        if (error_) {
+            const LiftError e = error_->evaluate(t);
+            m.h += e.e, m.dh += e.de, m.d2h += e.d2e, m.d3h += e.d3e;
+        }
+        return m;
     }
 
-    double max_lift() const {
-        double m = segments_.front().h_start;
-        for (const Segment& s : segments_) m = std::max({m, s.h_start, s.h_end});
-        return m;
+    // A copy whose lift carries the cam's manufacturing error e(theta), replacing any error this
+    // program carries (combine errors with ProfileError::operator+). An empty error gives the design
+    // program back.
+    MotionProgram with_profile_error(ProfileError error) const {
+        MotionProgram copy = *this;
+        if (error.empty()) {
+            copy.error_.reset();
+            copy.max_lift_ = design_max_lift(), copy.min_lift_ = design_min_lift();
+            return copy;
+        }
+        copy.error_ = std::make_shared<const ProfileError>(std::move(error));
+        // Sampled over the smooth pieces (breakpoints, sampling_step), then refined.
+        const std::vector<double> breaks = copy.breakpoints();
+        const double step = copy.sampling_step();
+        const auto lift = [&](double t) { return copy.evaluate(t).h; };
+        const auto drop = [&](double t) { return -copy.evaluate(t).h; };
+        copy.max_lift_ = detail::maximize_piecewise(lift, breaks, 600, step).value;
+        copy.min_lift_ = -detail::maximize_piecewise(drop, breaks, 600, step).value;
+        return copy;
     }
-    double min_lift() const {
-        double m = segments_.front().h_start;
-        for (const Segment& s : segments_) m = std::min({m, s.h_start, s.h_end});
-        return m;
+
+    // The manufacturing error the lift carries; nullptr for a design program.
+    const ProfileError* profile_error() const { return error_.get(); }
+
+    // Extremes of the lift over the revolution, error included (m).
+    double max_lift() const { return max_lift_; }
+    double min_lift() const { return min_lift_; }
+
+    // Angles (rad, ascending, 0 first, 2 pi last) between which the lift is smooth and sampling finds
+    // everything: segment boundaries and the profile error's features (dent centres and edges).
+    std::vector<double> breakpoints() const {
+        std::vector<double> out;
+        for (const Segment& s : segments_) out.push_back(s.theta_start);
+        out.push_back(two_pi);
+        if (!error_) return out;
+        for (double f : error_->features()) {  // skip one that (nearly) sits on a break already there
+            const auto it = std::lower_bound(out.begin(), out.end(), f);
+            if ((it != out.end() && *it - f <= angle_tolerance) || (it != out.begin() && f - it[-1] <= angle_tolerance))
+                continue;
+            out.insert(it, f);
+        }
+        return out;
+    }
+
+    // Largest sampling step (rad) that resolves the profile error; +inf for a design program.
+    double sampling_step() const {
+        return error_ ? error_->sampling_step() : std::numeric_limits<double>::infinity();
     }
 
     static double wrap(double theta) {
@@ -144,9 +192,23 @@ private:
         }
         segments_.back().theta_end = two_pi;
         segments_.back().h_end = segments_.front().h_start;
+        max_lift_ = design_max_lift(), min_lift_ = design_min_lift();
+    }
+
+    double design_max_lift() const {
+        double m = segments_.front().h_start;
+        for (const Segment& s : segments_) m = std::max({m, s.h_start, s.h_end});
+        return m;
+    }
+    double design_min_lift() const {
+        double m = segments_.front().h_start;
+        for (const Segment& s : segments_) m = std::min({m, s.h_start, s.h_end});
+        return m;
     }
 
     std::vector<Segment> segments_;
+    std::shared_ptr<const ProfileError> error_;  // null: design lift; shared, so copies stay cheap
+    double max_lift_ = 0.0, min_lift_ = 0.0;
 };
 
 }  // namespace camfollower

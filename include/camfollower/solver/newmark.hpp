@@ -79,6 +79,10 @@ struct SolverStatistics {
     std::uint64_t halvings = 0;
     int max_iterations_in_a_step = 0;
     double mean_iterations() const { return steps ? double(newton_iterations) / double(steps) : 0.0; }
+    void add(const SolverStatistics& o) {
+        steps += o.steps, newton_iterations += o.newton_iterations, halvings += o.halvings;
+        max_iterations_in_a_step = std::max(max_iterations_in_a_step, o.max_iterations_in_a_step);
+    }
 };
 
 // The integrator's state: time, displacement, velocity, acceleration, the nonlinear force at them

@@ -10,6 +10,7 @@
 #include "camfollower/solver/integrate.hpp"
 #include "camfollower/solver/newmark.hpp"
 #include "camfollower/solver/observers.hpp"
+#include "camfollower/solver/settle.hpp"
 
 namespace camfollower {
 
@@ -19,6 +20,9 @@ struct RunOptions {
     // Called every `progress_every` steps with (steps done, steps planned); return false to cancel.
     std::function<bool(std::uint64_t, std::uint64_t)> progress;
     std::uint64_t progress_every = 100000;
+    // First settle on the periodic response (solver/settle.hpp); `duration` and record.from_time then
+    // count from the settled state (recorded times stay absolute).
+    SettleOptions settle;
 };
 
 template <class System>
@@ -28,6 +32,7 @@ struct RunResult {
     State<System> final_state;
     double time_step = 0.0;
     std::size_t decimation = 1;
+    SettleReport settle;
 };
 
 template <class System>
@@ -42,14 +47,34 @@ RunResult<System> simulate(const System& system, const NewmarkSettings& settings
     const Vector v = v0 ? *v0 : initial_velocity(system);
     RunResult<System> result;
     result.final_state = stepper.start(0.0, q, v);
-    Recorder<System> recorder(system, options.record, steps, 0.0, settings.time_step);
+    RecordOptions record = options.record;
+    if (options.settle.enabled) {
+        const std::uint64_t planned = std::uint64_t(options.settle.max_revolutions) *
+                                      steps_for(options.settle.period, settings.time_step);
+        result.settle = settle(stepper, result.final_state, options.settle, result.report.stats, [&](std::uint64_t done) {
+            return !options.progress || options.progress(done, planned);
+        });
+        if (!result.settle.settled && result.settle.revolutions < options.settle.max_revolutions) {  // cancelled
+            result.report.cancelled = true;
+            result.recording = Recorder<System>(system, options.record, 0, result.final_state.t, settings.time_step).take();
+            return result;
+        }
+        // Restart at the settled state: path memory (contact losses) covers the recorded run only.
+        const State<System> settled = result.final_state;
+        result.final_state = stepper.start(settled.t, settled.q, settled.v);
+        record.from_time += settled.t;
+    }
+    const double t0 = result.final_state.t;
+    Recorder<System> recorder(system, record, steps, t0, settings.time_step);
     const std::uint64_t every = options.progress ? options.progress_every : 0;
+    const SolverStatistics settling = result.report.stats;
     result.report = integrate(stepper, result.final_state, options.duration,
                               [&](const State<System>& s, std::uint64_t n) {
                                   recorder(s, n);
                                   if (every && n % every == 0 && n > 0) return options.progress(n, steps);
                                   return true;
                               });
+    result.report.stats.add(settling);
     result.recording = recorder.take();
     result.time_step = settings.time_step;
     result.decimation = options.record.decimation;
