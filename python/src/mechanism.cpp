@@ -476,13 +476,13 @@ void bind_mechanism(py::module_& m) {
         "paper_preset",
         [](const std::optional<CamFollowerParameters>& p, const std::optional<MotionProgram>& program,
            const std::optional<CamEccentricity>& eccentricity, double guide_clearance, double guide_wall_damping_factor,
-           double guide_friction, double modal_damping_ratio) {
+           double guide_friction, double element_damping_ratio) {
             presets::PaperOptions o;
             o.eccentricity = eccentricity.value_or(CamEccentricity{});
             o.guide_clearance = guide_clearance;
             o.guide_wall_damping_factor = guide_wall_damping_factor;
             o.guide_friction = guide_friction;
-            o.modal_damping_ratio = modal_damping_ratio;
+            o.element_damping_ratio = element_damping_ratio;
             AnyMechanism a(presets::paper(p.value_or(CamFollowerParameters{}),
                                           program.value_or(MotionProgram::paper_default()), o));
             a.warn();
@@ -490,12 +490,13 @@ void bind_mechanism(py::module_& m) {
         },
         py::arg("parameters") = py::none(), py::arg("program") = py::none(), py::kw_only(),
         py::arg("eccentricity") = py::none(), py::arg("guide_clearance") = 0.0, py::arg("guide_wall_damping_factor") = 0.0,
-        py::arg("guide_friction") = 0.0, py::arg("modal_damping_ratio") = 0.0,
+        py::arg("guide_friction") = 0.0, py::arg("element_damping_ratio") = 0.0,
         "The paper's 7-DOF model (Tounsi et al.) built from the mechanism parts; DOFs y1..y4, x1..x3,\n"
         "contact 'cam'. Parameters as for CamFollowerModel (Table 2 defaults). Options: a CamEccentricity;\n"
         "guide_clearance (m, radial) > 0 puts the rod x3 in a gap with walls of stiffness K_rb (clearance\n"
-        "'guide'; wall damping factor chi in s/m, Coulomb friction on y3); modal_damping_ratio in (0, 1)\n"
-        "damps every mode at that ratio in place of the paper's element dampers.");
+        "'guide'; wall damping factor chi in s/m, Coulomb friction on y3); element_damping_ratio in (0, 1)\n"
+        "puts a damper on every element (springs, contact, guide walls) at that ratio of its own critical\n"
+        "damping, in place of the paper's few dampers.");
 
     bind_run<AnyMechanism>(m, [](const AnyMechanism& a, auto&&... args) {
         return a.visit([&](const auto& mech) { return run_system(mech, args...); });

@@ -4,7 +4,9 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <algorithm>
 #include <complex>
+#include <vector>
 
 #include <Eigen/Eigenvalues>
 
@@ -341,71 +343,45 @@ TEST_CASE("bad defect input names the parameter") {
     CHECK_THAT(message([] { follower_on_eccentric_circle(750, {-1e-6, 0.0}); }), Catch::Contains("eccentricity radius"));
     CHECK_THAT(message([] {
                    presets::PaperOptions o;
-                   o.modal_damping_ratio = 1.0;
+                   o.element_damping_ratio = 1.0;
                    presets::paper({}, MotionProgram::paper_default(), o);
                }),
-               Catch::Contains("modal_damping_ratio must be in [0, 1)"));
+               Catch::Contains("element_damping_ratio must be in [0, 1)"));
     CHECK_THAT(message([] { eccentricity_formulation_from("literal"); }), Catch::Contains("paper_force_both"));
 }
 
-TEST_CASE("realistic preset: every mode damped at 3 % (eigenvalues of the first-order system)") {
-    const auto m = presets::paper_damped();
-    using M7 = Eigen::Matrix<double, 14, 14>;
-    M7 A = M7::Zero();
-    const auto Minv = m.mass().inverse();
-    A.topRightCorner<7, 7>().setIdentity();
-    A.bottomLeftCorner<7, 7>() = -Minv * m.tangent_stiffness(0.0, m.initial_displacement());
-    A.bottomRightCorner<7, 7>() = -Minv * m.damping();
-    const Eigen::EigenSolver<M7> eig(A);
-    for (int i = 0; i < 14; ++i) {
-        const std::complex<double> l = eig.eigenvalues()[i];
-        INFO("eigenvalue " << l);
-        CHECK(-l.real() / std::abs(l) == Approx(presets::realistic_damping_ratio).epsilon(1e-6));
+TEST_CASE("realistic preset: dashpots on the elements; the five lowest modes at 3 %, offset and in-line") {
+    for (double offset : {0.01, 0.0}) {
+        CamFollowerParameters p;
+        p.geometry.offset = offset;
+        const auto m = presets::paper_damped(p);
+        using M14 = Eigen::Matrix<double, 14, 14>;
+        M14 A = M14::Zero();
+        const auto Minv = m.mass().inverse();
+        // The contact's damping at rest, dF/d delta_dot = K delta chi, enters as a linearized dashpot.
+        auto w = m.workspace();
+        m.prepare(0.0, w);
+        const ContactTerms& c = w.terms[0];
+        const ContactResponse r = m.contacts()[0].spec().law(ContactPair::penetration(c, m.initial_displacement()), 0.0);
+        Mechanism<7>::Matrix C = m.damping();
+        for (int a = 0; a < c.count; ++a)
+            for (int b = 0; b < c.count; ++b) C(c.dof[a], c.dof[b]) += r.damping * c.g[a] * c.g[b];
+        A.topRightCorner<7, 7>().setIdentity();
+        A.bottomLeftCorner<7, 7>() = -Minv * m.tangent_stiffness(0.0, m.initial_displacement());
+        A.bottomRightCorner<7, 7>() = -Minv * C;
+        const Eigen::EigenSolver<M14> eig(A);
+        std::vector<std::pair<double, double>> modes;  // (frequency, ratio), one per conjugate pair
+        for (int i = 0; i < 14; ++i) {
+            const std::complex<double> l = eig.eigenvalues()[i];
+            if (l.imag() > 0) modes.emplace_back(std::abs(l), -l.real() / std::abs(l));
+        }
+        std::sort(modes.begin(), modes.end());
+        REQUIRE(modes.size() == 7);
+        for (std::size_t i = 0; i < modes.size(); ++i) {
+            INFO("offset " << offset << " m, mode " << i + 1 << ": " << modes[i].first / two_pi << " Hz, ratio " << modes[i].second);
+            // The five lowest (up to ~5.5 kHz) at the target; the two highest, local modes of the roller
+            // on its pin and the contact, come out at 0.8-80 % (the fit weights them least).
+            if (i < 5) CHECK(modes[i].second == Approx(presets::realistic_damping_ratio).epsilon(0.1));
+        }
     }
-}
-
-#include "linear_system.hpp"
-
-TEST_CASE("settle: a damped oscillator forced at the shaft frequency settles at the closed-form decay rate, on its periodic response") {
-    // m x'' + c x' + k x = F cos(w t): the transient decays as exp(-zeta wn t), so the change between
-    // revolutions falls by exp(-zeta wn T) per revolution; the periodic response is the closed form.
-    const double m = 1.0, k = 4e4, zeta = 0.02, F = 10.0, T = 0.05, w = two_pi / T;
-    const double wn = std::sqrt(k / m), c = 2 * zeta * wn * m;
-    LinearSystem<1> sys;
-    sys.M << m, sys.C << c, sys.K << k;
-    sys.external = [&](double t) { return Eigen::Matrix<double, 1, 1>(F * std::cos(w * t)); };
-    NewmarkSettings s;
-    s.time_step = T / 2000;
-    RunOptions options;
-    options.duration = T;
-    options.settle.enabled = true;
-    options.settle.period = T;
-    options.settle.tolerance = 1e-6;
-    const auto r = simulate(sys, s, options);
-    REQUIRE(r.settle.settled);
-    const std::vector<double>& h = r.settle.history;
-    REQUIRE(h.size() > 30);
-    // The largest change in a window drifts with the transient's phase: average over 20 revolutions.
-    const double ratio = std::pow(h[h.size() - 2] / h[h.size() - 22], 1.0 / 20.0), expected = std::exp(-zeta * wn * T);
-    INFO("decay per revolution " << ratio << ", closed form " << expected << ", revolutions " << r.settle.revolutions);
-    CHECK(ratio == Approx(expected).epsilon(0.01));
-    // Settled: the recorded revolution follows X cos(w t - psi) (Newmark's phase error at 2000 steps
-    // per period is ~1e-6 of the amplitude).
-    const double X = F / std::sqrt((k - m * w * w) * (k - m * w * w) + (c * w) * (c * w));
-    const double psi = std::atan2(c * w, k - m * w * w);
-    const double* t = r.recording.channel("t");
-    const double* x = r.recording.channel("q.0");
-    CHECK(t[0] == Approx(r.settle.revolutions * T).epsilon(1e-9));
-    double worst = 0;
-    for (std::size_t i = 0; i < r.recording.rows; ++i) worst = std::max(worst, std::abs(x[i] - X * std::cos(w * t[i] - psi)));
-    CHECK(worst <= 1e-4 * X);
-    // An undamped oscillator never settles: reported, not hidden.
-    sys.C << 0.0;
-    options.settle.max_revolutions = 12;
-    const auto u = simulate(sys, s, options);
-    CHECK_FALSE(u.settle.settled);
-    CHECK(u.settle.revolutions == 12);
-    // A step that does not divide the period is refused.
-    s.time_step = T / 1999.5;
-    CHECK_THROWS_WITH(simulate(sys, s, options), Catch::Contains("must divide the period"));
 }

@@ -2,9 +2,11 @@
 // circles, curvature against finite differences of the sampled curves, closure, errors, CSV export.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <stdexcept>
 #include <string>
 
 #include "camfollower/geometry/disk_cam.hpp"
@@ -206,4 +208,64 @@ TEST_CASE("bad geometry is rejected with the parameter and range named") {
                                {MotionLaw::cycloidal(), 40 * deg, 2 * pi, 0.04, 0.0}});
     CHECK_THROWS_WITH(DiskCam({0.010, 0.012, 0.0}, steep), Catch::Contains("undercuts"));
     CHECK_THROWS_WITH(DiskCam::paper_default().profile(0.1, 0.05), Catch::Contains("offset"));
+}
+
+TEST_CASE("a dent narrower than a segment's sampling step is found: undercut, pressure angle, surface radius") {
+    // Dents 0.1 deg wide centred at 100.125 deg on the 150 deg rise of the paper program: a search with
+    // 600 samples per segment looks every 0.25 deg (100.0, 100.25 deg), on both sides of the dent.
+    const MotionProgram healthy = MotionProgram::paper_default();
+    const double c = 100.125 * deg, w = 0.1 * deg;
+    // Zero-offset roller: pitch curve (R cos t, R sin t), R = r_b + r_r + h, written out here:
+    // kappa = (R^2 + 2 R'^2 - R R'') / (R^2 + R'^2)^(3/2), alpha = atan(R' / R).
+    const auto kappa_at = [](const MotionProgram& p, double rp, double t) {
+        const FollowerMotion m = p.evaluate(t);
+        const double R = rp + m.h, dR = m.dh, d2R = m.d2h;
+        return (R * R + 2 * dR * dR - R * d2R) / std::pow(R * R + dR * dR, 1.5);
+    };
+    const auto alpha_at = [](const MotionProgram& p, double rp, double t) {
+        const FollowerMotion m = p.evaluate(t);
+        return std::atan2(m.dh, rp + m.h);
+    };
+
+    // 1 um deep: where the dent is most convex (x^2 = 3/7 of its half width) the pitch curve's radius
+    // is far below a 12.5 mm roller: the cam undercuts there, and DiskCam must refuse it.
+    const MotionProgram deep = healthy.with_profile_error(ProfileError::dent(c, w, 1e-6));
+    const double x = std::sqrt(3.0 / 7);
+    REQUIRE(1.0 / kappa_at(deep, 0.0525, c - x * w / 2) > 0.0);
+    REQUIRE(1.0 / kappa_at(deep, 0.0525, c - x * w / 2) < 0.0125);
+    std::string message = "(no exception)";
+    try {
+        DiskCam({0.040, 0.0125, 0.0}, deep);
+    } catch (const std::invalid_argument& e) {
+        message = e.what();
+    }
+    CHECK_THAT(message, Catch::Contains("undercuts at theta = "));
+    if (message.find("theta = ") != std::string::npos)
+        CHECK(std::abs(std::stod(message.substr(message.find("theta = ") + 8)) - 100.125) <= 0.05);
+    CHECK_NOTHROW(DiskCam({0.040, 0.0125, 0.0}, healthy));
+
+    // 0.2 um deep with a 1 mm roller: no undercut, but the dent's flank steepens the pressure angle and
+    // its convex edge is the tightest spot of the cam. Truth: dense sampling of the formulas above,
+    // 1e-3 deg over the rise and 5e-7 deg across the dent.
+    const double rr = 0.001, rp = 0.040 + rr;
+    const MotionProgram shallow = healthy.with_profile_error(ProfileError::dent(c, w, 0.2e-6));
+    const DiskCam cam({0.040, rr, 0.0}, shallow);
+    double alpha = 0, alpha_healthy = 0, kappa = 0;
+    const auto visit = [&](double t) {
+        alpha = std::max(alpha, std::abs(alpha_at(shallow, rp, t)));
+        alpha_healthy = std::max(alpha_healthy, std::abs(alpha_at(healthy, rp, t)));
+        kappa = std::max(kappa, kappa_at(shallow, rp, t));
+    };
+    for (int k = 0; k <= 150000; ++k) visit(30 * deg + k * 1e-3 * deg);
+    for (int k = 0; k <= 220000; ++k) visit(c - 0.055 * deg + k * 5e-7 * deg);
+    REQUIRE(alpha > alpha_healthy + 0.005);  // the dent matters
+    REQUIRE(1.0 / kappa > rr);               // and does not undercut
+    const AngleExtremum rise = cam.max_pressure_angle_rise();
+    CHECK(rise.value == Approx(alpha).epsilon(1e-9));
+    CHECK(std::abs(rise.theta - c) < w / 2);
+    for (bool flanks_only : {false, true}) {
+        const AngleExtremum tight = cam.min_surface_radius(0.0, flanks_only);
+        CHECK(tight.value == Approx(1.0 / kappa - rr).epsilon(1e-6));
+        CHECK(std::abs(tight.theta - c) < w / 2);
+    }
 }

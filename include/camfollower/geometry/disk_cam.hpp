@@ -145,25 +145,20 @@ public:
 
     // Largest pressure-angle magnitude over every rise (lift > 0) or every return (lift < 0) segment,
     // reported signed, with the cam angle where it occurs (ends included: with a large offset the
-    // worst rise angle can sit where the rise leaves the base circle).
+    // worst rise angle can sit where the rise leaves the base circle). Searched per smooth piece
+    // (between segment ends and profile-error features), so a narrow dent is not missed.
     AngleExtremum max_pressure_angle_rise() const { return max_pressure_angle_rise(geometry_.offset); }
     AngleExtremum max_pressure_angle_return() const { return max_pressure_angle_return(geometry_.offset); }
     AngleExtremum max_pressure_angle_rise(double offset) const { return pressure_extreme(offset, true); }
     AngleExtremum max_pressure_angle_return(double offset) const { return pressure_extreme(offset, false); }
 
     // Largest pitch-curve curvature (1/m): the tightest convex spot, over the whole revolution or
-    // over the rise and return flanks only (dwells excluded).
+    // over the rise and return flanks only (dwells excluded); per smooth piece, as above. The
+    // constructor's undercut check uses it, so a narrow dent that undercuts is refused.
     AngleExtremum max_pitch_curvature(double offset, bool flanks_only = false) const {
         check_offset(offset, "offset");
-        AngleExtremum best{0.0, -std::numeric_limits<double>::infinity()};
-        for (const Segment& s : program_.segments()) {
-            if (flanks_only && s.lift() == 0.0) continue;
-            const auto e = detail::maximize(
-                [&](double t) { return curvature(kinematics(t, offset), offset); }, s.theta_start,
-                s.theta_end, 600);
-            if (e.value > best.value) best = {e.x, e.value};
-        }
-        return best;
+        return max_over_pieces([&](const Segment& s) { return !(flanks_only && s.lift() == 0.0); },
+                               [&](double t) { return curvature(kinematics(t, offset), offset); });
     }
     AngleExtremum max_pitch_curvature() const { return max_pitch_curvature(geometry_.offset); }
 
@@ -206,17 +201,35 @@ public:
     }
 
 private:
-    AngleExtremum pressure_extreme(double offset, bool rise) const {
-        check_offset(offset, "offset");
-        AngleExtremum best{0.0, -1.0};
+    // Largest f over the segments `keep` accepts, located per smooth piece as the follower checks do
+    // (follower/profile.hpp): each segment split further at the program's breakpoints (a profile
+    // error's dent centres and edges: a dent narrower than a segment's sampling step would fall
+    // between two samples), each piece sampled at least 600 times and no coarser than the program's
+    // sampling step (waviness), then refined. Ties keep the earliest piece. -inf if none is kept.
+    template <class Keep, class F>
+    AngleExtremum max_over_pieces(const Keep& keep, const F& f) const {
+        const std::vector<double> breaks = program_.breakpoints();
+        const double step = program_.sampling_step();
+        AngleExtremum best{0.0, -std::numeric_limits<double>::infinity()};
+        std::vector<double> pieces;
         for (const Segment& s : program_.segments()) {
-            if (rise ? s.lift() <= 0.0 : s.lift() >= 0.0) continue;
-            const auto e = detail::maximize(
-                [&](double t) { return std::abs(kinematics(t, offset).pressure_angle()); },
-                s.theta_start, s.theta_end, 600);
+            if (!keep(s)) continue;
+            pieces.assign(1, s.theta_start);
+            for (double b : breaks)
+                if (b > s.theta_start && b < s.theta_end) pieces.push_back(b);
+            pieces.push_back(s.theta_end);
+            const detail::Extremum e = detail::maximize_piecewise(f, pieces, 600, step);
             if (e.value > best.value) best = {e.x, e.value};
         }
-        if (best.value < 0.0)
+        return best;
+    }
+
+    AngleExtremum pressure_extreme(double offset, bool rise) const {
+        check_offset(offset, "offset");
+        const AngleExtremum best =
+            max_over_pieces([&](const Segment& s) { return rise ? s.lift() > 0.0 : s.lift() < 0.0; },
+                            [&](double t) { return std::abs(kinematics(t, offset).pressure_angle()); });
+        if (!(best.value >= 0.0))
             detail::fail(rise ? "the motion program has no rise segment"
                               : "the motion program has no return segment");
         return {best.theta, kinematics(best.theta, offset).pressure_angle()};
