@@ -9,10 +9,17 @@ from camfollower import study
 
 def test_study_writes_figures_data_and_summary(tmp_path):
     out = tmp_path / "out"
-    assert study.main(["--out", str(out), "--revolutions", "6", "--analysed-revolutions", "2"]) == 0
+    assert study.main(["--out", str(out), "--max-revolutions", "4", "--analysed-revolutions", "2",
+                       "--steps-per-revolution", "4096"]) == 0
     summary = json.loads((out / "summary.json").read_text())
-    assert set(summary["cases"]) == {"healthy", "eccentricity", "backlash"}
-    for n in range(6, 16):
+    assert set(summary["cases"]) == {f"{f}/{m}/{d}" for f in ("offset", "inline") for m in ("paper", "physical")
+                                     for d in ("healthy", "eccentricity", "clearance")}
+    for case in summary["cases"].values():  # every case states whether and how it settled
+        assert set(case["settle"]) == {"settled", "revolutions", "change", "change_absolute", "tolerance"}
+        assert 2 <= case["settle"]["revolutions"] <= 4
+    assert "guide_clearance" in summary["cases"]["inline/physical/clearance"]
+    assert len(summary["sensitivity"]) == 12
+    for n in range(6, 20):
         assert len(list(out.glob(f"fig{n:02d}_*.png"))) == 1
         assert len(list((out / "data").glob(f"fig{n:02d}_*.csv"))) == 1
     assert (out / "kinematics.png").stat().st_size > 10000
@@ -35,9 +42,10 @@ def test_unwritable_output_folder_is_a_clear_error(tmp_path, capsys):
     "args,message",
     [
         (["--rpm", "-5"], "rpm must be finite and > 0"),
-        (["--eccentricity", "nan"], "eccentricity must be finite and >= 0"),
-        (["--backlash=-1e-6"], "backlash must be finite and >= 0"),
-        (["--revolutions", "3", "--analysed-revolutions", "3"], "analysed revolutions"),
+        (["--eccentricity", "nan"], "eccentricity must be finite and > 0"),
+        (["--clearance=-1e-6"], "clearance must be finite and > 0"),
+        (["--analysed-revolutions", "1"], "analysed revolutions"),
+        (["--damping-ratio", "1.5"], "damping ratio"),
         (["--backlash-switch-width", "400"], "switch width"),
     ],
 )
