@@ -907,12 +907,13 @@ def _run(system: Mechanism, duration: typing.SupportsFloat | typing.SupportsInde
     """
     Internal: camfollower.simulate() calls this and wraps the output in a Result.
     """
-def paper_preset(parameters: Parameters | None = None, program: MotionProgram | None = None, *, eccentricity: CamEccentricity | None = None, guide_clearance: typing.SupportsFloat | typing.SupportsIndex = 0.0, guide_wall_damping_factor: typing.SupportsFloat | typing.SupportsIndex = 0.0, guide_friction: typing.SupportsFloat | typing.SupportsIndex = 0.0, modal_damping_ratio: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> Mechanism:
+def paper_preset(parameters: Parameters | None = None, program: MotionProgram | None = None, *, eccentricity: CamEccentricity | None = None, guide_clearance: typing.SupportsFloat | typing.SupportsIndex = 0.0, guide_wall_damping_factor: typing.SupportsFloat | typing.SupportsIndex = 0.0, guide_friction: typing.SupportsFloat | typing.SupportsIndex = 0.0, element_damping_ratio: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> Mechanism:
     """
     The paper's 7-DOF model (Tounsi et al.) built from the mechanism parts; DOFs y1..y4, x1..x3,
     contact 'cam'. Parameters as for CamFollowerModel (Table 2 defaults). Options: a CamEccentricity;
     guide_clearance (m, radial) > 0 puts the rod x3 in a gap with walls of stiffness K_rb (clearance
-    'guide'; wall damping factor chi in s/m, Coulomb friction on y3); modal_damping_ratio in (0, 1)
-    damps every mode at that ratio in place of the paper's element dampers.
+    'guide'; wall damping factor chi in s/m, Coulomb friction on y3); element_damping_ratio in (0, 1)
+    puts a damper on every element (springs, contact, guide walls) at that ratio of its own critical
+    damping, in place of the paper's few dampers.
     """
 realistic_damping_ratio: float = 0.03
