@@ -167,3 +167,26 @@ def test_swing_arm_natural_frequency_on_a_dwell(arm, name, theta_deg):
     print(f"{name} dwell, theta {theta_deg} deg: code {code:.9f} Hz, closed form {exact:.9f} Hz, "
           f"relative difference {abs(code / exact - 1):.1e}")
     assert code == pytest.approx(exact, rel=1e-9, abs=0)
+
+
+# --- the rod in its guide clearance ---
+
+@pytest.fixture(scope="module")
+def guide():
+    return runpy.run_path(str(EXAMPLES / "guide_clearance.py"))
+
+
+def test_guide_rod_follows_the_lateral_load(guide):
+    """The contact pushes the roller across the axis by F sin(alpha): with the offset follower alpha
+    stays negative all revolution (one wall, no impacts); in-line, alpha has the sign of h' (positive
+    on the rise, negative on the return), so the rod sits on opposite walls and must cross."""
+    m, r = guide["run"](0.010)
+    s = guide["analysis"].clearance_statistics(r, "guide", m.period)
+    assert s["impacts_per_revolution"] == 0 and s["wall_changes_per_revolution"] == 0
+    alpha = r["cam.pressure_angle"]
+    assert np.all(alpha < 0)
+    m, r = guide["run"](0.0)
+    s = guide["analysis"].clearance_statistics(r, "guide", m.period)
+    assert s["wall_changes_per_revolution"] >= 1 and s["impacts_per_revolution"] > 2
+    rise, ret = guide["rod_side"](r, 100, 170), guide["rod_side"](r, 250, 330)
+    assert rise * ret < 0 and min(abs(rise), abs(ret)) > 0.8 * guide["CLEARANCE"]

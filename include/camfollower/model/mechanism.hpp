@@ -291,8 +291,7 @@ public:
     }
     // Contact force of contact i at rest at camshaft angle theta and displacement q, N.
     double static_contact_force(double theta, const Vector& q, std::size_t i) const {
-        Workspace w = workspace();
-        prepare(theta / spec_.camshaft_speed, w);
+        const Workspace w = workspace_at(theta);
         return contacts_.at(i).spec().law(ContactPair::penetration(w.terms[i], q), 0.0).force;
     }
     double omega() const { return spec_.camshaft_speed; }
@@ -313,8 +312,7 @@ public:
     // with an all-contacts-closed step where that tangent is singular.
     Vector static_equilibrium(double theta) const {
         detail::require_finite(theta, "theta");
-        Workspace w = workspace();
-        prepare(theta / spec_.camshaft_speed, w);
+        const Workspace w = workspace_at(theta);
         Vector q = Vector::Zero(n_);
         const Eigen::PartialPivLU<Matrix> k_lu(K_);
         const double det = k_lu.determinant();
@@ -352,8 +350,7 @@ public:
     // Tangent stiffness K + sum k_i g_i g_i^T at rest at camshaft angle theta and displacement q
     // (for modal analysis about a static equilibrium).
     Matrix tangent_stiffness(double theta, const Vector& q) const {
-        Workspace w = workspace();
-        prepare(theta / spec_.camshaft_speed, w);
+        const Workspace w = workspace_at(theta);
         Vector r(n_);
         Matrix Kt(n_, n_);
         static_residual(w, q, r, Kt);
@@ -361,6 +358,13 @@ public:
     }
 
 private:
+    // A workspace with the time-only terms prepared at camshaft angle theta (static analyses).
+    Workspace workspace_at(double theta) const {
+        Workspace w = workspace();
+        prepare(theta / spec_.camshaft_speed, w);
+        return w;
+    }
+
     // r = K q + sum F_i(delta_i, 0) g_i - p and its Jacobian.
     void static_residual(const Workspace& w, const Vector& q, Vector& r, Matrix& Kt) const {
         r.noalias() = K_ * q - load_;
@@ -404,8 +408,7 @@ private:
 
     // d q_static / dt at (theta, q): Kt dq/dt = -(d r / dt at fixed q), the time-only terms' rates.
     Vector quasi_static_velocity(double theta, const Vector& q) const {
-        Workspace w = workspace();
-        prepare(theta / spec_.camshaft_speed, w);
+        const Workspace w = workspace_at(theta);
         Vector r(n_);
         Matrix Kt(n_, n_);
         static_residual(w, q, r, Kt);
