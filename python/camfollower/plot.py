@@ -5,7 +5,7 @@ be saved, shown or changed. Angles are shown in degrees, lengths in mm; the data
 
 - :func:`svaj`: lift, velocity, acceleration and jerk of a motion program;
 - :func:`profile`: the cam surface, the follower's reference curve (a roller's pitch curve) and the
-  contact point at one cam angle;
+  contact point at one cam angle; an undercut cam is drawn and flagged in the title, not refused;
 - :func:`pressure_angle_and_curvature`: both along the revolution;
 - :func:`acceleration`: a follower DOF's simulated acceleration against the rigid ω²h″;
 - :func:`contact_force`: a contact's force with its intervals without contact shaded;
@@ -76,7 +76,12 @@ def profile(follower, program, theta: float = 0.0, points: int = 1441, ax=None):
     ax.plot([0], [0], "k+", ms=10, label="cam centre")
     ax.set_aspect("equal"), ax.set_xlabel("x (mm, cam frame)"), ax.set_ylabel("y (mm, cam frame)")
     ax.legend(loc="best", fontsize=8), ax.grid(alpha=0.3)
-    ax.set_title(type(follower).__name__)
+    # An undercut (or cusped) cam is drawn for inspection, flagged in the title rather than refused.
+    try:
+        follower.check(program)
+        ax.set_title(type(follower).__name__)
+    except ValueError as e:
+        ax.set_title(f"{type(follower).__name__}: NOT FOLLOWABLE\n{e}", color="tab:red", fontsize=8)
     return ax.figure
 
 

@@ -73,3 +73,18 @@ def test_bad_plot_input():
         plot.svaj(PROGRAM, rpm=-1)
     with pytest.raises(ValueError, match="points must be an integer >= 8"):
         plot.svaj(PROGRAM, points=3)
+
+
+def test_an_undercut_cam_is_drawn_and_flagged():
+    # A 20 mm roller on a 10 mm base circle under a 20 mm rise in 60 deg undercuts near the nose: the
+    # mechanism refuses it, the plot draws it with the reason in the title.
+    d, mt, dw = math.radians, cf.MotionLaw.modified_trapezoid(), cf.MotionLaw.dwell()
+    steep = cf.MotionProgram([cf.Segment(dw, 0, d(90), 0, 0), cf.Segment(mt, d(90), d(150), 0, 0.02),
+                              cf.Segment(dw, d(150), d(210), 0.02, 0.02), cf.Segment(mt, d(210), d(270), 0.02, 0),
+                              cf.Segment(dw, d(270), 2 * math.pi, 0, 0)])
+    f = cf.TranslatingRoller(0.01, 0.02, 0.0)
+    with pytest.raises(ValueError, match="undercuts"):
+        f.check(steep)
+    fig = plot.profile(f, steep)
+    assert "NOT FOLLOWABLE" in fig.axes[0].get_title()
+    assert len(fig.axes[0].lines[0].get_xdata()) > 100
