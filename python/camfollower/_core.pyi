@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['ArmTurn', 'CamEccentricity', 'CamFollowerModel', 'Defects', 'DiskCam', 'Mechanism', 'MechanismBuilder', 'MotionLaw', 'MotionProgram', 'OscillatingFlat', 'OscillatingRoller', 'Parameters', 'PeakCoefficients', 'ProfileError', 'Segment', 'TranslatingFlat', 'TranslatingRoller', 'paper_preset', 'realistic_damping_ratio']
+__all__: list[str] = ['ArmTurn', 'CamEccentricity', 'CamFollowerModel', 'Defects', 'DiskCam', 'Elastic', 'LineContact', 'Mechanism', 'MechanismBuilder', 'MotionLaw', 'MotionProgram', 'OscillatingFlat', 'OscillatingRoller', 'Parameters', 'PeakCoefficients', 'ProfileError', 'Segment', 'TranslatingFlat', 'TranslatingRoller', 'paper_preset', 'realistic_damping_ratio']
 class PeakCoefficients:
     """
     Peaks of |V|, |A|, |J| of a normalized law.
@@ -897,6 +897,85 @@ class Mechanism:
         """
         what the formulation warns about (also issued as UserWarning when built)
         """
+class Elastic:
+    """
+    Elastic constants of one body: Young's modulus (Pa) and Poisson's ratio.
+    """
+    @staticmethod
+    def effective_modulus(a: Elastic, b: Elastic) -> float:
+        """
+        Contact modulus E* (Pa): 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2.
+        """
+    @staticmethod
+    def steel() -> Elastic:
+        """
+        E = 210 GPa, nu = 0.3.
+        """
+    def __init__(self, youngs_modulus: typing.SupportsFloat | typing.SupportsIndex = 210000000000.0, poisson_ratio: typing.SupportsFloat | typing.SupportsIndex = 0.3) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    @property
+    def poisson_ratio(self) -> float:
+        """
+        Poisson's ratio nu, [0, 0.5)
+        """
+    @property
+    def youngs_modulus(self) -> float:
+        """
+        Young's modulus E (Pa)
+        """
+class LineContact:
+    """
+    Hertz contact of a roller of width `length` (m) on the cam: straight (line contact, Johnson ch. 4) or crowned with crown_radius (m; elliptical contact, Hamrock-Brewe fits).
+    """
+    @staticmethod
+    def palmgren_law(length: typing.SupportsFloat | typing.SupportsIndex, damping_factor: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> dict:
+        """
+        Palmgren's steel roller law F = K delta^(10/9) for roller width `length` (m): dict with
+        stiffness (N/m^(10/9)), exponent (10/9), damping_factor (s/m), the keys of a contact law.
+        """
+    def __init__(self, length: typing.SupportsFloat | typing.SupportsIndex, roller: Elastic = ..., cam: Elastic = ..., crown_radius: typing.SupportsFloat | typing.SupportsIndex = ...) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def profile_stress(self, follower: typing.Any, program: MotionProgram, force: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], theta: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> dict:
+        """
+        Contact stress along the cam at theta (rad, scalar or array) for force (N, scalar or one per
+        angle). The roller radius is the follower's (a flat face is a plane). Keys: half_width (m),
+        max_pressure (Pa), effective_radius (m), surface_radius (m, the cam's, signed).
+        """
+    def stress(self, force: typing.SupportsFloat | typing.SupportsIndex, radius: typing.SupportsFloat | typing.SupportsIndex, cam_radius: typing.SupportsFloat | typing.SupportsIndex = ...) -> dict:
+        """
+        Contact stress for a normal force (N) between the roller of radius `radius` and a cam of
+        radius cam_radius (m; > 0 convex, < 0 concave, inf flat). Keys: half_width (m, along the
+        rolling direction), max_pressure (Pa), effective_radius (m); crowned also a (semi-axis
+        across the width), b (= half_width) and approach (m).
+        """
+    @property
+    def cam(self) -> Elastic:
+        ...
+    @property
+    def crown_radius(self) -> float:
+        """
+        crown radius (m); inf: straight roller
+        """
+    @property
+    def crowned(self) -> bool:
+        ...
+    @property
+    def effective_modulus(self) -> float:
+        """
+        contact modulus E* (Pa)
+        """
+    @property
+    def length(self) -> float:
+        """
+        roller width L (m)
+        """
+    @property
+    def roller(self) -> Elastic:
+        ...
 @typing.overload
 def _run(system: CamFollowerModel, duration: typing.SupportsFloat | typing.SupportsIndex, time_step: typing.SupportsFloat | typing.SupportsIndex, decimation: typing.SupportsInt | typing.SupportsIndex, gamma: typing.SupportsFloat | typing.SupportsIndex | None, beta: typing.SupportsFloat | typing.SupportsIndex | None, hht_alpha: typing.SupportsFloat | typing.SupportsIndex, linear_solver: str, residual_tolerance: typing.SupportsFloat | typing.SupportsIndex, increment_tolerance: typing.SupportsFloat | typing.SupportsIndex, max_iterations: typing.SupportsInt | typing.SupportsIndex, max_halvings: typing.SupportsInt | typing.SupportsIndex, record_from: typing.SupportsFloat | typing.SupportsIndex, max_output_bytes: typing.SupportsFloat | typing.SupportsIndex, progress: typing.Any, progress_interval: typing.SupportsFloat | typing.SupportsIndex, settle_period: typing.SupportsFloat | typing.SupportsIndex | None = None, settle_dofs: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex] = [], settle_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, settle_min_revolutions: typing.SupportsInt | typing.SupportsIndex = 2, settle_max_revolutions: typing.SupportsInt | typing.SupportsIndex = 200) -> dict:
     """

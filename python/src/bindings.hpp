@@ -45,5 +45,6 @@ void bind_geometry(py::module_& m);
 void bind_model(py::module_& m);
 void bind_solver(py::module_& m);
 void bind_mechanism(py::module_& m);
+void bind_line_contact(py::module_& m);
 
 }  // namespace camfollower::python

@@ -8,4 +8,5 @@ PYBIND11_MODULE(_core, m) {
     camfollower::python::bind_model(m);
     camfollower::python::bind_solver(m);
     camfollower::python::bind_mechanism(m);
+    camfollower::python::bind_line_contact(m);
 }

@@ -1,0 +1,149 @@
+// Bindings for include/camfollower/contact/line_contact.hpp: Hertz contact stress of the roller (or
+// flat face) on the cam, and Palmgren's roller law.
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "bindings.hpp"
+#include "camfollower/contact/line_contact.hpp"
+#include "camfollower/follower/oscillating_flat.hpp"
+#include "camfollower/follower/oscillating_roller.hpp"
+#include "camfollower/follower/translating_flat.hpp"
+#include "camfollower/follower/translating_roller.hpp"
+
+namespace camfollower::python {
+
+namespace {
+
+const double inf = std::numeric_limits<double>::infinity();
+
+py::dict stress_dict(const LineContact& c, const ContactStress& s) {
+    py::dict d;
+    d["half_width"] = s.half_width;
+    d["max_pressure"] = s.max_pressure;
+    d["effective_radius"] = s.effective_radius;
+    if (c.crowned()) {
+        d["a"] = s.semi_axis;
+        d["b"] = s.half_width;
+        d["approach"] = s.approach;
+    }
+    return d;
+}
+
+// Stress over theta for one follower type; force is one value or one per angle (same shape).
+template <class Follower>
+py::dict profile_stress_dict(const LineContact& c, const Follower& follower, const MotionProgram& program,
+                             const DoubleArray& force, const DoubleArray& theta) {
+    const py::ssize_t n = theta.size();
+    if (force.size() != 1 && force.size() != n)
+        detail::fail("force must be a scalar or have one value per angle (", n, "), got ", force.size());
+    std::vector<py::ssize_t> shape(theta.shape(), theta.shape() + theta.ndim());
+    const char* names[4] = {"half_width", "max_pressure", "effective_radius", "surface_radius"};
+    py::array_t<double> out[4];
+    double* dst[4];
+    for (int k = 0; k < 4; ++k) out[k] = py::array_t<double>(shape), dst[k] = out[k].mutable_data();
+    const double* t = theta.data();
+    const double* f = force.data();
+    {
+        py::gil_scoped_release release;
+        for (py::ssize_t i = 0; i < n; ++i) {
+            const ContactStress s = profile_stress(c, program, follower, t[i], f[force.size() == 1 ? 0 : i]);
+            dst[0][i] = s.half_width, dst[1][i] = s.max_pressure, dst[2][i] = s.effective_radius;
+            dst[3][i] = follower.profile(t[i], program.evaluate(t[i])).surface_radius;
+        }
+    }
+    py::dict d;
+    for (int k = 0; k < 4; ++k) {
+        if (theta.ndim() == 0) d[names[k]] = py::float_(dst[k][0]);
+        else d[names[k]] = out[k];
+    }
+    return d;
+}
+
+}  // namespace
+
+void bind_line_contact(py::module_& m) {
+    py::class_<Elastic>(m, "Elastic", "Elastic constants of one body: Young's modulus (Pa) and Poisson's ratio.")
+        .def(py::init([](double E, double nu) {
+                 Elastic e{E, nu};
+                 e.validate();
+                 return e;
+             }),
+             py::arg("youngs_modulus") = 210e9, py::arg("poisson_ratio") = 0.3)
+        .def_static("steel", &Elastic::steel, "E = 210 GPa, nu = 0.3.")
+        .def_readonly("youngs_modulus", &Elastic::youngs_modulus, "Young's modulus E (Pa)")
+        .def_readonly("poisson_ratio", &Elastic::poisson_ratio, "Poisson's ratio nu, [0, 0.5)")
+        .def_static("effective_modulus", &effective_modulus, py::arg("a"), py::arg("b"),
+                    "Contact modulus E* (Pa): 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2.")
+        .def("__repr__", [](const Elastic& e) {
+            return detail::concat("Elastic(youngs_modulus=", e.youngs_modulus, ", poisson_ratio=", e.poisson_ratio, ")");
+        });
+
+    py::class_<LineContact>(m, "LineContact",
+                            "Hertz contact of a roller of width `length` (m) on the cam: straight (line contact, "
+                            "Johnson ch. 4) or crowned with crown_radius (m; elliptical contact, Hamrock-Brewe fits).")
+        .def(py::init([](double length, const Elastic& roller, const Elastic& cam, double crown_radius) {
+                 LineContact c{length, roller, cam, crown_radius};
+                 c.validate();
+                 return c;
+             }),
+             py::arg("length"), py::arg("roller") = Elastic::steel(), py::arg("cam") = Elastic::steel(),
+             py::arg("crown_radius") = inf)
+        .def_readonly("length", &LineContact::length, "roller width L (m)")
+        .def_readonly("roller", &LineContact::roller)
+        .def_readonly("cam", &LineContact::cam)
+        .def_readonly("crown_radius", &LineContact::crown_radius, "crown radius (m); inf: straight roller")
+        .def_property_readonly("crowned", &LineContact::crowned)
+        .def_property_readonly("effective_modulus",
+                               [](const LineContact& c) { return effective_modulus(c.roller, c.cam); },
+                               "contact modulus E* (Pa)")
+        .def(
+            "stress",
+            [](const LineContact& c, double force, double radius, double cam_radius) {
+                return stress_dict(c, c.stress(force, radius, cam_radius));
+            },
+            py::arg("force"), py::arg("radius"), py::arg("cam_radius") = inf,
+            "Contact stress for a normal force (N) between the roller of radius `radius` and a cam of\n"
+            "radius cam_radius (m; > 0 convex, < 0 concave, inf flat). Keys: half_width (m, along the\n"
+            "rolling direction), max_pressure (Pa), effective_radius (m); crowned also a (semi-axis\n"
+            "across the width), b (= half_width) and approach (m).")
+        .def(
+            "profile_stress",
+            [](const LineContact& c, const py::object& follower, const MotionProgram& program,
+               const DoubleArray& force, const DoubleArray& theta) {
+                if (py::isinstance<TranslatingRoller>(follower))
+                    return profile_stress_dict(c, follower.cast<TranslatingRoller>(), program, force, theta);
+                if (py::isinstance<TranslatingFlat>(follower))
+                    return profile_stress_dict(c, follower.cast<TranslatingFlat>(), program, force, theta);
+                if (py::isinstance<OscillatingRoller>(follower))
+                    return profile_stress_dict(c, follower.cast<OscillatingRoller>(), program, force, theta);
+                if (py::isinstance<OscillatingFlat>(follower))
+                    return profile_stress_dict(c, follower.cast<OscillatingFlat>(), program, force, theta);
+                detail::fail("follower must be a TranslatingRoller, TranslatingFlat, OscillatingRoller or "
+                             "OscillatingFlat, got ", std::string(py::str(py::type::of(follower))));
+            },
+            py::arg("follower"), py::arg("program"), py::arg("force"), py::arg("theta"),
+            "Contact stress along the cam at theta (rad, scalar or array) for force (N, scalar or one per\n"
+            "angle). The roller radius is the follower's (a flat face is a plane). Keys: half_width (m),\n"
+            "max_pressure (Pa), effective_radius (m), surface_radius (m, the cam's, signed).")
+        .def_static(
+            "palmgren_law",
+            [](double length, double damping_factor) {
+                const HertzContact law = palmgren_law(length, damping_factor);
+                py::dict d;
+                d["stiffness"] = law.stiffness;
+                d["exponent"] = law.exponent;
+                d["damping_factor"] = law.damping_factor;
+                return d;
+            },
+            py::arg("length"), py::arg("damping_factor") = 0.0,
+            "Palmgren's steel roller law F = K delta^(10/9) for roller width `length` (m): dict with\n"
+            "stiffness (N/m^(10/9)), exponent (10/9), damping_factor (s/m), the keys of a contact law.")
+        .def("__repr__", [](const LineContact& c) {
+            return detail::concat("LineContact(length=", c.length, ", roller=Elastic(", c.roller.youngs_modulus, ", ",
+                                  c.roller.poisson_ratio, "), cam=Elastic(", c.cam.youngs_modulus, ", ",
+                                  c.cam.poisson_ratio, "), crown_radius=", c.crown_radius, ")");
+        });
+}
+
+}  // namespace camfollower::python
