@@ -28,7 +28,8 @@ import shutil
 import sys
 import tempfile
 import time
-from dataclasses import dataclass, field, replace
+import warnings
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -99,7 +100,6 @@ class CaseResult:
     contact_loss_time: float
     clearance: dict | None
     stats: dict
-    summary: dict = field(default_factory=dict)
 
 
 def parameters(cfg: StudyConfig, follower: str, **overrides) -> Parameters:
@@ -114,8 +114,6 @@ def build(cfg: StudyConfig, follower: str, formulation: str, defect: str, p: Par
             return CamFollowerModel(p, defects=Defects(backlash=cfg.clearance,
                                                        backlash_switch_width=math.radians(cfg.backlash_switch_width_deg)))
         ecc = CamEccentricity(cfg.eccentricity, formulation="paper_force_both") if defect == "eccentricity" else None
-        import warnings
-
         with warnings.catch_warnings():  # the literal force exceeds the preload: reported in the summary
             warnings.simplefilter("ignore", UserWarning)
             return presets.paper(p, eccentricity=ecc)
@@ -200,9 +198,9 @@ def summarize(case: CaseResult, carrier: float) -> dict:
     }
     if case.clearance is not None:
         out["guide_clearance"] = case.clearance
-    warnings = getattr(case.model, "warnings", [])
-    if warnings:
-        out["model_warnings"] = list(warnings)
+    model_warnings = getattr(case.model, "warnings", [])
+    if model_warnings:
+        out["model_warnings"] = list(model_warnings)
     return out
 
 
