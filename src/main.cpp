@@ -1,144 +1,169 @@
-// camfollower command line.
-//   camfollower kinematics [rpm]         the paper cam's kinematic summary
-//   camfollower run CONFIG [-o FILE]     simulate a case from a config file (see examples/), CSV out
-//   camfollower modes [theta_deg]        natural frequencies of the paper model (config-free)
-#include <array>
+// camfollower command line (CLI11): every subcommand works on a config file (docs/config.md); without
+// one, kinematics and modes describe the paper's mechanism.
+//   camfollower kinematics [CONFIG] [--rpm RPM]   per contact: pressure angle, curvature, lift, acceleration
+//   camfollower modes [CONFIG] [--theta DEG]      natural frequencies, contacts linearized at a cam angle
+//   camfollower run CONFIG [-o FILE]              simulate the case, CSV of every recorded channel
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <exception>
 #include <fstream>
 #include <string>
 
+#include <CLI/CLI.hpp>
+#include <Eigen/Eigenvalues>
+
 #include "camfollower/camfollower.hpp"
-#include "config.hpp"
+#include "config/case_config.hpp"
+#include "output_file.hpp"
 
 namespace cf = camfollower;
 
 namespace {
 
-int kinematics(double rpm) {
-    cf::detail::require_positive(rpm, "rpm");
-    const cf::DiskCam cam = cf::DiskCam::paper_default();
+// The paper's mechanism, as a case (what kinematics and modes describe without a config).
+cf::config::CaseConfig paper_case() {
+    return cf::config::parse_case("[camshaft]\nspeed = 750\n[preset]\nname = \"paper\"\n", "<paper preset>");
+}
+
+cf::config::CaseConfig case_from(const std::string& path) { return path.empty() ? paper_case() : cf::config::load_case(path); }
+
+// Run f on the built mechanism: the fixed-size path for the preset's 7 DOFs (as the Python module does,
+// so both give the same numbers), dynamic otherwise.
+template <class F>
+void with_mechanism(const cf::MechanismBuilder& b, F&& f) {
+    if (b.structure.size() == cf::presets::paper_dofs) f(cf::Mechanism<cf::presets::paper_dofs>(b));
+    else f(cf::Mechanism<Eigen::Dynamic>(b));
+}
+
+int kinematics(const std::string& config, double rpm) {
+    const cf::config::CaseConfig c = case_from(config);
+    if (rpm <= 0.0) rpm = c.mechanism.camshaft_speed_rpm();
     const double omega = rpm * cf::two_pi / 60.0;
-    const auto rise = cam.max_pressure_angle_rise();
-    const auto ret = cam.max_pressure_angle_return();
-    const auto rho = cam.min_surface_radius();
-    const auto rho_flank = cam.min_surface_radius(cam.geometry().offset, true);
-    double amax = 0.0, at = 0.0;
-    for (int k = 0; k < 360000; ++k) {
-        const double t = cf::two_pi * k / 360000.0, a = std::abs(cam.program().evaluate(t).d2h);
-        if (a > amax) amax = a, at = t;
+    const auto deg = cf::radians_to_degrees;
+    std::printf("%s at %.6g rpm\n", c.origin.c_str(), rpm);
+    for (const cf::ContactPairSpec& p : c.mechanism.contacts) {
+        std::printf("contact '%s': %s follower\n", p.name.c_str(), cf::follower_type_name(p.follower));
+        std::visit([&](const auto& f) {
+            const cf::AngleExtremum alpha = cf::max_pressure_angle(p.program, f);
+            const cf::AngleExtremum rho = cf::min_surface_radius(p.program, f);
+            std::printf("  max |pressure angle|:               %.4f deg at theta = %.3f deg\n", std::abs(deg(alpha.value)),
+                        deg(alpha.theta));
+            std::printf("  min convex cam-surface radius:      %.4f mm at theta = %.3f deg\n", 1e3 * rho.value, deg(rho.theta));
+        }, p.follower);
+        const auto acc = cf::detail::maximize_piecewise([&](double t) { return std::abs(p.program.evaluate(t).d2h); },
+                                                        p.program.breakpoints(), 600, p.program.sampling_step());
+        const auto vel = cf::detail::maximize_piecewise([&](double t) { return std::abs(p.program.evaluate(t).dh); },
+                                                        p.program.breakpoints(), 600, p.program.sampling_step());
+        std::printf("  lift range:                         %.6g to %.6g mm\n", 1e3 * p.program.min_lift(), 1e3 * p.program.max_lift());
+        std::printf("  max |follower velocity| (rigid):    %.6g m/s (%s) at theta = %.3f deg\n", omega * vel.value,
+                    cf::is_translating(p.follower) ? "along the axis" : "x arm angle: rad/s", deg(vel.x));
+        std::printf("  max |follower acceleration| (rigid): %.6g %s at theta = %.3f deg\n", omega * omega * acc.value,
+                    cf::is_translating(p.follower) ? "m/s^2" : "rad/s^2", deg(acc.x));
     }
-    std::printf("paper cam: r_b = 30 mm, r_r = 8 mm, e = 10 mm, 10 mm modified-trapezoid rise/return\n");
-    std::printf("max |pressure angle|, rise:   %.4f deg (alpha = %+.4f deg) at theta = %.3f deg\n",
-                std::abs(cf::radians_to_degrees(rise.value)), cf::radians_to_degrees(rise.value),
-                cf::radians_to_degrees(rise.theta));
-    std::printf("max |pressure angle|, return: %.4f deg (alpha = %+.4f deg) at theta = %.3f deg\n",
-                std::abs(cf::radians_to_degrees(ret.value)), cf::radians_to_degrees(ret.value),
-                cf::radians_to_degrees(ret.theta));
-    std::printf("min cam-surface radius of curvature (convex): %.4f mm at theta = %.3f deg\n", rho.value * 1e3,
-                cf::radians_to_degrees(rho.theta));
-    std::printf("min cam-surface radius of curvature on the rise/return flanks: %.4f mm at theta = %.3f deg\n",
-                rho_flank.value * 1e3, cf::radians_to_degrees(rho_flank.theta));
-    std::printf("max theoretical follower acceleration at %.0f rpm: %.4f m/s^2 at theta = %.3f deg\n", rpm,
-                omega * omega * amax, cf::radians_to_degrees(at));
     return 0;
 }
 
-int modes(double theta_deg) {
-    const cf::CamFollowerModel model;
-    const auto with = cf::modal_analysis(model, cf::degrees_to_radians(theta_deg));
-    const auto without = cf::modal_analysis(model, 0.0, false);
-    std::printf("natural frequencies of the paper model (Hz); contact linearized at theta = %g deg\n", theta_deg);
-    std::printf("%-6s %12s %12s %12s\n", "mode", "contact", "no contact", "Table 3");
-    // The paper's Table 3, one value per mode of its model.
-    const std::array<int, cf::presets::paper_dofs> table3 = {2447, 2447, 5711, 12777, 13990, 17009, 17009};
-    for (std::size_t k = 0; k < table3.size(); ++k)
-        std::printf("f0%-4zu %12.1f %12.1f %12d\n", k + 1, with.frequencies_hz[Eigen::Index(k)],
-                    without.frequencies_hz[Eigen::Index(k)], table3[k]);
-    return 0;
-}
-
-int run(const std::string& config_path, const std::string& output_override) {
-    const cf::cli::RunConfig c = cf::cli::load_config(config_path);
-    const std::string output = output_override.empty() ? c.output : output_override;
-    const cf::CamFollowerModel model(c.parameters, cf::MotionProgram::paper_default(), c.defects);
-    cf::NewmarkSettings settings;
-    settings.time_step = c.time_step > 0 ? c.time_step : model.period() / c.steps_per_revolution;
-    cf::RunOptions options;
-    options.duration = c.revolutions * model.period();
-    options.record.decimation = static_cast<std::size_t>(c.decimation);
-    const auto run = cf::simulate(model, settings, options);
-    const cf::Recording& r = run.recording;
-    const std::size_t n = r.dofs.size();
-    const std::string tmp = output + ".tmp";
-    {
-        std::ofstream out(tmp);
-        if (!out) cf::detail::fail("output: cannot open '", output, "' for writing");
-        out.precision(12);
-        out << "t_s,theta_rad";
-        for (const std::string& d : r.dofs) out << ",q_" << d << "_m";
-        for (const std::string& d : r.dofs) out << ",a_" << d << "_m_s2";
-        out << ",contact_force_N,contact_stiffness_N_m,pressure_angle_rad,in_contact\n";
-        const double *t = r.channel("t"), *theta = r.channel("theta"), *force = r.channel("contact_force"),
-                     *stiffness = r.channel("contact_stiffness"), *alpha = r.channel("pressure_angle"),
-                     *contact = r.channel("in_contact");
-        for (std::size_t i = 0; i < r.rows; ++i) {
-            out << t[i] << ',' << theta[i];
-            for (std::size_t k = 0; k < n; ++k) out << ',' << r.channel(r.block(0) + k)[i];
-            for (std::size_t k = 0; k < n; ++k) out << ',' << r.channel(r.block(2) + k)[i];
-            out << ',' << force[i] << ',' << stiffness[i] << ',' << alpha[i] << ',' << int(contact[i]) << '\n';
+int modes(const std::string& config, double theta_deg) {
+    const cf::config::CaseConfig c = case_from(config);
+    const double theta = cf::degrees_to_radians(theta_deg);
+    with_mechanism(c.mechanism, [&](const auto& m) {
+        using M = std::decay_t<decltype(m)>;
+        const typename M::Vector q = m.static_equilibrium(theta);
+        const Eigen::GeneralizedSelfAdjointEigenSolver<typename M::Matrix> eig(m.tangent_stiffness(theta, q), m.mass());
+        if (eig.info() != Eigen::Success) cf::detail::fail("modal analysis: the eigen solver did not converge");
+        std::printf("%s: natural frequencies (Hz), contacts linearized at the static equilibrium, theta = %g deg\n",
+                    c.origin.c_str(), theta_deg);
+        const std::vector<std::string> names = m.dof_names();
+        for (Eigen::Index k = 0; k < eig.eigenvalues().size(); ++k) {
+            Eigen::Index dominant = 0;
+            eig.eigenvectors().col(k).cwiseAbs().maxCoeff(&dominant);
+            std::printf("mode %-3ld %14.2f   largest motion: %s\n", long(k + 1),
+                        std::sqrt(std::max(eig.eigenvalues()[k], 0.0)) / cf::two_pi, names[std::size_t(dominant)].c_str());
         }
-        if (!out.flush()) cf::detail::fail("output: writing '", output, "' failed");
-    }
-    if (std::rename(tmp.c_str(), output.c_str()) != 0) {
-        std::remove(tmp.c_str());
-        cf::detail::fail("output: cannot rename the temporary file to '", output, "'");
-    }
-    double lost = 0;
-    for (const auto& [a, b] : cf::CamFollowerModel::contact_loss(run.final_state.workspace, run.final_state.t))
-        lost += b - a;
-    const cf::SolverStatistics& stats = run.report.stats;
-    std::printf("%zu rows (%llu steps, dt = %.4g s, %.3f Newton iterations/step), contact lost %.4g s -> %s\n",
-                r.rows, static_cast<unsigned long long>(stats.steps), settings.time_step, stats.mean_iterations(), lost,
-                output.c_str());
+    });
     return 0;
 }
 
-void usage() {
-    std::fprintf(stderr,
-                 "usage: camfollower kinematics [rpm]\n"
-                 "       camfollower modes [theta_deg]\n"
-                 "       camfollower run CONFIG.toml [-o OUTPUT.csv]\n");
-}
-
-// A whole-string number, or a clear error naming the argument.
-double number_argument(const char* text, const char* name) {
-    std::size_t used = 0;
-    double v = 0.0;
-    try {
-        v = std::stod(text, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (used == 0 || text[used] != '\0' || !std::isfinite(v)) cf::detail::fail(name, " must be a number, got '", text, "'");
-    return v;
+int run(const std::string& config, std::string output) {
+    const cf::config::CaseConfig c = cf::config::load_case(config);
+    if (output.empty()) output = c.output.file;
+    if (output.empty()) cf::detail::fail(config, ": no output file: set [output] file or give -o FILE");
+    cf::cli::refuse_overwriting(output, config);
+    with_mechanism(c.mechanism, [&](const auto& m) {
+        const double period = m.period();
+        cf::NewmarkSettings settings = c.solver.newmark;
+        settings.time_step = c.solver.time_step_for(period);
+        cf::RunOptions options;
+        options.duration = c.solver.duration_for(period);
+        options.record.decimation = std::size_t(c.output.decimation);
+        if (c.output.record_last_revolutions > 0.0) options.record.from_time = options.duration - c.output.record_last_revolutions * period;
+        if (c.solver.settle) {
+            options.settle.enabled = true;
+            options.settle.period = period;
+            options.settle.tolerance = c.solver.settle_tolerance;
+            options.settle.min_revolutions = c.solver.settle_min_revolutions;
+            options.settle.max_revolutions = c.solver.settle_max_revolutions;
+            const std::vector<std::string> names = m.dof_names();
+            std::vector<std::string> watched = c.solver.settle_dofs;
+            if (watched.empty())
+                for (const auto& pair : m.contacts()) watched.push_back(pair.spec().follower_dof);
+            for (const std::string& d : watched) {
+                const auto it = std::find(names.begin(), names.end(), d);
+                if (it == names.end()) cf::detail::fail(config, ": [solver] settle_dofs: unknown DOF '", d, "'");
+                options.settle.dofs.push_back(int(it - names.begin()));
+            }
+        }
+        const auto result = cf::simulate(m, settings, options);
+        cf::cli::write_recording_csv(output, result.recording, config);
+        const cf::SolverStatistics& stats = result.report.stats;
+        std::printf("%zu rows, %zu channels (%llu steps, dt = %.4g s, %.3f Newton iterations/step)", result.recording.rows,
+                    result.recording.names.size(), static_cast<unsigned long long>(stats.steps), settings.time_step,
+                    stats.mean_iterations());
+        if (c.solver.settle)
+            std::printf(", %s after %d revolutions (change %.3g)", result.settle.settled ? "settled" : "NOT settled",
+                        result.settle.revolutions, result.settle.change);
+        for (std::size_t i = 0; i < m.contacts().size(); ++i) {
+            double lost = 0.0;
+            for (const auto& [a, b] : std::decay_t<decltype(m)>::contact_loss(result.final_state.workspace, i, result.final_state.t)) lost += b - a;
+            std::printf(", '%s' lost contact %.4g s", m.contacts()[i].name().c_str(), lost);
+        }
+        std::printf(" -> %s\n", output.c_str());
+    });
+    return 0;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
+    CLI::App app{"camfollower: dynamics of flexible cam-follower mechanisms (SI units; config format: docs/config.md)"};
+    app.require_subcommand(1);
+    std::string config, output;
+    double rpm = 0.0, theta_deg = 0.0;
+
+    CLI::App* kin = app.add_subcommand("kinematics", "Per contact: largest pressure angle, smallest cam-surface radius, lift range, rigid velocity and acceleration");
+    kin->add_option("config", config, "config file (default: the paper's mechanism)")->check(CLI::ExistingFile);
+    kin->add_option("--rpm", rpm, "camshaft speed for the velocity and acceleration (default: the config's)")->check(CLI::PositiveNumber);
+
+    CLI::App* mod = app.add_subcommand("modes", "Natural frequencies of the mechanism, contacts linearized at a cam angle");
+    mod->add_option("config", config, "config file (default: the paper's mechanism)")->check(CLI::ExistingFile);
+    mod->add_option("--theta", theta_deg, "camshaft angle of the linearization, deg")->check(CLI::Range(-1e6, 1e6));
+
+    CLI::App* runc = app.add_subcommand("run", "Simulate the case the config describes; write every recorded channel as CSV");
+    runc->add_option("config", config, "config file")->required()->check(CLI::ExistingFile);
+    runc->add_option("-o,--output", output, "CSV file (default: the config's [output] file)");
+
     try {
-        const std::string cmd = argc >= 2 ? argv[1] : "";
-        if (cmd == "kinematics") return kinematics(argc >= 3 ? number_argument(argv[2], "rpm") : 750.0);
-        if (cmd == "modes") return modes(argc >= 3 ? number_argument(argv[2], "theta_deg") : 0.0);
-        if (cmd == "run" && (argc == 3 || (argc == 5 && std::strcmp(argv[3], "-o") == 0)))
-            return run(argv[2], argc == 5 ? argv[4] : "");
-        usage();
-        return 2;
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    }
+    try {
+        if (*kin) return kinematics(config, rpm);
+        if (*mod) return modes(config, theta_deg);
+        if (*runc) return run(config, output);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "camfollower: error: %s\n", e.what());
         return 1;
     }
+    return 2;
 }

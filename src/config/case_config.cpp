@@ -1,0 +1,557 @@
+#include "case_config.hpp"
+
+#include <sys/stat.h>
+
+#include <cmath>
+#include <fstream>
+#include <memory>
+#include <sstream>
+
+#include "camfollower/camfollower.hpp"
+#include "case_from_table.hpp"
+#include "section.hpp"
+#include "units.hpp"
+#include "camfollower/contact/line_contact.hpp"
+
+namespace camfollower::config {
+
+namespace {
+
+#define CF_NO_SPLINE 1  // TEMPORARY until the motion headers land
+#ifdef CF_NO_SPLINE
+}
+}
+namespace camfollower {
+struct SplineOptions { int degree = 5; double smoothing = 0.0; };
+}
+namespace camfollower::config {
+namespace {
+Segment spline_stub() { detail::fail("not yet"); }
+#endif
+
+// ---- motion programs -------------------------------------------------------------------------
+
+// Two numeric columns (theta, h) from a text file: comma, semicolon, tab or blank separated; '#'
+// comments and one header line of words are skipped.
+std::pair<std::vector<double>, std::vector<double>> read_table_file(const Section& s, std::string_view key,
+                                                                   const std::string& base_dir) {
+    const std::string name = s.text(key);
+    const std::string path = !name.empty() && name.front() == '/' ? name : base_dir + "/" + name;
+    struct stat st {};
+    if (stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) s.fail(key, "cannot read the lift table '" + path + "' (not a regular file)");
+    std::ifstream in(path);
+    if (!in) s.fail(key, "cannot open the lift table '" + path + "'");
+    std::vector<double> theta, h;
+    std::string line;
+    for (int number = 1; std::getline(in, line); ++number) {
+        if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
+        for (char& c : line)
+            if (c == ',' || c == ';' || c == '\t' || c == '\r') c = ' ';
+        std::istringstream row(line);
+        row.imbue(std::locale::classic());
+        double a = 0.0, b = 0.0;
+        std::string rest;
+        if (line.find_first_not_of(' ') == std::string::npos) continue;
+        if (!(row >> a >> b)) {
+            if (theta.empty()) continue;  // a header line
+            detail::fail(path, ":", number, ": expected two numbers (theta, h)");
+        }
+        if (row >> rest) detail::fail(path, ":", number, ": expected two columns (theta, h), found more");
+        theta.push_back(a), h.push_back(b);
+    }
+    if (theta.empty()) s.fail(key, "the lift table '" + path + "' holds no (theta, h) rows");
+    return {theta, h};
+}
+
+struct Table {
+    std::vector<double> theta, h;
+};
+
+// theta/h arrays or a file, with their units ("deg", "mm" by default: how tables are usually written).
+Table read_table(const Section& s, const std::string& base_dir) {
+    const std::string theta_unit = s.text("theta_unit", "deg"), h_unit = s.text("h_unit", "mm");
+    Table t;
+    if (s.has("file")) {
+        if (s.has("theta") || s.has("h")) s.fail("file", "give the table either as a file or as theta/h arrays, not both");
+        auto [theta, h] = read_table_file(s, "file", base_dir);
+        try {
+            for (double& v : theta) v = to_si(v, theta_unit, "rad");
+            for (double& v : h) v = to_si(v, h_unit, "m");
+        } catch (const std::invalid_argument& e) {
+            s.fail("theta_unit", e.what());
+        }
+        t.theta = std::move(theta), t.h = std::move(h);
+    } else {
+        t.theta = s.quantities("theta", "rad", theta_unit);
+        t.h = s.quantities("h", "m", h_unit);
+    }
+    if (t.theta.size() != t.h.size())
+        s.fail_here(detail::concat("theta and h must have the same length, got ", t.theta.size(), " and ", t.h.size()));
+    return t;
+}
+
+SplineOptions spline_options(const Section& s) {
+    SplineOptions o;
+    o.degree = int(s.integer("degree", o.degree, 1, 15));
+    o.smoothing = s.quantity("smoothing", "-", o.smoothing);
+    return o;
+}
+
+MotionLaw named_law(const Section& s, const std::string& law) {
+    if (law == "dwell") return MotionLaw::dwell();
+    if (law == "simple_harmonic") return MotionLaw::simple_harmonic();
+    if (law == "cycloidal") return MotionLaw::cycloidal();
+    if (law == "modified_trapezoid") return MotionLaw::modified_trapezoid();
+    if (law == "modified_sine") return MotionLaw::modified_sine();
+    if (law == "polynomial_345") return MotionLaw::polynomial_345();
+    if (law == "polynomial_4567") return MotionLaw::polynomial_4567();
+    if (law == "constant_acceleration") return MotionLaw::constant_acceleration();
+    // sine_constant_cosine
+    const double b = s.quantity("b", "-"), c = s.quantity("c", "-"), d = s.quantity("d", "-");
+    try {
+        return MotionLaw::sine_constant_cosine(b, c, d);
+    } catch (const std::invalid_argument& e) {
+        s.fail("b", e.what());
+    }
+}
+
+Segment read_segment(const Section& s, double start, double level, const std::string& base_dir) {
+    const std::string law = s.choice("law", "", {"dwell", "simple_harmonic", "cycloidal", "modified_trapezoid",
+                                                 "modified_sine", "polynomial_345", "polynomial_4567",
+                                                 "constant_acceleration", "sine_constant_cosine", "polynomial", "table"});
+    try {
+        if (law == "table") {
+            Table t = read_table(s, base_dir);
+            std::vector<double> d0, d1;
+            if (s.has("start_derivatives")) d0 = s.quantities("start_derivatives", "-");
+            if (s.has("end_derivatives")) d1 = s.quantities("end_derivatives", "-");
+            Segment seg = spline_stub(); (void)d0; (void)d1; (void)spline_options;
+            s.finish({"law", "file", "theta", "h", "theta_unit", "h_unit", "degree", "smoothing", "start_derivatives",
+                      "end_derivatives"});
+            return seg;
+        }
+        const double end = s.quantity("end", "rad");
+        if (law == "polynomial") {
+            std::vector<double> d0{level}, d1{s.quantity("h", "m")};
+            const std::vector<double> zero{0.0, 0.0};
+            for (double v : s.has("start_derivatives") ? s.quantities("start_derivatives", "-") : zero) d0.push_back(v);
+            for (double v : s.has("end_derivatives") ? s.quantities("end_derivatives", "-") : zero) d1.push_back(v);
+            std::vector<std::pair<double, double>> interior;
+            if (s.has("interior_theta") || s.has("interior_h")) {
+                const std::vector<double> th = s.quantities("interior_theta", "rad"), hh = s.quantities("interior_h", "m");
+                if (th.size() != hh.size()) s.fail("interior_h", "interior_theta and interior_h must have the same length");
+                for (std::size_t i = 0; i < th.size(); ++i) interior.emplace_back(th[i], hh[i]);
+            }
+            Segment seg = spline_stub();
+            s.finish({"law", "end", "h", "start_derivatives", "end_derivatives", "interior_theta", "interior_h"});
+            return seg;
+        }
+        const MotionLaw m = named_law(s, law);
+        const double h = m.is_dwell() ? s.quantity("h", "m", level) : s.quantity("h", "m");
+        s.finish({"law", "end", "h", "b", "c", "d"});
+        return Segment{m, start, end, level, h};
+    } catch (const std::invalid_argument& e) {
+        const std::string what = e.what();
+        if (what.rfind(s.origin(), 0) == 0) throw;  // already located
+        s.fail_here(what);
+    }
+}
+
+MotionProgram read_program(const Section& s, const std::string& base_dir) {
+    MotionProgram program = [&] {
+        if (!s.has("segments")) {
+            Table t = read_table(s, base_dir);
+            try {
+                (void)spline_options(s); return MotionProgram(std::vector<Segment>{spline_stub()});
+            } catch (const std::invalid_argument& e) {
+                s.fail_here(e.what());
+            }
+        }
+        std::vector<Segment> segments;
+        double start = 0.0, level = s.quantity("start_h", "m", 0.0);
+        for (const Section& seg : s.tables("segments")) {
+            segments.push_back(read_segment(seg, start, level, base_dir));
+            start = segments.back().theta_end, level = segments.back().h_end;
+        }
+        try {
+            return MotionProgram(std::move(segments));
+        } catch (const std::invalid_argument& e) {
+            s.fail("segments", e.what());
+        }
+    }();
+    if (s.has("continuity")) {
+        const long long order = s.integer("continuity", 0, 0, 3);
+        try {
+            (void)order;
+        } catch (const std::invalid_argument& e) {
+            s.fail("continuity", e.what());
+        }
+    }
+    s.finish({"segments", "start_h", "file", "theta", "h", "theta_unit", "h_unit", "degree", "smoothing", "continuity"});
+    return program;
+}
+
+// ---- followers and contacts ------------------------------------------------------------------
+
+Eigen::Vector2d point(const Section& s, std::string_view key) {
+    const std::vector<double> v = s.quantities(key, "m");
+    if (v.size() != 2) s.fail(key, detail::concat("must be [x, y] (m), got ", v.size(), " numbers"));
+    return {v[0], v[1]};
+}
+
+Follower read_follower(const Section& s) {
+    const std::string type = s.choice("type", "", {"translating_roller", "translating_flat", "oscillating_roller", "oscillating_flat"});
+    try {
+        const double rb = s.quantity("base_radius", "m");
+        Follower f = [&]() -> Follower {
+            if (type == "translating_roller")
+                return TranslatingRoller(rb, s.quantity("roller_radius", "m"), s.quantity("offset", "m", 0.0));
+            if (type == "translating_flat")
+                return TranslatingFlat(rb, s.quantity("face_angle", "rad", 0.0), s.quantity("offset", "m", 0.0));
+            const ArmTurn turn = s.choice("turn", "counter_clockwise", {"counter_clockwise", "clockwise"}) == "clockwise"
+                                     ? ArmTurn::clockwise : ArmTurn::counter_clockwise;
+            if (type == "oscillating_roller")
+                return OscillatingRoller(rb, s.quantity("roller_radius", "m"), point(s, "pivot"), s.quantity("arm_length", "m"), turn);
+            return OscillatingFlat(rb, point(s, "pivot"), s.quantity("face_offset", "m", 0.0), turn);
+        }();
+        s.finish({"type", "base_radius", "roller_radius", "offset", "face_angle", "pivot", "arm_length", "face_offset", "turn"});
+        return f;
+    } catch (const std::invalid_argument& e) {
+        const std::string what = e.what();
+        if (what.rfind(s.origin(), 0) == 0) throw;
+        s.fail_here(what);
+    }
+}
+
+CamEccentricity read_eccentricity(const Section& s) {
+    CamEccentricity e;
+    e.radius = s.quantity("radius", "m");
+    e.phase = s.quantity("phase", "rad", 0.0);
+    const std::string f = s.choice("formulation", "exact", {"exact", "paper_force_camshaft", "paper_force_roller", "paper_force_both"});
+    e.formulation = f == "exact" ? EccentricityFormulation::exact
+                  : f == "paper_force_camshaft" ? EccentricityFormulation::paper_force_camshaft
+                  : f == "paper_force_roller" ? EccentricityFormulation::paper_force_roller
+                                              : EccentricityFormulation::paper_force_both;
+    e.unbalance_mass = s.quantity("unbalance_mass", "kg", 0.0);
+    s.finish({"radius", "phase", "formulation", "unbalance_mass"});
+    try {
+        e.validate("eccentricity");
+    } catch (const std::invalid_argument& x) {
+        s.fail_here(x.what());
+    }
+    return e;
+}
+
+// Contact law: stiffness and exponent, or Palmgren's line-contact law from the roller width.
+HertzContact read_law(const Section& s, const char* prefix = "") {
+    (void)prefix;
+    const double chi = s.quantity("damping_factor", "s/m", 0.0);
+    if (s.has("roller_width")) {
+        if (s.has("stiffness") || s.has("exponent"))
+            s.fail("roller_width", "give either stiffness (and exponent) or roller_width (Palmgren's law), not both");
+        try {
+            return palmgren_law(s.quantity("roller_width", "m"), chi);
+        } catch (const std::invalid_argument& e) {
+            s.fail("roller_width", e.what());
+        }
+    }
+    return {s.quantity("stiffness", "N/m^n"), s.quantity("exponent", "-", 1.0), chi};
+}
+
+std::string dof_name(const Section& s, std::string_view key, const MechanismBuilder& b, bool ground_ok,
+                     std::string_view fallback) {
+    const std::string name = s.text(key, fallback);
+    if (name == ground_name) {
+        if (!ground_ok) s.fail(key, "must name a DOF, not ground");
+        return name;
+    }
+    for (const DofSpec& d : b.structure.dofs())
+        if (d.name == name) return name;
+    std::string known;
+    for (const DofSpec& d : b.structure.dofs()) known += (known.empty() ? "" : ", ") + d.name;
+    s.fail(key, "unknown DOF '" + name + "'; the [[dof]] blocks define: " + known + (ground_ok ? " (or \"ground\")" : ""));
+}
+
+template <class F>
+void located(const Section& s, F&& f) {
+    try {
+        f();
+    } catch (const std::invalid_argument& e) {
+        const std::string what = e.what();
+        if (what.rfind(s.origin(), 0) == 0) throw;
+        s.fail_here(what);
+    }
+}
+
+void read_parts(const Section& root, const CaseConfig& c, MechanismBuilder& b) {
+    for (const Section& s : root.tables("dof")) {
+        const std::string name = s.text("name");
+        const double mass = s.quantity("mass", "kg");
+        Eigen::Vector3d direction = Eigen::Vector3d::Zero();
+        if (s.has("direction")) {
+            const std::vector<double> v = s.quantities("direction", "-");
+            if (v.size() != 3) s.fail("direction", "must be [x, y, z] (a unit vector, or zeros for a rotation)");
+            direction = {v[0], v[1], v[2]};
+        }
+        s.finish({"name", "mass", "direction"});
+        located(s, [&] { b.add_dof(name, mass, direction); });
+    }
+    for (const Section& s : root.tables("spring")) {
+        const std::string name = s.text("name"), a = dof_name(s, "a", b, false, ""), bb = dof_name(s, "b", b, true, ground_name);
+        const double k = s.quantity("stiffness", "N/m"), d = s.quantity("damping", "N s/m", 0.0), p = s.quantity("preload", "N", 0.0);
+        s.finish({"name", "a", "b", "stiffness", "damping", "preload"});
+        located(s, [&] { b.add_spring(name, a, bb, k, d, p); });
+    }
+    for (const Section& s : root.tables("damper")) {
+        const std::string name = s.text("name"), a = dof_name(s, "a", b, false, ""), bb = dof_name(s, "b", b, true, ground_name);
+        const double d = s.quantity("damping", "N s/m");
+        s.finish({"name", "a", "b", "damping"});
+        located(s, [&] { b.add_damper(name, a, bb, d); });
+    }
+    for (const Section& s : root.tables("load")) {
+        const std::string dof = dof_name(s, "dof", b, false, "");
+        const double f = s.quantity("force", "N");
+        s.finish({"dof", "force"});
+        located(s, [&] { b.add_load(dof, f); });
+    }
+    for (const Section& s : root.tables("contact")) {
+        ContactPairSpec p{s.text("name"), MotionProgram::paper_default(), TranslatingRoller(0.03, 0.008, 0.0), HertzContact{},
+                          0.0, ground_name, ground_name, "", ground_name, CamEccentricity{}};
+        const std::string program = s.text("program");
+        located(s, [&] { p.program = c.program(program); });
+        const std::optional<Section> follower = s.table("follower");
+        if (!follower) s.fail_here("a contact needs a follower table: follower = { type = \"translating_roller\", ... }");
+        p.follower = read_follower(*follower);
+        p.law = read_law(s);
+        p.phase = s.quantity("phase", "rad", 0.0);
+        p.follower_dof = dof_name(s, "follower_dof", b, false, "");
+        p.cam_x = dof_name(s, "cam_x", b, true, ground_name);
+        p.cam_y = dof_name(s, "cam_y", b, true, ground_name);
+        p.lateral = dof_name(s, "lateral", b, true, ground_name);
+        if (const std::optional<Section> e = s.table("eccentricity")) p.eccentricity = read_eccentricity(*e);
+        s.finish({"name", "program", "follower", "stiffness", "exponent", "damping_factor", "roller_width", "phase",
+                  "follower_dof", "cam_x", "cam_y", "lateral", "eccentricity"});
+        located(s, [&] { b.add_contact(p); });
+    }
+    for (const Section& s : root.tables("clearance")) {
+        ClearanceSpec cl;
+        cl.name = s.text("name");
+        const std::vector<std::string> dofs = s.texts("gap_dofs");
+        const std::vector<double> coefficients = s.quantities("gap_coefficients", "-");
+        if (dofs.size() != coefficients.size()) s.fail("gap_coefficients", "needs one coefficient per gap_dofs entry");
+        for (std::size_t i = 0; i < dofs.size(); ++i) cl.gap.emplace_back(dofs[i], coefficients[i]);
+        cl.clearance = s.quantity("clearance", "m");
+        cl.wall = read_law(s);
+        cl.friction = s.quantity("friction", "-", 0.0);
+        cl.sliding_dof = s.text("sliding_dof", "");
+        cl.slip_velocity = s.quantity("slip_velocity", "m/s", cl.slip_velocity);
+        s.finish({"name", "gap_dofs", "gap_coefficients", "clearance", "stiffness", "exponent", "damping_factor",
+                  "roller_width", "friction", "sliding_dof", "slip_velocity"});
+        located(s, [&] { b.add_clearance(cl); });
+    }
+    for (const Section& s : root.tables("guide")) {
+        GuideSpec g;
+        g.name = s.text("name");
+        g.lateral_dof = dof_name(s, "lateral_dof", b, false, "");
+        if (s.has("tilt_dof")) g.tilt_dof = dof_name(s, "tilt_dof", b, false, "");
+        if (s.has("sliding_dof")) g.sliding_dof = dof_name(s, "sliding_dof", b, false, "");
+        g.length = s.quantity("length", "m");
+        g.bushings = s.quantities("bushings", "m");
+        g.tilt_reference = s.quantity("tilt_reference", "m", 0.0);
+        g.clearance = s.quantity("clearance", "m");
+        g.wall = read_law(s);
+        g.friction = s.quantity("friction", "-", 0.0);
+        g.slip_velocity = s.quantity("slip_velocity", "m/s", g.slip_velocity);
+        s.finish({"name", "lateral_dof", "tilt_dof", "sliding_dof", "length", "bushings", "tilt_reference", "clearance",
+                  "stiffness", "exponent", "damping_factor", "roller_width", "friction", "slip_velocity"});
+        located(s, [&] { b.add_guide(g); });
+    }
+    if (const std::optional<Section> s = root.table("damping")) {
+        const double alpha = s->quantity("rayleigh_alpha", "-", 0.0), beta = s->quantity("rayleigh_beta", "-", 0.0);
+        if (alpha != 0.0 || beta != 0.0) located(*s, [&] { b.set_rayleigh_damping(alpha, beta); });
+        if (s->has("modal_ratios")) {
+            const std::vector<double> r = s->quantities("modal_ratios", "-");
+            located(*s, [&] { b.set_modal_damping(r); });
+        }
+        s->finish({"rayleigh_alpha", "rayleigh_beta", "modal_ratios"});
+    }
+    if (root.has("gravity")) {
+        const std::vector<double> g = root.quantities("gravity", "m/s^2");
+        if (g.size() != 3) root.fail("gravity", "must be [x, y, z] (m/s^2)");
+        b.set_gravity({g[0], g[1], g[2]});
+    }
+}
+
+// ---- the paper preset ------------------------------------------------------------------------
+
+MechanismBuilder read_preset(const Section& s, const CaseConfig& c, double rpm) {
+    const std::string name = s.choice("name", "", {"paper", "paper_damped"});
+    CamFollowerParameters p;
+    if (const std::optional<Section> ps = s.table("parameters")) {
+        for (const std::string& key : ps->keys()) {
+            if (key == "camshaft_speed_rpm") ps->fail(key, "set the speed once, in [camshaft] speed");
+            const char* kind = nullptr;
+            for (const auto& f : CamFollowerParameters::fields())
+                if (key == f.name) kind = f.unit;
+            if (!kind) {
+                std::string known;
+                for (const auto& f : CamFollowerParameters::fields())
+                    if (std::string(f.name) != "camshaft_speed_rpm") known += (known.empty() ? "" : ", ") + std::string(f.name);
+                ps->fail(key, "unknown parameter; known: " + known);
+            }
+            p.ref(key) = ps->quantity(key, kind);
+        }
+        if (ps->has("contact_damping")) {
+            const std::string d = ps->choice("contact_damping", "", {"none", "hunt_crossley", "lankarani_nikravesh"});
+            p.contact_damping = d == "none" ? ContactDampingModel::none
+                              : d == "hunt_crossley" ? ContactDampingModel::hunt_crossley : ContactDampingModel::lankarani_nikravesh;
+        }
+    }
+    p.camshaft_speed_rpm = rpm;
+    located(s, [&] { p.validate(); });
+    presets::PaperOptions o;
+    if (const std::optional<Section> e = s.table("eccentricity")) o.eccentricity = read_eccentricity(*e);
+    o.guide_clearance = s.quantity("guide_clearance", "m", 0.0);
+    o.guide_wall_damping_factor = s.quantity("guide_wall_damping_factor", "s/m", 0.0);
+    o.guide_friction = s.quantity("guide_friction", "-", 0.0);
+    o.element_damping_ratio = s.quantity("element_damping_ratio", "-", name == "paper_damped" ? presets::realistic_damping_ratio : 0.0);
+    if (name == "paper_damped" && o.element_damping_ratio == 0.0)
+        s.fail("element_damping_ratio", "paper_damped needs a ratio in (0, 1); use name = \"paper\" for the paper's dampers");
+    MotionProgram program = MotionProgram::paper_default();
+    if (s.has("program")) {
+        const std::string pname = s.text("program");
+        located(s, [&] { program = c.program(pname); });
+    }
+    s.finish({"name", "parameters", "eccentricity", "guide_clearance", "guide_wall_damping_factor", "guide_friction",
+              "element_damping_ratio", "program"});
+    MechanismBuilder b;
+    located(s, [&] { b = presets::paper(p, program, o).description(); });
+    return b;
+}
+
+// ---- solver and output -----------------------------------------------------------------------
+
+SolverConfig read_solver(const Section& s) {
+    SolverConfig v;
+    if (s.has("duration") && s.has("revolutions")) s.fail("duration", "give revolutions or duration, not both");
+    v.revolutions = s.quantity("revolutions", "-", v.revolutions);
+    if (!(v.revolutions > 0.0 && v.revolutions <= 1e6)) s.fail("revolutions", detail::concat("must be in (0, 1e6], got ", v.revolutions));
+    v.duration = s.quantity("duration", "s", 0.0);
+    if (s.has("duration") && !(v.duration > 0.0)) s.fail("duration", "must be > 0 s");
+    if (s.has("time_step") && s.has("steps_per_revolution")) s.fail("time_step", "give time_step or steps_per_revolution, not both");
+    v.time_step = s.quantity("time_step", "s", 0.0);
+    if (s.has("time_step") && !(v.time_step > 0.0)) s.fail("time_step", "must be > 0 s");
+    v.steps_per_revolution = s.integer("steps_per_revolution", v.steps_per_revolution, 16, 1LL << 26);
+    const std::string scheme = s.choice("scheme", "average_acceleration", {"average_acceleration", "hht", "newmark"});
+    NewmarkSettings& n = v.newmark;
+    if (scheme == "hht") {
+        n = NewmarkSettings::hht(s.quantity("hht_alpha", "-", -0.05));
+    } else if (scheme == "newmark") {
+        n.gamma = s.quantity("gamma", "-");
+        n.beta = s.quantity("beta", "-");
+    }
+    n.residual_tolerance = s.quantity("residual_tolerance", "-", n.residual_tolerance);
+    n.increment_tolerance = s.quantity("increment_tolerance", "-", n.increment_tolerance);
+    n.max_iterations = int(s.integer("max_iterations", n.max_iterations, 1, 1000));
+    n.max_halvings = int(s.integer("max_halvings", n.max_halvings, 0, 30));
+    n.linear_solver = s.choice("linear_solver", "low_rank", {"low_rank", "dense_lu"}) == "dense_lu" ? LinearSolver::dense_lu
+                                                                                               : LinearSolver::sherman_morrison;
+    v.settle = s.flag("settle", false);
+    v.settle_tolerance = s.quantity("settle_tolerance", "-", v.settle_tolerance);
+    if (s.has("settle_dofs")) v.settle_dofs = s.texts("settle_dofs");
+    v.settle_min_revolutions = int(s.integer("settle_min_revolutions", v.settle_min_revolutions, 2, 100000));
+    v.settle_max_revolutions = int(s.integer("settle_max_revolutions", v.settle_max_revolutions, 2, 100000));
+    if (!v.settle)
+        for (const char* k : {"settle_tolerance", "settle_dofs", "settle_min_revolutions", "settle_max_revolutions"})
+            if (s.has(k)) s.fail(k, "applies only with settle = true");
+    if (scheme != "hht" && s.has("hht_alpha")) s.fail("hht_alpha", "applies only with scheme = \"hht\"");
+    s.finish({"revolutions", "duration", "time_step", "steps_per_revolution", "scheme", "hht_alpha", "gamma", "beta",
+              "residual_tolerance", "increment_tolerance", "max_iterations", "max_halvings", "linear_solver", "settle",
+              "settle_tolerance", "settle_dofs", "settle_min_revolutions", "settle_max_revolutions"});
+    NewmarkSettings check = n;
+    check.time_step = 1.0;
+    located(s, [&] { check.validate(); });
+    return v;
+}
+
+OutputConfig read_output(const Section& s) {
+    OutputConfig o;
+    o.file = s.text("file", "");
+    o.decimation = s.integer("decimation", 1, 1, 1LL << 40);
+    o.record_last_revolutions = s.quantity("record_last_revolutions", "-", 0.0);
+    if (s.has("record_last_revolutions") && !(o.record_last_revolutions > 0.0))
+        s.fail("record_last_revolutions", "must be > 0");
+    s.finish({"file", "decimation", "record_last_revolutions"});
+    return o;
+}
+
+}  // namespace
+
+const MotionProgram& CaseConfig::program(const std::string& name) const {
+    std::string known;
+    for (const auto& [n, p] : programs) {
+        if (n == name) return p;
+        known += (known.empty() ? "" : ", ") + n;
+    }
+    detail::fail("unknown program '", name, "'; the [program.<name>] tables define: ", known.empty() ? "none" : known);
+}
+
+CaseConfig build_case(const toml::table& table, const std::string& origin, const std::string& base_dir) {
+    const Section root(table, "", std::make_shared<const std::string>(origin));
+    CaseConfig c;
+    c.origin = origin;
+    for (auto& [name, s] : root.named_tables("program")) c.programs.emplace_back(name, read_program(s, base_dir));
+    double rpm = 0.0;
+    if (const std::optional<Section> cam = root.table("camshaft")) {
+        rpm = cam->quantity("speed", "rpm");
+        if (!(rpm > 0.0 && rpm <= 1e6)) cam->fail("speed", detail::concat("must be in (0, 1e6] rpm, got ", rpm));
+        cam->finish({"speed"});
+    } else {
+        root.fail_here("a [camshaft] table with its speed is required, e.g. [camshaft] speed = \"750 rpm\"");
+    }
+    const bool parts = root.has("dof") || root.has("contact") || root.has("spring");
+    if (const std::optional<Section> preset = root.table("preset")) {
+        if (parts)
+            root.fail(root.has("dof") ? "dof" : root.has("contact") ? "contact" : "spring",
+                      "a [preset] mechanism is complete: describe the mechanism either by its parts or by a preset, not both");
+        c.preset = preset->text("name", "");
+        c.mechanism = read_preset(*preset, c, rpm);
+    } else {
+        if (!parts) root.fail_here("describe the mechanism: [[dof]], [[spring]], [[contact]] ... blocks, or a [preset]");
+        read_parts(root, c, c.mechanism);
+        c.mechanism.set_camshaft_speed_rpm(rpm);
+    }
+    if (const std::optional<Section> s = root.table("solver")) c.solver = read_solver(*s);
+    if (const std::optional<Section> s = root.table("output")) c.output = read_output(*s);
+    root.finish({"camshaft", "program", "preset", "dof", "spring", "damper", "load", "contact", "clearance", "guide",
+                 "damping", "gravity", "solver", "output"});
+    // The description must build (DOF references, contact geometry): fail now, located at the file.
+    try {
+        if (c.mechanism.structure.size() == presets::paper_dofs) (void)Mechanism<presets::paper_dofs>(c.mechanism);
+        else (void)Mechanism<Eigen::Dynamic>(c.mechanism);
+    } catch (const std::invalid_argument& e) {
+        detail::fail(origin, ": ", e.what());
+    }
+    return c;
+}
+
+CaseConfig parse_case(std::string_view text, const std::string& origin, const std::string& base_dir) {
+    return build_case(parse_toml(text, origin), origin, base_dir);
+}
+
+CaseConfig load_case(const std::string& path) {
+    struct stat st {};
+    if (stat(path.c_str(), &st) != 0) detail::fail("config '", path, "': no such file");
+    if (S_ISDIR(st.st_mode)) detail::fail("config '", path, "' is a directory, not a config file");
+    if (!S_ISREG(st.st_mode)) detail::fail("config '", path, "' is not a regular file");
+    if (st.st_size == 0) detail::fail("config '", path, "' is empty");
+    if (st.st_size > (64 << 20)) detail::fail("config '", path, "' is larger than 64 MiB; put large lift tables in a data file");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) detail::fail("config '", path, "': cannot open for reading");
+    std::stringstream buffer;
+    buffer << in.rdbuf();
+    const std::string::size_type slash = path.rfind('/');
+    return parse_case(buffer.str(), path, slash == std::string::npos ? "." : path.substr(0, slash));
+}
+
+}  // namespace camfollower::config

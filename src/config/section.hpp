@@ -1,0 +1,71 @@
+// Reading one table of a parsed config: typed values with units, and errors that name the file, the
+// line and the key path ("cam.toml:12: contact[1].follower.base_radius: ..."). Every key read is
+// marked; finish() refuses the keys nobody read, so a misspelt or misplaced key never passes silently.
+#pragma once
+
+#include <initializer_list>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <toml++/toml.h>
+
+namespace camfollower::config {
+
+class Section {
+public:
+    // `path` is the key path of this table ("" for the root); `origin` the file name for messages.
+    Section(const toml::table& table, std::string path, std::shared_ptr<const std::string> origin);
+
+    const std::string& path() const { return path_; }
+    const std::string& origin() const { return *origin_; }
+    bool has(std::string_view key) const { return table_.contains(key); }
+    std::vector<std::string> keys() const;
+
+    // Quantities: a number in SI, or "<number> <unit>" with a unit of kind `si` (units.hpp).
+    double quantity(std::string_view key, std::string_view si) const;
+    double quantity(std::string_view key, std::string_view si, double fallback) const;
+    std::vector<double> quantities(std::string_view key, std::string_view si) const;
+    std::vector<double> quantities(std::string_view key, std::string_view si, std::string_view unit) const;
+    // A whole number in [lo, hi] (checked before any conversion).
+    long long integer(std::string_view key, long long fallback, long long lo, long long hi) const;
+    bool flag(std::string_view key, bool fallback) const;
+    std::string text(std::string_view key) const;
+    std::string text(std::string_view key, std::string_view fallback) const;
+    std::vector<std::string> texts(std::string_view key) const;
+    // One of `allowed` (the message lists them).
+    std::string choice(std::string_view key, std::string_view fallback, std::initializer_list<std::string_view> allowed) const;
+    std::optional<Section> table(std::string_view key) const;
+    // An array of tables ([[key]] blocks, or an array of inline tables); empty when absent.
+    std::vector<Section> tables(std::string_view key) const;
+    // Named sub-tables of a table: [program.a], [program.b] -> ("a", Section), ("b", Section).
+    std::vector<std::pair<std::string, Section>> named_tables(std::string_view key) const;
+
+    // Refuse keys that were not read: "unknown key ...; known here: ...".
+    void finish(std::initializer_list<std::string_view> known) const;
+
+    [[noreturn]] void fail(std::string_view key, const std::string& message) const;
+    [[noreturn]] void fail_here(const std::string& message) const;
+    std::string where(std::string_view key) const;  // "file:line: path.key"
+
+private:
+    const toml::node* get(std::string_view key) const;  // marks the key read; nullptr if absent
+    const toml::node& need(std::string_view key) const;
+    double quantity_of(const toml::node& node, std::string_view key, std::string_view si, std::string_view unit) const;
+    std::string key_path(std::string_view key) const;
+    std::string location(const toml::node* node) const;
+
+    const toml::table& table_;
+    std::string path_;
+    std::shared_ptr<const std::string> origin_;
+    mutable std::set<std::string, std::less<>> read_;
+};
+
+// Parse TOML text; a syntax error (duplicate keys included) becomes std::invalid_argument
+// "origin:line:column: message".
+toml::table parse_toml(std::string_view text, const std::string& origin);
+
+}  // namespace camfollower::config
