@@ -1,6 +1,9 @@
 // camfollower._core: the compiled half of the Python package.
 #include "bindings.hpp"
 
+namespace camfollower::python { void bind_export(py::module_& m); }  // export.cpp
+namespace camfollower::python { void bind_config(py::module_& m); }  // config.cpp
+
 PYBIND11_MODULE(_core, m) {
     m.doc() = "camfollower compiled core (use the camfollower package, not this module directly)";
     camfollower::python::bind_motion(m);
@@ -9,4 +12,6 @@ PYBIND11_MODULE(_core, m) {
     camfollower::python::bind_solver(m);
     camfollower::python::bind_mechanism(m);
     camfollower::python::bind_line_contact(m);
+    camfollower::python::bind_export(m);
+    camfollower::python::bind_config(m);
 }

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <sstream>
 
@@ -17,17 +18,6 @@ namespace camfollower::config {
 
 namespace {
 
-#define CF_NO_SPLINE 1  // TEMPORARY until the motion headers land
-#ifdef CF_NO_SPLINE
-}
-}
-namespace camfollower {
-struct SplineOptions { int degree = 5; double smoothing = 0.0; };
-}
-namespace camfollower::config {
-namespace {
-Segment spline_stub() { detail::fail("not yet"); }
-#endif
 
 // ---- motion programs -------------------------------------------------------------------------
 
@@ -63,27 +53,54 @@ std::pair<std::vector<double>, std::vector<double>> read_table_file(const Sectio
     return {theta, h};
 }
 
+// What a program's lift is: a length (translating followers) or an arm angle (oscillating); bare
+// numbers say neither (SI: m or rad).
+enum class LiftDimension { unstated, length, angle };
+
+LiftDimension dimension_of(const std::string& unit) {
+    if (unit.empty()) return LiftDimension::unstated;
+    return unit == "rad" || unit == "deg" ? LiftDimension::angle : LiftDimension::length;
+}
+
+const char* dimension_name(LiftDimension d) {
+    return d == LiftDimension::angle ? "an arm angle (rad, deg)" : d == LiftDimension::length ? "a length (m, mm, um, in)" : "unstated";
+}
+
+// Records the dimension of each lift value read and refuses a program that mixes them.
+struct LiftUnits {
+    LiftDimension dimension = LiftDimension::unstated;
+    void note(const Section& s, std::string_view key, const std::string& unit) {
+        const LiftDimension d = dimension_of(unit);
+        if (d == LiftDimension::unstated) return;
+        if (dimension != LiftDimension::unstated && d != dimension)
+            s.fail(key, detail::concat("mixes lift units: this program's lift was ", dimension_name(dimension), ", here it is ",
+                                       dimension_name(d)));
+        dimension = d;
+    }
+};
+
 struct Table {
     std::vector<double> theta, h;
 };
 
 // theta/h arrays or a file, with their units ("deg", "mm" by default: how tables are usually written).
-Table read_table(const Section& s, const std::string& base_dir) {
+Table read_table(const Section& s, const std::string& base_dir, LiftUnits& lift) {
     const std::string theta_unit = s.text("theta_unit", "deg"), h_unit = s.text("h_unit", "mm");
+    lift.note(s, "h_unit", h_unit);
     Table t;
     if (s.has("file")) {
         if (s.has("theta") || s.has("h")) s.fail("file", "give the table either as a file or as theta/h arrays, not both");
         auto [theta, h] = read_table_file(s, "file", base_dir);
         try {
             for (double& v : theta) v = to_si(v, theta_unit, "rad");
-            for (double& v : h) v = to_si(v, h_unit, "m");
+            for (double& v : h) v = to_si(v, h_unit, "lift");
         } catch (const std::invalid_argument& e) {
             s.fail("theta_unit", e.what());
         }
         t.theta = std::move(theta), t.h = std::move(h);
     } else {
         t.theta = s.quantities("theta", "rad", theta_unit);
-        t.h = s.quantities("h", "m", h_unit);
+        t.h = s.quantities("h", "lift", h_unit);
     }
     if (t.theta.size() != t.h.size())
         s.fail_here(detail::concat("theta and h must have the same length, got ", t.theta.size(), " and ", t.h.size()));
@@ -115,39 +132,41 @@ MotionLaw named_law(const Section& s, const std::string& law) {
     }
 }
 
-Segment read_segment(const Section& s, double start, double level, const std::string& base_dir) {
+Segment read_segment(const Section& s, double start, double level, const std::string& base_dir, LiftUnits& lift) {
     const std::string law = s.choice("law", "", {"dwell", "simple_harmonic", "cycloidal", "modified_trapezoid",
                                                  "modified_sine", "polynomial_345", "polynomial_4567",
                                                  "constant_acceleration", "sine_constant_cosine", "polynomial", "table"});
     try {
         if (law == "table") {
-            Table t = read_table(s, base_dir);
+            Table t = read_table(s, base_dir, lift);
             std::vector<double> d0, d1;
             if (s.has("start_derivatives")) d0 = s.quantities("start_derivatives", "-");
             if (s.has("end_derivatives")) d1 = s.quantities("end_derivatives", "-");
-            Segment seg = spline_stub(); (void)d0; (void)d1; (void)spline_options;
+            Segment seg = Segment::from_table(t.theta, t.h, spline_options(s), d0, d1);
             s.finish({"law", "file", "theta", "h", "theta_unit", "h_unit", "degree", "smoothing", "start_derivatives",
                       "end_derivatives"});
             return seg;
         }
         const double end = s.quantity("end", "rad");
         if (law == "polynomial") {
-            std::vector<double> d0{level}, d1{s.quantity("h", "m")};
+            lift.note(s, "h", s.unit("h"));
+            std::vector<double> d0{level}, d1{s.quantity("h", "lift")};
             const std::vector<double> zero{0.0, 0.0};
             for (double v : s.has("start_derivatives") ? s.quantities("start_derivatives", "-") : zero) d0.push_back(v);
             for (double v : s.has("end_derivatives") ? s.quantities("end_derivatives", "-") : zero) d1.push_back(v);
             std::vector<std::pair<double, double>> interior;
             if (s.has("interior_theta") || s.has("interior_h")) {
-                const std::vector<double> th = s.quantities("interior_theta", "rad"), hh = s.quantities("interior_h", "m");
+                const std::vector<double> th = s.quantities("interior_theta", "rad"), hh = s.quantities("interior_h", "lift");
                 if (th.size() != hh.size()) s.fail("interior_h", "interior_theta and interior_h must have the same length");
                 for (std::size_t i = 0; i < th.size(); ++i) interior.emplace_back(th[i], hh[i]);
             }
-            Segment seg = spline_stub();
+            Segment seg = Segment::polynomial(start, end, d0, d1, interior);
             s.finish({"law", "end", "h", "start_derivatives", "end_derivatives", "interior_theta", "interior_h"});
             return seg;
         }
         const MotionLaw m = named_law(s, law);
-        const double h = m.is_dwell() ? s.quantity("h", "m", level) : s.quantity("h", "m");
+        lift.note(s, "h", s.unit("h"));
+        const double h = m.is_dwell() ? s.quantity("h", "lift", level) : s.quantity("h", "lift");
         s.finish({"law", "end", "h", "b", "c", "d"});
         return Segment{m, start, end, level, h};
     } catch (const std::invalid_argument& e) {
@@ -157,20 +176,27 @@ Segment read_segment(const Section& s, double start, double level, const std::st
     }
 }
 
-MotionProgram read_program(const Section& s, const std::string& base_dir) {
+struct NamedProgram {
+    MotionProgram program;
+    LiftDimension dimension;
+};
+
+NamedProgram read_program(const Section& s, const std::string& base_dir) {
+    LiftUnits lift;
     MotionProgram program = [&] {
         if (!s.has("segments")) {
-            Table t = read_table(s, base_dir);
+            Table t = read_table(s, base_dir, lift);
             try {
-                (void)spline_options(s); return MotionProgram(std::vector<Segment>{spline_stub()});
+                return MotionProgram::from_table(t.theta, t.h, spline_options(s));
             } catch (const std::invalid_argument& e) {
                 s.fail_here(e.what());
             }
         }
         std::vector<Segment> segments;
-        double start = 0.0, level = s.quantity("start_h", "m", 0.0);
+        lift.note(s, "start_h", s.unit("start_h"));
+        double start = 0.0, level = s.quantity("start_h", "lift", 0.0);
         for (const Section& seg : s.tables("segments")) {
-            segments.push_back(read_segment(seg, start, level, base_dir));
+            segments.push_back(read_segment(seg, start, level, base_dir, lift));
             start = segments.back().theta_end, level = segments.back().h_end;
         }
         try {
@@ -182,13 +208,13 @@ MotionProgram read_program(const Section& s, const std::string& base_dir) {
     if (s.has("continuity")) {
         const long long order = s.integer("continuity", 0, 0, 3);
         try {
-            (void)order;
+            program.require_continuity(int(order));
         } catch (const std::invalid_argument& e) {
             s.fail("continuity", e.what());
         }
     }
     s.finish({"segments", "start_h", "file", "theta", "h", "theta_unit", "h_unit", "degree", "smoothing", "continuity"});
-    return program;
+    return {std::move(program), lift.dimension};
 }
 
 // ---- followers and contacts ------------------------------------------------------------------
@@ -283,7 +309,17 @@ void located(const Section& s, F&& f) {
     }
 }
 
-void read_parts(const Section& root, const CaseConfig& c, MechanismBuilder& b) {
+using Dimensions = std::map<std::string, LiftDimension>;
+
+// A translating follower's lift is a length, an oscillating one's an arm angle.
+void check_lift_dimension(const Section& s, const Follower& f, LiftDimension d, const std::string& program) {
+    const LiftDimension wanted = is_translating(f) ? LiftDimension::length : LiftDimension::angle;
+    if (d != LiftDimension::unstated && d != wanted)
+        s.fail("program", detail::concat("program '", program, "' gives its lift as ", dimension_name(d), ", but a ",
+                                         follower_type_name(f), " follower's lift is ", dimension_name(wanted)));
+}
+
+void read_parts(const Section& root, const CaseConfig& c, const Dimensions& dims, MechanismBuilder& b) {
     for (const Section& s : root.tables("dof")) {
         const std::string name = s.text("name");
         const double mass = s.quantity("mass", "kg");
@@ -322,6 +358,7 @@ void read_parts(const Section& root, const CaseConfig& c, MechanismBuilder& b) {
         const std::optional<Section> follower = s.table("follower");
         if (!follower) s.fail_here("a contact needs a follower table: follower = { type = \"translating_roller\", ... }");
         p.follower = read_follower(*follower);
+        check_lift_dimension(s, p.follower, dims.at(program), program);
         p.law = read_law(s);
         p.phase = s.quantity("phase", "rad", 0.0);
         p.follower_dof = dof_name(s, "follower_dof", b, false, "");
@@ -384,7 +421,7 @@ void read_parts(const Section& root, const CaseConfig& c, MechanismBuilder& b) {
 
 // ---- the paper preset ------------------------------------------------------------------------
 
-MechanismBuilder read_preset(const Section& s, const CaseConfig& c, double rpm) {
+MechanismBuilder read_preset(const Section& s, const CaseConfig& c, const Dimensions& dims, double rpm) {
     const std::string name = s.choice("name", "", {"paper", "paper_damped"});
     CamFollowerParameters p;
     if (const std::optional<Section> ps = s.table("parameters")) {
@@ -421,6 +458,8 @@ MechanismBuilder read_preset(const Section& s, const CaseConfig& c, double rpm) 
     if (s.has("program")) {
         const std::string pname = s.text("program");
         located(s, [&] { program = c.program(pname); });
+        if (dims.at(pname) == LiftDimension::angle)
+            s.fail("program", "program '" + pname + "' lifts by an arm angle; the paper preset's follower translates (give a length)");
     }
     s.finish({"name", "parameters", "eccentricity", "guide_clearance", "guide_wall_damping_factor", "guide_friction",
               "element_damping_ratio", "program"});
@@ -500,7 +539,12 @@ CaseConfig build_case(const toml::table& table, const std::string& origin, const
     const Section root(table, "", std::make_shared<const std::string>(origin));
     CaseConfig c;
     c.origin = origin;
-    for (auto& [name, s] : root.named_tables("program")) c.programs.emplace_back(name, read_program(s, base_dir));
+    Dimensions dims;
+    for (auto& [name, s] : root.named_tables("program")) {
+        NamedProgram p = read_program(s, base_dir);
+        c.programs.emplace_back(name, std::move(p.program));
+        dims[name] = p.dimension;
+    }
     double rpm = 0.0;
     if (const std::optional<Section> cam = root.table("camshaft")) {
         rpm = cam->quantity("speed", "rpm");
@@ -515,10 +559,10 @@ CaseConfig build_case(const toml::table& table, const std::string& origin, const
             root.fail(root.has("dof") ? "dof" : root.has("contact") ? "contact" : "spring",
                       "a [preset] mechanism is complete: describe the mechanism either by its parts or by a preset, not both");
         c.preset = preset->text("name", "");
-        c.mechanism = read_preset(*preset, c, rpm);
+        c.mechanism = read_preset(*preset, c, dims, rpm);
     } else {
         if (!parts) root.fail_here("describe the mechanism: [[dof]], [[spring]], [[contact]] ... blocks, or a [preset]");
-        read_parts(root, c, c.mechanism);
+        read_parts(root, c, dims, c.mechanism);
         c.mechanism.set_camshaft_speed_rpm(rpm);
     }
     if (const std::optional<Section> s = root.table("solver")) c.solver = read_solver(*s);

@@ -145,6 +145,19 @@ long long Section::integer(std::string_view key, long long fallback, long long l
     return *i;
 }
 
+std::string Section::unit(std::string_view key) const {
+    const toml::node* n = table_.get(key);
+    const auto s = n ? n->value_exact<std::string>() : std::nullopt;
+    if (!s) return "";
+    std::istringstream in(trim(*s));
+    in.imbue(std::locale::classic());
+    double number = 0.0;
+    std::string rest;
+    if (!(in >> number)) return "";
+    std::getline(in, rest);
+    return trim(rest);
+}
+
 bool Section::flag(std::string_view key, bool fallback) const {
     const toml::node* n = get(key);
     if (!n) return fallback;

@@ -33,6 +33,8 @@ public:
     // A whole number in [lo, hi] (checked before any conversion).
     long long integer(std::string_view key, long long fallback, long long lo, long long hi) const;
     bool flag(std::string_view key, bool fallback) const;
+    // The unit written in a "<number> <unit>" value ("" for a bare number or an absent key).
+    std::string unit(std::string_view key) const;
     std::string text(std::string_view key) const;
     std::string text(std::string_view key, std::string_view fallback) const;
     std::vector<std::string> texts(std::string_view key) const;

@@ -20,6 +20,8 @@ const QuantityKind& quantity_kind(std::string_view si) {
         {"m/s", {"m/s", {{"m/s", 1.0}, {"mm/s", 1e-3}}}},
         {"m/s^2", {"m/s^2", {{"m/s^2", 1.0}, {"g", 9.80665}}}},
         {"rpm", {"rpm", {{"rpm", 1.0}, {"rad/s", 60.0 / two_pi}, {"Hz", 60.0}}}},
+        // A motion program's lift: a length (translating followers) or an arm angle (oscillating).
+        {"lift", {"m or rad", {{"m", 1.0}, {"mm", 1e-3}, {"um", 1e-6}, {"µm", 1e-6}, {"in", 0.0254}, {"rad", 1.0}, {"deg", pi / 180.0}}}},
         {"rad", {"rad", {{"rad", 1.0}, {"deg", pi / 180.0}}}},
         {"s", {"s", {{"s", 1.0}, {"ms", 1e-3}, {"us", 1e-6}}}},
         {"-", {"-", {}}},

@@ -1,0 +1,121 @@
+"""Command line of the Python package: ``python -m camfollower figures CONFIG -o DIR``.
+
+Reads a config (docs/config.md), simulates it, and writes into DIR: the recorded channels
+(``run.csv``), per contact its SVAJ diagram, the cam profile, pressure angle and
+curvature, simulated against rigid follower acceleration, contact force with contact loss shaded and
+the force's spectrum, and ``summary.json`` (written last). Every file is written to a temporary name
+and renamed, so a failed run leaves no half-written file.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import sys
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+from .config import load_config
+
+
+def _replace_atomically(path: Path, write) -> None:
+    """write(tmp_path) then rename onto `path`; the temporary is removed on any error."""
+    if path.exists() and not path.is_file():
+        raise ValueError(f"output '{path}' exists and is not a regular file")
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    os.close(fd)
+    try:
+        write(tmp)
+        os.replace(tmp, path)
+    except BaseException:
+        try:
+            os.unlink(tmp)
+        except FileNotFoundError:
+            pass
+        raise
+
+
+def _save(fig, path: Path) -> None:
+    import matplotlib.pyplot as plt
+
+    _replace_atomically(path, lambda tmp: fig.savefig(tmp, dpi=110, format="png"))
+    plt.close(fig)
+
+
+def figures(config: str, out: str) -> dict:
+    """Run the case in `config` and write its CSV, figures and summary into `out`; return the summary."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from . import plot
+
+    case = load_config(config)
+    folder = Path(out)
+    if folder.exists() and not folder.is_dir():
+        raise ValueError(f"--out: '{folder}' exists and is not a directory")
+    folder.mkdir(parents=True, exist_ok=True)
+    m = case.mechanism
+    rpm = m.camshaft_speed_rpm
+    result = case.run()
+    names = result.channels
+    data = np.column_stack([np.asarray(result[n]) for n in names])
+    _replace_atomically(folder / "run.csv",
+                        lambda tmp: np.savetxt(tmp, data, delimiter=",", header=",".join(names), comments="", fmt="%.12g"))
+    written = ["run.csv"]
+    contacts = case.builder.__getstate__()["contacts"]
+    summary = {"config": str(case.path), "camshaft_speed_rpm": rpm, "rows": result.rows,
+               "time_step_s": result.time_step, "contacts": {}}
+    omega = m.omega
+    for c in contacts:
+        name, program, follower, dof = c["name"], c["program"], c["follower"], c["follower_dof"]
+        for fig, file in ((plot.svaj(program, rpm=rpm), f"svaj_{name}.png"),
+                          (plot.profile(follower, program), f"profile_{name}.png"),
+                          (plot.pressure_angle_and_curvature(follower, program), f"pressure_angle_curvature_{name}.png"),
+                          (plot.acceleration(result, program, omega, dof), f"acceleration_{name}.png"),
+                          (plot.contact_force(result, name), f"contact_force_{name}.png")):
+            _save(fig, folder / file)
+            written.append(file)
+        force = np.asarray(result[f"{name}.force"])
+        sample_rate = 1.0 / (result.time_step * result.decimation)
+        fmax = min(0.5 * sample_rate, 20000.0)
+        naturals = list(m.modal_analysis(0.0)["frequencies_hz"])
+        _save(plot.spectrum(force - force.mean(), sample_rate, fmax=fmax, natural_frequencies=naturals),
+              folder / f"spectrum_{name}.png")
+        written.append(f"spectrum_{name}.png")
+        lost = sum(b - a for a, b in result.contact_loss.get(name, []))
+        theta = np.linspace(0.0, 2 * math.pi, 7201)
+        rigid = omega**2 * np.asarray(program.evaluate(theta)["d2h"])
+        summary["contacts"][name] = {
+            "follower": type(follower).__name__, "max_force_N": float(force.max()), "min_force_N": float(force.min()),
+            "contact_lost_s": float(lost), "max_abs_acceleration": float(np.abs(np.asarray(result[f"a.{dof}"])).max()),
+            "max_abs_rigid_acceleration": float(np.abs(rigid).max()),
+            "max_abs_pressure_angle_deg": float(np.degrees(abs(follower.max_pressure_angle(program)[1]))),
+            "min_convex_surface_radius_mm": float(1e3 * follower.min_surface_radius(program)[1]),
+        }
+    summary["files"] = written + ["summary.json"]
+    text = json.dumps(summary, indent=2) + "\n"
+    _replace_atomically(folder / "summary.json", lambda tmp: Path(tmp).write_text(text))
+    return summary
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(prog="python -m camfollower", description=__doc__.split("\n\n")[0])
+    sub = parser.add_subparsers(dest="command", required=True)
+    f = sub.add_parser("figures", help="simulate a config; write run.csv, figures and summary.json")
+    f.add_argument("config", help="config file (docs/config.md)")
+    f.add_argument("-o", "--out", default="out", help="output folder (default: ./out)")
+    args = parser.parse_args(argv)
+    try:
+        summary = figures(args.config, args.out)
+    except (ValueError, RuntimeError, OSError) as e:
+        print(f"camfollower: error: {e}", file=sys.stderr)
+        return 1
+    for name, c in summary["contacts"].items():
+        print(f"{name}: force {c['min_force_N']:.1f} to {c['max_force_N']:.1f} N, contact lost {c['contact_lost_s']:.3g} s, "
+              f"max |a| {c['max_abs_acceleration']:.4g} (rigid {c['max_abs_rigid_acceleration']:.4g})")
+    print(f"{len(summary['files'])} files -> {args.out}")
+    return 0
