@@ -426,6 +426,7 @@ MechanismBuilder read_preset(const Section& s, const CaseConfig& c, const Dimens
     CamFollowerParameters p;
     if (const std::optional<Section> ps = s.table("parameters")) {
         for (const std::string& key : ps->keys()) {
+            if (key == "contact_damping") continue;  // a choice, read below
             if (key == "camshaft_speed_rpm") ps->fail(key, "set the speed once, in [camshaft] speed");
             const char* kind = nullptr;
             for (const auto& f : CamFollowerParameters::fields())
@@ -434,7 +435,7 @@ MechanismBuilder read_preset(const Section& s, const CaseConfig& c, const Dimens
                 std::string known;
                 for (const auto& f : CamFollowerParameters::fields())
                     if (std::string(f.name) != "camshaft_speed_rpm") known += (known.empty() ? "" : ", ") + std::string(f.name);
-                ps->fail(key, "unknown parameter; known: " + known);
+                ps->fail(key, "unknown parameter; known: " + known + ", contact_damping");
             }
             p.ref(key) = ps->quantity(key, kind);
         }
