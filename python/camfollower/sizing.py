@@ -8,6 +8,13 @@ translating roller the offset that minimizes the largest |pressure angle| is fou
 golden-section search (the largest |alpha| over the revolution is unimodal in the offset: it trades
 the rise's peak against the return's).
 
+Oscillating followers (lift in rad) have a pivot instead of an offset; the pivot is put at (d, 0) (its
+direction round the cam only turns the cam). An oscillating roller is sized for a given arm length
+L and a given pressure angle a0 on the base circle, which fixes the pivot distance d as r_b changes
+(a0 = 0: the arm at right angles to the cam radius through the roller); a0 = None picks the best a0
+(pivot distance) per r_b, as for the offset. An oscillating flat face is sized for a given ratio
+d / r_b (the cam then scales with r_b).
+
 All lengths in m, angles in rad. Results say which limit binds and at which cam angle.
 """
 
@@ -17,32 +24,63 @@ import math
 from dataclasses import dataclass
 from typing import Optional
 
-from ._core import MotionProgram, TranslatingFlat, TranslatingRoller
+from ._core import MotionProgram, OscillatingFlat, OscillatingRoller, TranslatingFlat, TranslatingRoller
 
 
 @dataclass(frozen=True)
 class Sizing:
     base_radius: float  # m
-    offset: float  # m (translating followers)
+    offset: float  # m (translating followers; 0 for oscillating ones)
     max_pressure_angle: float  # rad, signed, the largest |alpha| over the revolution
     max_pressure_angle_at: float  # rad, cam angle
     min_surface_radius: float  # m, smallest convex radius of curvature of the cam surface
     min_surface_radius_at: float  # rad
     binding: str  # "pressure angle" or "radius of curvature": the limit that sets base_radius
+    # Oscillating followers (None for translating ones): the pivot sits at (pivot_distance, 0).
+    pivot_distance: Optional[float] = None  # m, |P|
+    arm_length: Optional[float] = None  # m (oscillating roller)
+    dwell_pressure_angle: Optional[float] = None  # rad, the pressure angle on the base circle (oscillating roller)
 
 
-def _follower(kind: str, base_radius: float, roller_radius: Optional[float], offset: float):
-    if kind == "translating_roller":
-        return TranslatingRoller(base_radius, roller_radius, offset)
-    if kind == "translating_flat":
-        return TranslatingFlat(base_radius, 0.0, offset)
-    raise ValueError(f"follower must be 'translating_roller' or 'translating_flat', got {kind!r}")
+KINDS = ("translating_roller", "translating_flat", "oscillating_roller", "oscillating_flat")
 
 
-def _evaluate(program: MotionProgram, kind: str, base_radius: float, roller_radius, offset: float):
-    """(|alpha| max, its theta, alpha, rho min, its theta, followable?) for one geometry."""
+@dataclass(frozen=True)
+class _Design:
+    """The fixed part of a design: everything but the base radius and the free variable."""
+    kind: str
+    roller_radius: Optional[float]
+    arm_length: Optional[float]
+    face_offset: float
+    turn: str
+
+    def pivot_distance(self, base_radius: float, variable: float) -> float:
+        """|P| for the oscillating followers. Roller: the variable is the dwell pressure angle a0, and
+        on the base circle sin a0 = sigma (d^2 - r^2 - L^2) / (2 L r) (r = r_b + r_r; docs/sizing.md),
+        so d^2 = L^2 + r^2 + 2 sigma L r sin a0. Flat face: the variable is the ratio d / r_b."""
+        if self.kind == "oscillating_roller":
+            r, L = base_radius + self.roller_radius, self.arm_length
+            sigma = 1.0 if self.turn == "counter_clockwise" else -1.0
+            return math.sqrt(max(L * L + r * r + 2.0 * sigma * L * r * math.sin(variable), 0.0))
+        return variable * base_radius
+
+    def follower(self, base_radius: float, variable: float):
+        """The follower for base radius r_b and the free variable: the offset (translating), the dwell
+        pressure angle (oscillating roller) or the pivot distance ratio (oscillating flat face)."""
+        if self.kind == "translating_roller":
+            return TranslatingRoller(base_radius, self.roller_radius, variable)
+        if self.kind == "translating_flat":
+            return TranslatingFlat(base_radius, 0.0, variable)
+        pivot = (self.pivot_distance(base_radius, variable), 0.0)
+        if self.kind == "oscillating_roller":
+            return OscillatingRoller(base_radius, self.roller_radius, pivot, self.arm_length, self.turn)
+        return OscillatingFlat(base_radius, pivot, self.face_offset, self.turn)
+
+
+def _evaluate(program: MotionProgram, design: _Design, base_radius: float, variable: float):
+    """(|alpha| max, its theta, alpha, rho min, its theta) for one geometry, None if not followable."""
     try:
-        f = _follower(kind, base_radius, roller_radius, offset)
+        f = design.follower(base_radius, variable)
         f.check(program)
     except ValueError:
         return None
@@ -51,16 +89,9 @@ def _evaluate(program: MotionProgram, kind: str, base_radius: float, roller_radi
     return abs(alpha), ta, alpha, rho, tr
 
 
-def _best_offset(program, kind, base_radius, roller_radius, tolerance):
-    """Offset in (-(r_b + r_r), r_b + r_r) minimizing the largest |pressure angle| (golden section)."""
-    limit = 0.95 * (base_radius + roller_radius)
-    lo, hi = -limit, limit
+def _golden(cost, lo: float, hi: float, tolerance: float) -> float:
+    """Minimizer of a unimodal cost on [lo, hi] to `tolerance` (golden section)."""
     g = (math.sqrt(5.0) - 1.0) / 2.0
-
-    def cost(e):
-        r = _evaluate(program, kind, base_radius, roller_radius, e)
-        return math.inf if r is None else r[0]
-
     a, b = hi - g * (hi - lo), lo + g * (hi - lo)
     fa, fb = cost(a), cost(b)
     while hi - lo > tolerance:
@@ -75,16 +106,58 @@ def _best_offset(program, kind, base_radius, roller_radius, tolerance):
     return 0.5 * (lo + hi)
 
 
+# Search range of an oscillating roller's dwell pressure angle (rad) when it is optimized ("best").
+DWELL_PRESSURE_ANGLE_RANGE = (-math.radians(75.0), math.radians(75.0))
+
+
+def _best_variable(program, design: _Design, base_radius: float, tolerance: float) -> float:
+    """The free variable minimizing the largest |pressure angle| at this base radius (golden section):
+    the offset in (-(r_b + r_r), r_b + r_r) of a translating roller, or the dwell pressure angle in
+    DWELL_PRESSURE_ANGLE_RANGE of an oscillating roller (which moves the pivot). Either trades the
+    rise's peak against the return's, so the cost is unimodal."""
+    def cost(v):
+        r = _evaluate(program, design, base_radius, v)
+        return math.inf if r is None else r[0]
+
+    if design.kind == "translating_roller":
+        limit = 0.95 * (base_radius + design.roller_radius)
+        return _golden(cost, -limit, limit, tolerance)
+    return _golden(cost, *DWELL_PRESSURE_ANGLE_RANGE, 1e-5)
+
+
+def _positive(name: str, v, unit: str) -> float:
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or not (math.isfinite(v) and v > 0):
+        raise ValueError(f"{name} must be finite and > 0 {unit}, got {v!r}")
+    return float(v)
+
+
 def smallest_base_radius(program: MotionProgram, follower: str = "translating_roller", *,
                          max_pressure_angle: float = math.radians(30.0), min_surface_radius: float = 0.0,
                          roller_radius: Optional[float] = None, offset: Optional[float] = 0.0,
-                         upper: float = 1.0, tolerance: float = 1e-6) -> Sizing:
-    """Smallest base radius (m) for which the cam is followable (no undercut, no cusp), its largest
-    |pressure angle| is at most ``max_pressure_angle`` (rad; translating roller only: a flat face's
-    pressure angle is its face angle) and its smallest convex surface radius of curvature is at least
-    ``min_surface_radius`` (m). ``offset=None`` also picks, for each candidate, the offset that
-    minimizes the pressure angle (translating roller). Searched in (0, ``upper``] to ``tolerance`` (m).
-    Raises ValueError when even ``upper`` does not meet the limits."""
+                         arm_length: Optional[float] = None, dwell_pressure_angle: Optional[float] = 0.0,
+                         pivot_distance_ratio: Optional[float] = 2.0, face_offset: float = 0.0,
+                         turn: str = "counter_clockwise", upper: float = 1.0, tolerance: float = 1e-6) -> Sizing:
+    """Smallest base radius (m) for which the cam is followable (no undercut, no cusp, |alpha| < 90
+    deg), its largest |pressure angle| is at most ``max_pressure_angle`` (rad; not for the translating
+    flat face, whose pressure angle is its face angle) and its smallest convex surface radius of
+    curvature is at least ``min_surface_radius`` (m). Searched in (0, ``upper``] to ``tolerance`` (m).
+
+    ``follower`` and its free design variable (``None`` picks, for each candidate base radius, the
+    value that suits the cam best; see docs/sizing.md):
+
+    - ``"translating_roller"``: ``roller_radius`` (m), ``offset`` (m, or None: the offset minimizing
+      the largest |alpha|);
+    - ``"translating_flat"``: ``offset`` (m; it does not change the cam);
+    - ``"oscillating_roller"``: ``roller_radius`` and ``arm_length`` (m), ``turn``, and
+      ``dwell_pressure_angle`` a0 (rad, default 0), the pressure angle on the base circle, which sets
+      the pivot distance d = sqrt(L^2 + r^2 + 2 sigma L r sin a0) (r = r_b + r_r; a0 = 0 puts the arm
+      at right angles to the cam radius through the roller), or None: the a0 minimizing the largest
+      |alpha|. The lift program is the arm rotation (rad);
+    - ``"oscillating_flat"``: ``pivot_distance_ratio`` d / r_b (> 1, default 2; no "best": the radii
+      only grow as the pivot nears the cam), ``face_offset`` (m), ``turn``. Lift in rad.
+
+    The pivot is put at (d, 0): where it sits round the cam only turns the cam. Raises ValueError when
+    even ``upper`` does not meet the limits."""
     for name, v in (("max_pressure_angle", max_pressure_angle), ("upper", upper), ("tolerance", tolerance)):
         if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
             raise ValueError(f"{name} must be finite and > 0, got {v!r}")
@@ -92,26 +165,54 @@ def smallest_base_radius(program: MotionProgram, follower: str = "translating_ro
         raise ValueError(f"max_pressure_angle must be < pi/2 rad (90 deg), got {max_pressure_angle}")
     if not (math.isfinite(min_surface_radius) and min_surface_radius >= 0):
         raise ValueError(f"min_surface_radius must be finite and >= 0 m, got {min_surface_radius!r}")
-    if follower == "translating_roller":
+    if follower not in KINDS:
+        raise ValueError(f"follower must be one of {', '.join(repr(k) for k in KINDS)}, got {follower!r}")
+    if follower.endswith("roller"):
         if roller_radius is None or not (math.isfinite(roller_radius) and roller_radius > 0):
-            raise ValueError(f"roller_radius must be finite and > 0 m for a translating roller, got {roller_radius!r}")
-    elif offset is None:
-        raise ValueError("offset=None (best offset) applies to the translating roller only")
+            raise ValueError(f"roller_radius must be finite and > 0 m for a {follower.replace('_', ' ')}, "
+                             f"got {roller_radius!r}")
+    if follower.startswith("translating"):
+        if offset is None and follower != "translating_roller":
+            raise ValueError("offset=None (best offset) applies to the translating roller only")
+        variable = offset
+    else:
+        if turn not in ("counter_clockwise", "clockwise"):
+            raise ValueError(f"turn must be 'counter_clockwise' or 'clockwise', got {turn!r}")
+        if follower == "oscillating_roller":
+            arm_length = _positive("arm_length", arm_length, "m for an oscillating roller")
+            if dwell_pressure_angle is not None and not (
+                    math.isfinite(dwell_pressure_angle) and abs(dwell_pressure_angle) < math.pi / 2):
+                raise ValueError(f"dwell_pressure_angle must be None or finite with |value| < pi/2 rad, "
+                                 f"got {dwell_pressure_angle!r}")
+            variable = dwell_pressure_angle
+        else:
+            if pivot_distance_ratio is None:
+                raise ValueError("pivot_distance_ratio=None (best) is not offered for the oscillating flat face: its "
+                                 "smallest surface radius only grows as the pivot approaches the cam, so the 'best' "
+                                 "pivot would touch the base circle; choose the ratio from the layout")
+            if not (isinstance(pivot_distance_ratio, (int, float)) and math.isfinite(pivot_distance_ratio)
+                    and pivot_distance_ratio > 1):
+                raise ValueError(f"pivot_distance_ratio (|pivot| / base_radius) must be finite and > 1, "
+                                 f"got {pivot_distance_ratio!r}")
+            if not math.isfinite(face_offset):
+                raise ValueError(f"face_offset must be finite (m), got {face_offset!r}")
+            variable = pivot_distance_ratio
+    design = _Design(follower, roller_radius, arm_length, float(face_offset), turn)
 
     def measure(rb):
-        e = _best_offset(program, follower, rb, roller_radius, tolerance) if offset is None else offset
-        if follower == "translating_roller" and abs(e) >= rb + roller_radius:
-            return None, e
-        return _evaluate(program, follower, rb, roller_radius, e), e
+        v = _best_variable(program, design, rb, tolerance) if variable is None else variable
+        if follower == "translating_roller" and abs(v) >= rb + roller_radius:
+            return None, v
+        return _evaluate(program, design, rb, v), v
 
     def ok(rb):
-        r, e = measure(rb)
+        r, v = measure(rb)
         if r is None:
-            return False, e, r
-        alpha_ok = follower != "translating_roller" or r[0] <= max_pressure_angle
-        return alpha_ok and r[3] >= min_surface_radius, e, r
+            return False, v, r
+        alpha_ok = follower == "translating_flat" or r[0] <= max_pressure_angle
+        return alpha_ok and r[3] >= min_surface_radius, v, r
 
-    good, e_up, r_up = ok(upper)
+    good, _, _ = ok(upper)
     if not good:
         raise ValueError(f"no base radius up to upper = {upper} m meets the limits (max_pressure_angle = "
                          f"{math.degrees(max_pressure_angle):.3g} deg, min_surface_radius = {min_surface_radius} m)")
@@ -122,15 +223,21 @@ def smallest_base_radius(program: MotionProgram, follower: str = "translating_ro
             hi = mid
         else:
             lo = mid
-    _, e, r = ok(hi)
+    _, v, r = ok(hi)
     # Which limit binds: the one that fails just below the answer.
     below, _ = measure(max(hi - 2 * tolerance, tolerance))
     if below is None or below[3] < min_surface_radius:
         binding = "radius of curvature"
     else:
         binding = "pressure angle"
-    return Sizing(base_radius=hi, offset=e, max_pressure_angle=r[2], max_pressure_angle_at=r[1],
-                  min_surface_radius=r[3], min_surface_radius_at=r[4], binding=binding)
+    extra = {}
+    if follower.startswith("oscillating"):
+        extra = dict(pivot_distance=design.pivot_distance(hi, v))
+        if follower == "oscillating_roller":
+            extra.update(arm_length=arm_length, dwell_pressure_angle=v)
+    return Sizing(base_radius=hi, offset=v if follower.startswith("translating") else 0.0,
+                  max_pressure_angle=r[2], max_pressure_angle_at=r[1], min_surface_radius=r[3],
+                  min_surface_radius_at=r[4], binding=binding, **extra)
 
 
 def roller_size_check(program: MotionProgram, base_radius: float, roller_radius: float, offset: float = 0.0) -> dict:

@@ -278,27 +278,27 @@ def write_csv(path: Path, header: list[str], columns) -> None:
 
 
 def plot_kinematics(cam: DiskCam, rpm: float, path: Path) -> None:
+    """SVAJ at the study's speed, pressure angle and surface curvature, and the cam profile, drawn by
+    camfollower.plot for the study's follower (a TranslatingRoller with the cam's geometry; its cam
+    frame is the x <-> y mirror of DiskCam's, docs/followers.md)."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    omega = rpm * 2 * math.pi / 60
-    theta = np.linspace(0, 2 * math.pi, 3601)
-    p = cam.profile(theta)
-    h = cam.program.evaluate(theta)
-    deg = np.degrees(theta)
-    fig = plt.figure(figsize=(11, 7))
-    ax = [fig.add_subplot(2, 3, i) for i in (1, 2, 4, 5)] + [fig.add_subplot(1, 3, 3)]
-    ax[0].plot(deg, 1e3 * h["h"]), ax[0].set_ylabel("lift h (mm)")
-    ax[1].plot(deg, omega * h["dh"]), ax[1].set_ylabel("follower velocity (m/s)")
-    ax[2].plot(deg, omega**2 * h["d2h"]), ax[2].set_ylabel("follower acceleration (m/s²)")
-    ax[3].plot(deg, np.degrees(p["pressure_angle"])), ax[3].set_ylabel("pressure angle (deg)")
-    for a in ax[:4]:
-        a.set_xlabel("cam angle θ (deg)"), a.set_xlim(0, 360), a.grid(alpha=0.3)
-    ax[4].plot(1e3 * p["surface_x"], 1e3 * p["surface_y"], label="cam surface")
-    ax[4].plot(1e3 * p["pitch_x"], 1e3 * p["pitch_y"], "--", label="pitch curve")
-    ax[4].set_aspect("equal"), ax[4].set_xlabel("x (mm)"), ax[4].set_ylabel("y (mm)"), ax[4].legend()
+    from . import TranslatingRoller
+    from . import plot as cfplot
+
+    follower = TranslatingRoller(cam.base_radius, cam.roller_radius, cam.offset)
+    fig = plt.figure(figsize=(14, 8))
+    grid = fig.add_gridspec(4, 3)
+    svaj_axes = [fig.add_subplot(grid[0, 0])]
+    svaj_axes += [fig.add_subplot(grid[i, 0], sharex=svaj_axes[0]) for i in (1, 2, 3)]
+    geometry_axes = [fig.add_subplot(grid[0:2, 1])]
+    geometry_axes.append(fig.add_subplot(grid[2:4, 1], sharex=geometry_axes[0]))
+    cfplot.svaj(cam.program, rpm=rpm, axes=svaj_axes)
+    cfplot.pressure_angle_and_curvature(follower, cam.program, axes=geometry_axes)
+    cfplot.profile(follower, cam.program, ax=fig.add_subplot(grid[:, 2]))
     fig.suptitle(f"Paper cam kinematics at {rpm:g} rpm (modified trapezoid, e = {1e3 * cam.offset:g} mm)")
     fig.tight_layout()
     fig.savefig(path, dpi=110)
