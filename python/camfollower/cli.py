@@ -4,46 +4,36 @@ Reads a config (docs/config.md), simulates it, and writes into DIR: the recorded
 (``run.csv``), per contact its SVAJ diagram, the cam profile, pressure angle and
 curvature, simulated against rigid follower acceleration, contact force with contact loss shaded and
 the force's spectrum, and ``summary.json`` (written last). Every file is written to a temporary name
-and renamed, so a failed run leaves no half-written file.
+and renamed (the library's atomic writer), so a failed run leaves no half-written file.
 """
 
 from __future__ import annotations
 
 import argparse
+import io
 import json
 import math
-import os
 import sys
-import tempfile
 from pathlib import Path
 
 import numpy as np
 
+from . import _core
 from .config import load_config
 
 
-def _replace_atomically(path: Path, write) -> None:
-    """write(tmp_path) then rename onto `path`; the temporary is removed on any error."""
-    if path.exists() and not path.is_file():
-        raise ValueError(f"output '{path}' exists and is not a regular file")
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    os.close(fd)
-    try:
-        write(tmp)
-        os.replace(tmp, path)
-    except BaseException:
-        try:
-            os.unlink(tmp)
-        except FileNotFoundError:
-            pass
-        raise
+def _write(path: Path, content: bytes) -> None:
+    """The library's one atomic writer: a temporary in the same folder, then a rename."""
+    _core.write_file_atomically(str(path), content)
 
 
 def _save(fig, path: Path) -> None:
     import matplotlib.pyplot as plt
 
-    _replace_atomically(path, lambda tmp: fig.savefig(tmp, dpi=110, format="png"))
+    buffer = io.BytesIO()
+    fig.savefig(buffer, dpi=110, format="png")
     plt.close(fig)
+    _write(path, buffer.getvalue())
 
 
 def figures(config: str, out: str) -> dict:
@@ -63,8 +53,9 @@ def figures(config: str, out: str) -> dict:
     result = case.run()
     names = result.channels
     data = np.column_stack([np.asarray(result[n]) for n in names])
-    _replace_atomically(folder / "run.csv",
-                        lambda tmp: np.savetxt(tmp, data, delimiter=",", header=",".join(names), comments="", fmt="%.12g"))
+    table = io.StringIO()
+    np.savetxt(table, data, delimiter=",", header=",".join(names), comments="", fmt="%.12g")
+    _write(folder / "run.csv", table.getvalue().encode())
     written = ["run.csv"]
     contacts = case.builder.__getstate__()["contacts"]
     summary = {"config": str(case.path), "camshaft_speed_rpm": rpm, "rows": result.rows,
@@ -98,7 +89,7 @@ def figures(config: str, out: str) -> dict:
         }
     summary["files"] = written + ["summary.json"]
     text = json.dumps(summary, indent=2) + "\n"
-    _replace_atomically(folder / "summary.json", lambda tmp: Path(tmp).write_text(text))
+    _write(folder / "summary.json", text.encode())
     return summary
 
 
