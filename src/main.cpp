@@ -3,6 +3,8 @@
 //   camfollower kinematics [CONFIG] [--rpm RPM]   per contact: pressure angle, curvature, lift, acceleration
 //   camfollower modes [CONFIG] [--theta DEG]      natural frequencies, contacts linearized at a cam angle
 //   camfollower run CONFIG [-o FILE]              simulate the case, CSV of every recorded channel
+//   camfollower export CONFIG -o FILE [--contact NAME] [--unit mm] [--cutter-radius R] [--points N]
+//                                                 cam surface (and cutter path) for manufacturing, CSV
 #include <cmath>
 #include <cstdio>
 #include <exception>
@@ -13,6 +15,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "camfollower/camfollower.hpp"
+#include "camfollower/geometry/export.hpp"
 #include "config/case_config.hpp"
 #include "output_file.hpp"
 
@@ -132,6 +135,26 @@ int run(const std::string& config, std::string output) {
     return 0;
 }
 
+int export_cam(const std::string& config, const std::string& output, std::string contact, const std::string& unit_name,
+               double cutter_radius, std::size_t points) {
+    const cf::config::CaseConfig c = cf::config::load_case(config);
+    cf::cli::refuse_overwriting(output, config);
+    const cf::LengthUnit unit = cf::length_unit_from_name(unit_name);
+    if (contact.empty() && !c.mechanism.contacts.empty()) contact = c.mechanism.contacts.front().name;
+    std::string known;
+    for (const cf::ContactPairSpec& p : c.mechanism.contacts) {
+        known += (known.empty() ? "" : ", ") + p.name;
+        if (p.name != contact) continue;
+        std::optional<double> cutter;
+        if (cutter_radius > 0.0) cutter = cutter_radius * cf::length_unit_spec(unit).metres;
+        std::visit([&](const auto& f) { cf::write_cam_csv(output, f, p.program, points, cutter, unit); }, p.follower);
+        std::printf("contact '%s': %zu points of the cam surface%s in %s -> %s\n", p.name.c_str(), points,
+                    cutter ? " and the cutter-centre path" : "", unit_name.c_str(), output.c_str());
+        return 0;
+    }
+    cf::detail::fail("--contact: no contact named '", contact, "'; the config defines: ", known.empty() ? "none" : known);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -152,6 +175,19 @@ int main(int argc, char** argv) {
     runc->add_option("config", config, "config file")->required()->check(CLI::ExistingFile);
     runc->add_option("-o,--output", output, "CSV file (default: the config's [output] file)");
 
+    CLI::App* exp = app.add_subcommand("export", "Cam surface (and cutter-centre path) of one contact's cam for manufacturing, as CSV "
+                                                  "with units, rotation direction and zero mark in its header");
+    std::string contact, unit = "mm";
+    double cutter_radius = 0.0;
+    std::size_t points = 3600;
+    exp->add_option("config", config, "config file")->required()->check(CLI::ExistingFile);
+    exp->add_option("-o,--output", output, "CSV file")->required();
+    exp->add_option("--contact", contact, "contact whose cam to export (default: the first)");
+    exp->add_option("--unit", unit, "length unit of the file")->check(CLI::IsMember({"m", "mm", "um", "inch"}))->capture_default_str();
+    exp->add_option("--cutter-radius", cutter_radius, "radius of the milling cutter or grinding wheel, in --unit (0: no cutter path)")
+        ->check(CLI::NonNegativeNumber);
+    exp->add_option("--points", points, "points round the cam")->check(CLI::Range(8, 10000000))->capture_default_str();
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -161,6 +197,7 @@ int main(int argc, char** argv) {
         if (*kin) return kinematics(config, rpm);
         if (*mod) return modes(config, theta_deg);
         if (*runc) return run(config, output);
+        if (*exp) return export_cam(config, output, contact, unit, cutter_radius, points);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "camfollower: error: %s\n", e.what());
         return 1;

@@ -63,7 +63,7 @@ LiftDimension dimension_of(const std::string& unit) {
 }
 
 const char* dimension_name(LiftDimension d) {
-    return d == LiftDimension::angle ? "an arm angle (rad, deg)" : d == LiftDimension::length ? "a length (m, mm, um, in)" : "unstated";
+    return d == LiftDimension::angle ? "an arm angle (rad, deg)" : d == LiftDimension::length ? "a length (m, mm, um, inch)" : "unstated";
 }
 
 // Records the dimension of each lift value read and refuses a program that mixes them.

@@ -5,12 +5,26 @@
 
 #include "camfollower/error.hpp"
 #include "camfollower/motion/program.hpp"  // pi, two_pi
+#include "camfollower/units.hpp"
 
 namespace camfollower::config {
 
+namespace {
+
+// Length units from the library's one table (camfollower/units.hpp), plus the micro sign as an alias.
+std::vector<UnitFactor> lengths(bool with_angles) {
+    std::vector<UnitFactor> out;
+    for (const LengthUnitSpec& u : length_units()) out.push_back({u.name, u.metres});
+    out.push_back({"µm", 1e-6});
+    if (with_angles) out.insert(out.end(), {{"rad", 1.0}, {"deg", pi / 180.0}});
+    return out;
+}
+
+}  // namespace
+
 const QuantityKind& quantity_kind(std::string_view si) {
     static const std::map<std::string, QuantityKind, std::less<>> table{
-        {"m", {"m", {{"m", 1.0}, {"mm", 1e-3}, {"um", 1e-6}, {"µm", 1e-6}, {"in", 0.0254}}}},
+        {"m", {"m", lengths(false)}},
         {"kg", {"kg", {{"kg", 1.0}, {"g", 1e-3}, {"kg m^2", 1.0}, {"kg mm^2", 1e-6}}}},  // mass or inertia of a DOF
         {"N", {"N", {{"N", 1.0}, {"kN", 1e3}}}},
         {"N/m", {"N/m", {{"N/m", 1.0}, {"N/mm", 1e3}, {"N/um", 1e6}, {"N m/rad", 1.0}}}},
@@ -21,7 +35,7 @@ const QuantityKind& quantity_kind(std::string_view si) {
         {"m/s^2", {"m/s^2", {{"m/s^2", 1.0}, {"g", 9.80665}}}},
         {"rpm", {"rpm", {{"rpm", 1.0}, {"rad/s", 60.0 / two_pi}, {"Hz", 60.0}}}},
         // A motion program's lift: a length (translating followers) or an arm angle (oscillating).
-        {"lift", {"m or rad", {{"m", 1.0}, {"mm", 1e-3}, {"um", 1e-6}, {"µm", 1e-6}, {"in", 0.0254}, {"rad", 1.0}, {"deg", pi / 180.0}}}},
+        {"lift", {"m or rad", lengths(true)}},
         {"rad", {"rad", {{"rad", 1.0}, {"deg", pi / 180.0}}}},
         {"s", {"s", {{"s", 1.0}, {"ms", 1e-3}, {"us", 1e-6}}}},
         {"-", {"-", {}}},

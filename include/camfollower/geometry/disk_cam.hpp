@@ -20,13 +20,14 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
+#include <sstream>
 #include <limits>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "camfollower/detail/atomic_file.hpp"
 #include "camfollower/detail/extremum.hpp"
 #include "camfollower/error.hpp"
 #include "camfollower/motion/program.hpp"
@@ -180,24 +181,16 @@ public:
     }
     std::vector<ProfilePoint> sample(std::size_t n) const { return sample(n, geometry_.offset); }
 
-    // Cam surface as a CSV point list for manufacturing: theta_rad,x_m,y_m (cam frame), closed.
-    // Written to a temporary name, then renamed, so a failed write leaves nothing half-done.
+    // Cam surface as a CSV point list: theta_rad,x_m,y_m (cam frame), closed; written atomically
+    // (detail/atomic_file.hpp). For manufacturing (units, cutter path, rotation and zero mark in the
+    // header) use geometry/export.hpp.
     void write_surface_csv(const std::string& path, std::size_t n = 3600) const {
         const std::vector<ProfilePoint> points = sample(n);
-        const std::string tmp = path + ".tmp";
-        {
-            std::ofstream out(tmp);
-            if (!out) detail::fail("path: cannot open '", path, "' for writing");
-            out.precision(17);
-            out << "theta_rad,x_m,y_m\n";
-            for (const ProfilePoint& p : points)
-                out << p.theta << ',' << p.surface.x() << ',' << p.surface.y() << '\n';
-            if (!out.flush()) detail::fail("path: writing '", path, "' failed");
-        }
-        if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-            std::remove(tmp.c_str());
-            detail::fail("path: cannot rename the temporary file to '", path, "'");
-        }
+        std::ostringstream out;
+        out.precision(17);
+        out << "theta_rad,x_m,y_m\n";
+        for (const ProfilePoint& p : points) out << p.theta << ',' << p.surface.x() << ',' << p.surface.y() << '\n';
+        detail::write_file_atomically(path, out.str(), "path");
     }
 
 private:
