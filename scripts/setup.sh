@@ -2,13 +2,13 @@
 # Install what this machine lacks, then build and install the Python package into .venv.
 # Used by scripts/study.sh (`setup.sh study`: what the study needs), scripts/test.sh and
 # scripts/bench.sh (`setup.sh test`: everything). Safe to run again: it skips what is done.
-#   Debian packages: compilers, CMake, Ninja, Eigen 3.4, SuiteSparse, Catch2 v2, Google Benchmark.
-#   PyPI (into .venv): numpy, matplotlib, pybind11, scikit-build-core; for tests also scipy, pytest, sympy.
+#   Debian packages: compilers, CMake, Ninja, Eigen 3.4, SuiteSparse, toml++, CLI11, Catch2 v2, Google Benchmark.
+#   PyPI (into .venv): numpy, matplotlib, pybind11, scikit-build-core; for tests also scipy, pytest, sympy, ezdxf.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 mode=${1:-test}
 
-apt_packages=(build-essential cmake ninja-build libeigen3-dev libsuitesparse-dev catch2 libbenchmark-dev
+apt_packages=(build-essential cmake ninja-build libeigen3-dev libsuitesparse-dev libtomlplusplus-dev libcli11-dev catch2 libbenchmark-dev
               python3 python3-dev python3-venv)
 missing=()
 for p in "${apt_packages[@]}"; do
@@ -35,7 +35,7 @@ need() {  # need MODULE... : pip-install the given packages unless all modules i
   fi
 }
 need "numpy, matplotlib, pybind11, scikit_build_core" numpy matplotlib "pybind11>=2.12" "scikit-build-core>=0.10"
-[ "$mode" = study ] || need "scipy, pytest, sympy" scipy pytest sympy
+[ "$mode" = study ] || need "scipy, pytest, sympy, ezdxf" scipy pytest sympy ezdxf
 
 # Rebuild the package only when its sources changed.
 stamp=$(cat pyproject.toml CMakeLists.txt cmake/* $(find include python -type f \( -name '*.hpp' -o -name '*.cpp' -o -name '*.py' -o -name '*.txt' -o -name '*.pyi' \) | sort) | sha256sum | cut -c1-16)
