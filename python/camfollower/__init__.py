@@ -13,8 +13,10 @@ import numpy as _numpy  # noqa: F401  (imported here, not lazily inside the firs
 
 from ._core import (
     ArmTurn,
+    BoundaryContinuity,
     CamEccentricity,
     CamFollowerModel,
+    ContinuityReport,
     Defects,
     DiskCam,
     Elastic,
@@ -32,14 +34,18 @@ from ._core import (
     TranslatingFlat,
     TranslatingRoller,
 )
-from . import presets
+from . import export, motion, presets
+from .config import Config, config_from_dict, load_config
 from .results import Result
 from .simulation import simulate
 
 __all__ = [
     "ArmTurn",
+    "BoundaryContinuity",
     "CamEccentricity",
     "CamFollowerModel",
+    "Config",
+    "ContinuityReport",
     "Defects",
     "DiskCam",
     "Elastic",
@@ -57,6 +63,10 @@ __all__ = [
     "Segment",
     "TranslatingFlat",
     "TranslatingRoller",
+    "config_from_dict",
+    "export",
+    "load_config",
+    "motion",
     "presets",
     "simulate",
 ]

@@ -194,7 +194,7 @@ TEST_CASE("CSV export writes a closed point list in metres") {
     CHECK(std::hypot(x0, y0) == Approx(0.030).epsilon(1e-12));
     std::remove(path.c_str());
     CHECK_THROWS_WITH(DiskCam::paper_default().write_surface_csv("/nonexistent-dir/x.csv"),
-                      Catch::Contains("path: cannot open"));
+                      Catch::Contains("path: cannot create a temporary file in '/nonexistent-dir'"));
 }
 
 TEST_CASE("bad geometry is rejected with the parameter and range named") {

@@ -8,13 +8,26 @@
 //   [(1-d)/2, 1/2]     A = Ca cos(pi (x - (1-d)/2) / d)  half of a cosine falling through zero
 // and A(1 - x) = -A(x) beyond 1/2. b = 1/4, d = 1/4 is the modified trapezoid, b = 1/4, d = 3/4 the
 // modified sine, b = d = 1/2 cycloidal, d = 1 simple harmonic, c = 1 constant acceleration.
+//
+// Custom laws (LawKind::spline, LawKind::polynomial) carry a user-defined lift in physical units, shared
+// and immutable (a lift table as a B-spline, lift_spline.hpp; a polynomial from boundary conditions,
+// lift_polynomial.hpp). They are evaluated relative to their segment's start with evaluate_lift(u)
+// (m, m/rad^k): their net lift may be zero, so the normalized S(0) = 0, S(1) = 1 form does not apply
+// in general. evaluate(x) and peaks() still give the normalized form S = (h - h_start) / lift when the
+// net lift is not zero.
 #pragma once
 
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <string>
+#include <utility>
 
 #include "camfollower/error.hpp"
+#include "camfollower/motion/follower_motion.hpp"
+#include "camfollower/motion/lift_peaks.hpp"
+#include "camfollower/motion/lift_polynomial.hpp"
+#include "camfollower/motion/lift_spline.hpp"
 
 namespace camfollower {
 
@@ -37,7 +50,9 @@ enum class LawKind {
     sine_constant_cosine,
     polynomial_345,
     polynomial_4567,
-    constant_acceleration
+    constant_acceleration,
+    spline,     // a lift table as a B-spline (LiftSpline)
+    polynomial  // a polynomial from boundary conditions (LiftPolynomial)
 };
 
 class MotionLaw {
@@ -73,7 +88,49 @@ public:
         return law;
     }
 
+    // A user-defined lift: a spline (a segment's, or a periodic one spanning a whole program).
+    static MotionLaw from_spline(std::shared_ptr<const LiftSpline> spline) {
+        if (!spline) detail::fail("spline must not be null");
+        MotionLaw law(LawKind::spline);
+        law.spline_ = std::move(spline);
+        return law;
+    }
+    static MotionLaw from_polynomial(std::shared_ptr<const LiftPolynomial> polynomial) {
+        if (!polynomial) detail::fail("polynomial must not be null");
+        MotionLaw law(LawKind::polynomial);
+        law.polynomial_ = std::move(polynomial);
+        return law;
+    }
+
     LawKind kind() const { return kind_; }
+    bool is_custom() const { return kind_ >= LawKind::spline; }  // custom kinds come last
+    // The custom lift's data; nullptr for other kinds.
+    const LiftSpline* spline() const { return spline_.get(); }
+    const LiftPolynomial* polynomial() const { return polynomial_.get(); }
+    // A custom law's own span (rad) and net lift h(end) - h(start) (m): its segment must match them.
+    double custom_span() const { return spline_ ? spline_->span() : polynomial_ ? polynomial_->span() : 0.0; }
+    double custom_lift() const { return spline_ ? spline_->net_lift() : polynomial_ ? polynomial_->net_lift() : 0.0; }
+
+    // A custom law's lift relative to its segment's start, h(theta_start + u) - h(theta_start), and its
+    // derivatives (m, m/rad^k), u in [0, custom_span()].
+    FollowerMotion evaluate_lift(double u) const {
+        if (spline_) return spline_->relative(u);
+        if (polynomial_) return polynomial_->relative(u);
+        detail::fail("evaluate_lift is for spline and polynomial laws; ", name(),
+                     " is normalized: use evaluate(x) scaled by the segment's lift and span");
+    }
+
+    // A custom law's peaks of |h'|, |h''|, |h'''| (m/rad^k), each angle as an offset from the segment
+    // start (rad); computed once when the law is built.
+    LiftPeaks lift_peaks() const {
+        if (!is_custom())
+            detail::fail("lift_peaks is for spline and polynomial laws; for ", name(),
+                         " use peaks() (C_v, C_a, C_j) times lift / span^k");
+        LiftPeaks p = spline_ ? spline_->peaks() : polynomial_->peaks();
+        const double origin = spline_ ? spline_->origin() : polynomial_->origin();
+        for (LiftPeak* q : {&p.velocity, &p.acceleration, &p.jerk}) q->theta -= origin;
+        return p;
+    }
     double b() const { return b_; }
     double c() const { return c_; }
     double d() const { return d_; }
@@ -89,6 +146,8 @@ public:
             case LawKind::constant_acceleration: return "constant_acceleration";
             case LawKind::sine_constant_cosine:
                 return detail::concat("sine_constant_cosine(b=", b_, ", c=", c_, ", d=", d_, ")");
+            case LawKind::spline: return spline_->name();
+            case LawKind::polynomial: return polynomial_->name();
         }
         return "unknown";
     }
@@ -127,11 +186,15 @@ public:
                     const LawValue m = scc_first_half(1.0 - x);
                     return {1.0 - m.S, m.V, -m.A, m.J};
                 }
+            case LawKind::spline:
+            case LawKind::polynomial: return custom_normalized(x);
         }
         return {0.0, 0.0, 0.0, 0.0};
     }
 
-    // Peaks from the closed-form location of each extremum.
+    // Peaks from the closed-form location of each extremum. A custom law's come from its numerical
+    // lift_peaks() in the normalized form: C_v = max|h'| beta / |L|, C_a = max|h''| beta^2 / |L|,
+    // C_j = max|h'''| beta^3 / |L| (beta its span, L its net lift; +inf when L = 0 and the peak is not).
     PeakCoefficients peaks() const {
         const double inf = std::numeric_limits<double>::infinity();
         switch (kind_) {
@@ -156,22 +219,54 @@ public:
                 }
                 return {cv, ca_, cj};
             }
+            case LawKind::spline:
+            case LawKind::polynomial: {
+                const LiftPeaks p = lift_peaks();
+                const double beta = custom_span(), lift = std::abs(custom_lift());
+                const auto normalized = [&](double peak, int power) {
+                    if (peak == 0.0) return 0.0;
+                    return lift > 0.0 ? peak * std::pow(beta, power) / lift : inf;
+                };
+                return {normalized(p.velocity.value, 1), normalized(p.acceleration.value, 2),
+                        normalized(p.jerk.value, 3)};
+            }
         }
         return {0.0, 0.0, 0.0};
     }
 
-    // Whether S, V and A are continuous at both ends (A(0) = A(1) = 0 and the law itself C2).
+    // Whether S, V and A are continuous at both ends (A(0) = A(1) = 0 and the law itself C2). A custom
+    // law: C2 inside (a spline of degree >= 3, any polynomial) and |h''| at both ends within 1e-9 of its
+    // scale max(peak |h''|, |L| / beta^2).
     bool has_zero_end_acceleration() const {
         switch (kind_) {
             case LawKind::simple_harmonic:
             case LawKind::constant_acceleration: return false;
             case LawKind::sine_constant_cosine: return b_ > 0.0;
+            case LawKind::spline:
+            case LawKind::polynomial: {
+                if (spline_ && spline_->degree() < 3) return false;
+                const double beta = custom_span();
+                const double scale =
+                    std::fmax(lift_peaks().acceleration.value, std::abs(custom_lift()) / (beta * beta));
+                const double tolerance = 1e-9 * scale;
+                return std::abs(evaluate_lift(0.0).d2h) <= tolerance &&
+                       std::abs(evaluate_lift(beta).d2h) <= tolerance;
+            }
             default: return true;
         }
     }
 
 private:
     explicit MotionLaw(LawKind kind) : kind_(kind) {}
+
+    LawValue custom_normalized(double x) const {
+        const double beta = custom_span(), lift = custom_lift();
+        if (lift == 0.0)
+            detail::fail("evaluate(x): the ", name(), " law gains no net lift, so it has no normalized form S(x); ",
+                         "use evaluate_lift (m, m/rad^k)");
+        const FollowerMotion m = evaluate_lift(x * beta);
+        return {m.h / lift, m.dh * beta / lift, m.d2h * beta * beta / lift, m.d3h * beta * beta * beta / lift};
+    }
 
     LawValue scc_first_half(double x) const {
         const double x1 = b_ / 2.0, x2 = (1.0 - d_) / 2.0;
@@ -193,6 +288,8 @@ private:
     LawKind kind_;
     double b_ = 0.0, c_ = 0.0, d_ = 0.0;
     double ca_ = 0.0, s1_ = 0.0, v1_ = 0.0, s2_ = 0.0, v2_ = 0.0;
+    std::shared_ptr<const LiftSpline> spline_;          // LawKind::spline only
+    std::shared_ptr<const LiftPolynomial> polynomial_;  // LawKind::polynomial only
 };
 
 }  // namespace camfollower

@@ -1,19 +1,28 @@
 // A cam motion program: segments that tile one revolution, giving the follower lift h(theta) and its
 // derivatives with respect to the cam angle (m, m/rad, m/rad^2, m/rad^3). Periodic in theta.
 // The program may carry the cam's manufacturing error (profile_error.hpp), added to the design lift.
+// Segments carry a built-in normalized law, or a user-defined lift: a table as a B-spline
+// (Segment::from_table, or MotionProgram::from_table for a whole periodic program) or a polynomial
+// from boundary conditions (Segment::polynomial). continuity() reports the jumps at the boundaries.
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <limits>
 #include <memory>
+#include <string>
 #include <utility>
 #include <vector>
 
 #include "camfollower/detail/extremum.hpp"
 #include "camfollower/error.hpp"
+#include "camfollower/motion/continuity.hpp"
+#include "camfollower/motion/follower_motion.hpp"
 #include "camfollower/motion/laws.hpp"
+#include "camfollower/motion/lift_polynomial.hpp"
+#include "camfollower/motion/lift_spline.hpp"
 #include "camfollower/motion/profile_error.hpp"
 
 namespace camfollower {
@@ -31,14 +40,42 @@ struct Segment {
 
     double span() const { return theta_end - theta_start; }
     double lift() const { return h_end - h_start; }
-};
 
-// Lift and its cam-angle derivatives at one theta.
-struct FollowerMotion {
-    double h;    // m
-    double dh;   // m/rad
-    double d2h;  // m/rad^2
-    double d3h;  // m/rad^3
+    // A lift table as one segment, a B-spline (lift_spline.hpp): theta absolute (rad, strictly
+    // increasing), the segment spans [theta.front(), theta.back()] from h.front() to h.back() (m). The
+    // end values and the end derivatives h', h'', ... (m/rad^k, up to degree - 1 per end) are imposed;
+    // an empty list means zeros up to degree - 1, so the segment meets a dwell C^(degree-1).
+    static Segment from_table(std::vector<double> theta, std::vector<double> h, const SplineOptions& options = {},
+                              std::vector<double> start_derivatives = {}, std::vector<double> end_derivatives = {}) {
+        auto spline = std::make_shared<const LiftSpline>(LiftSpline::segment(
+            std::move(theta), std::move(h), options, std::move(start_derivatives), std::move(end_derivatives)));
+        const double a = spline->theta().front(), b = spline->theta().back();
+        const double h0 = spline->h().front(), h1 = spline->h().back();
+        return Segment{MotionLaw::from_spline(std::move(spline)), a, b, h0, h1};
+    }
+
+    // The polynomial meeting start = {h, h', h'', ...} at theta_start, end likewise at theta_end (m,
+    // m/rad^k; at least h each) and passing through the interior (theta, h) points (lift_polynomial.hpp).
+    // Degree = number of conditions - 1: {h0, 0, 0} / {h1, 0, 0} gives the 3-4-5 polynomial.
+    static Segment polynomial(double theta_start, double theta_end, std::vector<double> start,
+                              std::vector<double> end, std::vector<std::pair<double, double>> interior = {}) {
+        auto law = std::make_shared<const LiftPolynomial>(LiftPolynomial::from_conditions(
+            theta_start, theta_end, std::move(start), std::move(end), std::move(interior)));
+        const double h0 = law->start().front(), h1 = law->end().front();
+        return Segment{MotionLaw::from_polynomial(std::move(law)), theta_start, theta_end, h0, h1};
+    }
+
+    // The design lift at theta in [theta_start, theta_end] (rad), whatever the law.
+    FollowerMotion lift_at(double theta) const {
+        if (!law.is_custom()) {  // the built-in fast path: a normalized law scaled by the segment
+            const double beta = span(), dh = lift();
+            const LawValue v = law.evaluate((theta - theta_start) / beta);
+            return {h_start + dh * v.S, dh * v.V / beta, dh * v.A / (beta * beta), dh * v.J / (beta * beta * beta)};
+        }
+        FollowerMotion m = law.evaluate_lift(theta - theta_start);
+        m.h += h_start;
+        return m;
+    }
 };
 
 class MotionProgram {
@@ -52,6 +89,17 @@ public:
 
     // Paper Table 1: dwell 0-30 deg, modified-trapezoid rise 30-180 deg by `total_rise` (default
     // 10 mm), dwell 180-210 deg, modified-trapezoid return 210-360 deg.
+    // A whole revolution from a lift table, as one periodic B-spline segment (lift_spline.hpp): theta
+    // strictly increasing in [0, 2 pi) (rad), h (m). The table is NOT closed: the spline joins the last
+    // point to the first one revolution later. A repeated first point at theta[0] + 2 pi with the same h
+    // is accepted and dropped; one with another h is refused.
+    static MotionProgram from_table(std::vector<double> theta, std::vector<double> h,
+                                    const SplineOptions& options = {}) {
+        auto spline = std::make_shared<const LiftSpline>(LiftSpline::periodic(std::move(theta), std::move(h), options));
+        const double h0 = spline->evaluate(0.0).h;
+        return MotionProgram({Segment{MotionLaw::from_spline(std::move(spline)), 0.0, two_pi, h0, h0}});
+    }
+
     static MotionProgram paper_default(double total_rise = 0.010) {
         detail::require_positive(total_rise, "total_rise", "(m)");
         const auto deg = degrees_to_radians;
@@ -75,11 +123,7 @@ public:
     FollowerMotion evaluate(double theta) const {
         if (!std::isfinite(theta)) detail::fail("theta must be finite, got ", theta);
         const double t = wrap(theta);
-        const Segment& s = segments_[segment_index(t)];
-        const double beta = s.span(), dh = s.lift();
-        const LawValue v = s.law.evaluate((t - s.theta_start) / beta);
-        FollowerMotion m{s.h_start + dh * v.S, dh * v.V / beta, dh * v.A / (beta * beta),
-                         dh * v.J / (beta * beta * beta)};
+        FollowerMotion m = segments_[segment_index(t)].lift_at(t);
         if (error_) {
             const LiftError e = error_->evaluate(t);
             m.h += e.e, m.dh += e.de, m.d2h += e.d2e, m.d3h += e.d3e;
@@ -131,9 +175,66 @@ public:
         return out;
     }
 
-    // Largest sampling step (rad) that resolves the profile error; +inf for a design program.
+    // Largest sampling step (rad) that resolves the profile error and the pieces of any spline segment
+    // (a quarter of its shortest piece); +inf for a design program of built-in laws and polynomials.
     double sampling_step() const {
-        return error_ ? error_->sampling_step() : std::numeric_limits<double>::infinity();
+        double step = error_ ? error_->sampling_step() : std::numeric_limits<double>::infinity();
+        for (const Segment& s : segments_)
+            if (const LiftSpline* spline = s.law.spline()) {
+                const std::vector<double>& b = spline->breaks();
+                for (std::size_t i = 0; i + 1 < b.size(); ++i) step = std::min(step, 0.25 * (b[i + 1] - b[i]));
+            }
+        return step;
+    }
+
+    // The jumps of the design lift h, h', h'', h''' at every segment boundary, the wrap at 2 pi included
+    // (the profile error, smooth across them, is left out). A jump in h^(k) counts when it exceeds
+    // 1e-6 of the scale max(stroke / beta_min^k, |left|, |right|) (stroke: max - min lift, beta_min: the
+    // shortest segment).
+    ContinuityReport continuity() const {
+        double beta_min = two_pi;
+        for (const Segment& s : segments_) beta_min = std::min(beta_min, s.span());
+        const double stroke = design_max_lift() - design_min_lift();
+        ContinuityReport report;
+        for (std::size_t i = 0; i < segments_.size(); ++i) {
+            const std::size_t next = (i + 1) % segments_.size();
+            const Segment &a = segments_[i], &b = segments_[next];
+            const FollowerMotion l = a.lift_at(a.theta_end), r = b.lift_at(b.theta_start);
+            BoundaryContinuity c;
+            c.left_segment = i, c.right_segment = next;
+            c.theta = next == 0 ? 0.0 : b.theta_start;
+            c.left = {l.h, l.dh, l.d2h, l.d3h};
+            c.right = {r.h, r.dh, r.d2h, r.d3h};
+            c.continuous_through = 3;
+            for (int k = 3; k >= 0; --k) {
+                const std::size_t q = static_cast<std::size_t>(k);
+                c.jump[q] = c.right[q] - c.left[q];
+                const double scale = std::max({stroke / std::pow(beta_min, k), std::abs(c.left[q]), std::abs(c.right[q])});
+                c.tolerance[q] = 1e-6 * scale;
+                if (!(std::abs(c.jump[q]) <= c.tolerance[q])) c.continuous_through = k - 1;
+            }
+            report.boundaries.push_back(c);
+        }
+        return report;
+    }
+
+    // Throws std::invalid_argument naming the first boundary (segments, angle in degrees) where one of
+    // h .. h^(order) jumps. order in [0, 3]: 0 the lift, 1 velocity, 2 acceleration, 3 jerk.
+    void require_continuity(int order) const {
+        if (order < 0 || order > 3)
+            detail::fail("order must be in [0, 3] (0: h, 1: h', 2: h'', 3: h'''), got ", order);
+        for (const BoundaryContinuity& b : continuity().boundaries) {
+            if (b.continuous_through >= order) continue;
+            const std::size_t k = static_cast<std::size_t>(b.continuous_through + 1);
+            detail::fail("require_continuity(", order, "): at the boundary between segments[", b.left_segment, "] (",
+                         segments_[b.left_segment].law.name(), ") and segments[", b.right_segment, "] (",
+                         segments_[b.right_segment].law.name(), ") at ",
+                         b.right_segment == 0 ? "360 deg (the wrap to 0 deg)"
+                                              : detail::concat(radians_to_degrees(b.theta), " deg"),
+                         ", ", detail::derivative_name(static_cast<int>(k)), " jumps by ", b.jump[k], " (from ",
+                         b.left[k], " to ", b.right[k], "); the lift is continuous there only through order ",
+                         b.continuous_through);
+        }
     }
 
     static double wrap(double theta) {
@@ -162,6 +263,15 @@ private:
                              s.span(), " rad (", radians_to_degrees(s.span()), " deg)");
             if (s.law.is_dwell() && std::abs(s.lift()) > h_scale)
                 detail::fail(at, ": a dwell must have h_end == h_start, got a lift of ", s.lift(), " m");
+            if (s.law.is_custom()) {
+                if (std::abs(s.span() - s.law.custom_span()) > angle_tolerance)
+                    detail::fail(at, ": its ", s.law.name(), " law spans ", radians_to_degrees(s.law.custom_span()),
+                                 " deg but the segment spans ", radians_to_degrees(s.span()),
+                                 " deg (theta_end - theta_start must match the law)");
+                if (std::abs(s.lift() - s.law.custom_lift()) > h_scale)
+                    detail::fail(at, ": its ", s.law.name(), " law lifts by ", s.law.custom_lift(),
+                                 " m but h_end - h_start = ", s.lift(), " m (the segment's levels must match the law)");
+            }
             const double expected_start = i == 0 ? 0.0 : segments_[i - 1].theta_end;
             const double gap = s.theta_start - expected_start;
             if (std::abs(gap) > angle_tolerance)
@@ -195,15 +305,21 @@ private:
         max_lift_ = design_max_lift(), min_lift_ = design_min_lift();
     }
 
+    // Built-in laws stay between their end levels; a custom lift may overshoot them.
     double design_max_lift() const {
         double m = segments_.front().h_start;
-        for (const Segment& s : segments_) m = std::max({m, s.h_start, s.h_end});
+        for (const Segment& s : segments_) m = std::max({m, s.h_start, s.h_end, s.h_start + custom_range(s).second});
         return m;
     }
     double design_min_lift() const {
         double m = segments_.front().h_start;
-        for (const Segment& s : segments_) m = std::min({m, s.h_start, s.h_end});
+        for (const Segment& s : segments_) m = std::min({m, s.h_start, s.h_end, s.h_start + custom_range(s).first});
         return m;
+    }
+    static std::pair<double, double> custom_range(const Segment& s) {
+        if (const LiftSpline* spline = s.law.spline()) return spline->relative_range();
+        if (const LiftPolynomial* polynomial = s.law.polynomial()) return polynomial->relative_range();
+        return {0.0, 0.0};
     }
 
     std::vector<Segment> segments_;
