@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['ArmTurn', 'CamEccentricity', 'CamFollowerModel', 'Defects', 'DiskCam', 'Elastic', 'LineContact', 'Mechanism', 'MechanismBuilder', 'MotionLaw', 'MotionProgram', 'OscillatingFlat', 'OscillatingRoller', 'Parameters', 'PeakCoefficients', 'ProfileError', 'Segment', 'TranslatingFlat', 'TranslatingRoller', 'paper_preset', 'realistic_damping_ratio']
+__all__: list[str] = ['ArmTurn', 'BoundaryContinuity', 'CamEccentricity', 'CamFollowerModel', 'ContinuityReport', 'Defects', 'DiskCam', 'Elastic', 'LineContact', 'Mechanism', 'MechanismBuilder', 'MotionLaw', 'MotionProgram', 'OscillatingFlat', 'OscillatingRoller', 'Parameters', 'PeakCoefficients', 'ProfileError', 'Segment', 'TranslatingFlat', 'TranslatingRoller', 'cam_outline', 'length_units', 'paper_preset', 'realistic_damping_ratio', 'write_cam_csv', 'write_file_atomically']
 class PeakCoefficients:
     """
     Peaks of |V|, |A|, |J| of a normalized law.
@@ -25,6 +25,10 @@ class PeakCoefficients:
 class MotionLaw:
     """
     Normalized motion law S(x) on x in [0, 1], S(0) = 0, S(1) = 1. Build one with a static method (MotionLaw.modified_trapezoid(), ...).
+    A user-defined law (a lift table as a spline, a polynomial from boundary conditions) comes
+    from Segment.from_table / Segment.polynomial / MotionProgram.from_table; it holds its lift in
+    m relative to its segment's start (evaluate_lift), and evaluate/peaks give the normalized
+    form only when its net lift is not zero.
     """
     @staticmethod
     def constant_acceleration() -> MotionLaw:
@@ -55,7 +59,7 @@ class MotionLaw:
         """
         Sine-constant-cosine acceleration family; b + c + d = 1 (fractions of the segment).
         """
-    def __getstate__(self) -> tuple[int, float, float, float]:
+    def __getstate__(self) -> tuple:
         ...
     def __repr__(self) -> str:
         ...
@@ -65,9 +69,24 @@ class MotionLaw:
         """
         S, V, A, J at x (scalar or array, each in [0, 1]) as a dict.
         """
+    def evaluate_lift(self, u: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> dict:
+        """
+        A spline / polynomial law's lift relative to its segment start, h(theta_start + u) - h(theta_start)
+        (m) and its derivatives dh, d2h, d3h (m/rad^k), u in [0, span] rad (scalar or array), as a dict.
+        """
+    def has_zero_end_acceleration(self) -> bool:
+        """
+        Whether S, V, A are continuous at both ends against a dwell (A = 0 at both ends, the law C2).
+        """
+    def lift_peaks(self) -> dict:
+        """
+        A spline / polynomial law's peaks of |h'|, |h''|, |h'''| (m/rad^k) and their angles as offsets from
+        the segment start (rad): {'velocity': {'value', 'theta'}, 'acceleration': ..., 'jerk': ...}.
+        """
     def peaks(self) -> PeakCoefficients:
         """
-        Peak coefficients C_v, C_a, C_j.
+        Peak coefficients C_v, C_a, C_j. For a spline / polynomial law: found numerically, normalized by its
+        span beta and net lift L (C_a = max|h''| beta^2 / |L|; inf when L = 0).
         """
     @property
     def b(self) -> float:
@@ -79,12 +98,42 @@ class MotionLaw:
     def d(self) -> float:
         ...
     @property
+    def definition(self) -> typing.Any:
+        """
+        A spline / polynomial law's defining data as a dict (table, degree, smoothing, end
+        derivatives; or span, end conditions, interior points, coefficients in x); None
+        for a built-in law.
+        """
+    @property
+    def is_custom(self) -> bool:
+        """
+        True for a spline or polynomial law.
+        """
+    @property
     def name(self) -> str:
         ...
 class Segment:
     """
     One segment of a motion program (angles in rad, lifts in m).
     """
+    @staticmethod
+    def from_table(theta: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], h: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], degree: typing.SupportsInt | typing.SupportsIndex = 5, smoothing: typing.SupportsFloat | typing.SupportsIndex = 0.0, start_derivatives: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex] = [], end_derivatives: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex] = []) -> Segment:
+        """
+        A lift table as one segment: a B-spline of odd degree (1, 3, 5 or 7; 5 is C4) through the points
+        (smoothing = 0) or a smoothing spline (smoothing = lambda >= 0, rad^degree: minimizes
+        sum (s(theta_i) - h_i)^2 + lambda * integral (s^(m))^2, m = (degree + 1) / 2). theta absolute
+        (rad, strictly increasing), h in m; the segment spans theta[0]..theta[-1] from h[0] to h[-1].
+        start_derivatives / end_derivatives: h', h'', ... (m/rad^k, up to degree - 1 each) imposed at the
+        ends, as are the end values; empty means zeros up to degree - 1 (joins a dwell C^(degree-1)).
+        """
+    @staticmethod
+    def polynomial(theta_start: typing.SupportsFloat | typing.SupportsIndex, theta_end: typing.SupportsFloat | typing.SupportsIndex, start: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], end: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], interior: collections.abc.Sequence[tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex]] = []) -> Segment:
+        """
+        The polynomial segment meeting start = [h, h', h'', ...] at theta_start and end likewise at theta_end
+        (m, m/rad^k; at least h each) through the interior (theta, h) points (rad strictly inside, m).
+        Degree = number of conditions - 1: ([0, 0, 0], [L, 0, 0]) is the 3-4-5 polynomial. Refuses
+        repeated / outside interior points and ill-conditioned systems (ValueError).
+        """
     def __getstate__(self) -> tuple[MotionLaw, float, float, float, float]:
         ...
     def __init__(self, law: MotionLaw, theta_start: typing.SupportsFloat | typing.SupportsIndex, theta_end: typing.SupportsFloat | typing.SupportsIndex, h_start: typing.SupportsFloat | typing.SupportsIndex, h_end: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -93,6 +142,10 @@ class Segment:
         ...
     def __setstate__(self, arg0: tuple) -> None:
         ...
+    def lift_at(self, theta: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> dict:
+        """
+        The design lift h (m) and dh, d2h, d3h (m/rad^k) at theta in [theta_start, theta_end] (rad), as a dict.
+        """
     @property
     def h_end(self) -> float:
         ...
@@ -167,10 +220,88 @@ class ProfileError:
         """
         The components as dicts: {'kind': 'waviness' | 'dent' | 'fourier', and its parameters}.
         """
+class BoundaryContinuity:
+    """
+    Continuity at one segment boundary: h, h', h'', h''' (m/rad^k) on each side,
+    their jumps (right - left), the tolerances and the order through which the lift
+    is continuous (-1: h jumps, ..., 3: C3 at least).
+    """
+    def __repr__(self) -> str:
+        ...
+    @property
+    def continuous_through(self) -> int:
+        """
+        Highest k with h..h^(k) continuous: -1, 0, 1, 2 or 3 (3: C3 at least).
+        """
+    @property
+    def jump(self) -> typing.Annotated[list[float], "FixedSize(4)"]:
+        """
+        right - left for h, h', h'', h''' (m/rad^k).
+        """
+    @property
+    def left(self) -> typing.Annotated[list[float], "FixedSize(4)"]:
+        """
+        h, h', h'', h''' as the left segment ends.
+        """
+    @property
+    def left_segment(self) -> int:
+        """
+        Index of the segment ending here.
+        """
+    @property
+    def right(self) -> typing.Annotated[list[float], "FixedSize(4)"]:
+        """
+        h, h', h'', h''' as the right segment starts.
+        """
+    @property
+    def right_segment(self) -> int:
+        """
+        Index of the segment starting here (0 at the wrap).
+        """
+    @property
+    def theta(self) -> float:
+        """
+        Angle of the boundary (rad; the wrap at 0).
+        """
+    @property
+    def tolerance(self) -> typing.Annotated[list[float], "FixedSize(4)"]:
+        """
+        Jumps up to these count as none (1e-6 of each derivative's scale).
+        """
+class ContinuityReport:
+    """
+    Continuity of a program at each segment boundary (the wrap at 360 deg last).
+    """
+    def __getitem__(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> BoundaryContinuity:
+        ...
+    def __len__(self) -> int:
+        ...
+    def __repr__(self) -> str:
+        ...
+    @property
+    def boundaries(self) -> list[BoundaryContinuity]:
+        """
+        One BoundaryContinuity per segment end.
+        """
+    @property
+    def continuous_through(self) -> int:
+        """
+        The program's order of continuity: the lowest over its boundaries.
+        """
 class MotionProgram:
     """
     Segments tiling one revolution; h(theta) and its theta-derivatives.
     """
+    @staticmethod
+    def from_table(theta: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], h: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], degree: typing.SupportsInt | typing.SupportsIndex = 5, smoothing: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> MotionProgram:
+        """
+        A whole revolution from a lift table, as one periodic B-spline segment. theta strictly increasing in
+        [0, 2 pi) (rad), h in m. The table is NOT closed: the spline joins the last point to the first one
+        revolution later (a repeated first point at theta[0] + 2 pi with the same h is dropped; with another
+        h, refused). degree odd (1, 3, 5, 7; 5: C4); smoothing = lambda >= 0 (rad^degree): the fit minimizes
+        sum (s(theta_i) - h_i)^2 + lambda * integral (s^(m))^2, m = (degree + 1) / 2; for N equally spaced
+        points, harmonic k keeps 1 / (1 + lambda (2 pi / N) k^(2m)) of its amplitude.
+        """
     @staticmethod
     def paper_default(total_rise: typing.SupportsFloat | typing.SupportsIndex = 0.01) -> MotionProgram:
         """
@@ -182,6 +313,11 @@ class MotionProgram:
         ...
     def __setstate__(self, arg0: tuple) -> None:
         ...
+    def continuity(self) -> ContinuityReport:
+        """
+        Jumps of h, h', h'', h''' at every segment boundary (the wrap included) and the order through which
+        the design lift is continuous there (a ContinuityReport).
+        """
     def evaluate(self, theta: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> dict:
         """
         Lift h (m) and dh/dtheta, d2h/dtheta2, d3h/dtheta3 at theta (rad; scalar or array) as a dict.
@@ -193,6 +329,19 @@ class MotionProgram:
     def min_lift(self) -> float:
         """
         Smallest lift over the revolution, profile error included (m).
+        """
+    def require_continuity(self, order: typing.SupportsInt | typing.SupportsIndex) -> None:
+        """
+        Raise ValueError naming the first boundary (segments, angle in deg) where h .. h^(order) jumps;
+        order 0 (lift), 1 (velocity), 2 (acceleration) or 3 (jerk).
+        """
+    def smoothness(self, excursions: typing.SupportsInt | typing.SupportsIndex = 5) -> dict:
+        """
+        Per-radian smoothness report as a dict: peaks {'velocity', 'acceleration', 'jerk'}: {'value' (m/rad^k),
+        'theta' (rad)}; 'table_points'; 'residual' {'max', 'rms' (m), 'theta_of_max'} of the spline tables;
+        'jerk_roughness' (RMS local jerk excursion / peak jerk: < 0.01 smooth, 0.1-0.5 noisy) and
+        'jerk_excursions': the largest local excursions [{'theta', 'excursion' (m/rad^3)}], largest first.
+        camfollower.motion.smoothness adds physical units at a speed.
         """
     def with_profile_error(self, error: ProfileError) -> MotionProgram:
         """
@@ -976,6 +1125,10 @@ class LineContact:
     @property
     def roller(self) -> Elastic:
         ...
+def _case_from_dict(data: dict, origin: str, base_dir: str) -> dict:
+    ...
+def _case_from_text(text: str, origin: str, base_dir: str) -> dict:
+    ...
 @typing.overload
 def _run(system: CamFollowerModel, duration: typing.SupportsFloat | typing.SupportsIndex, time_step: typing.SupportsFloat | typing.SupportsIndex, decimation: typing.SupportsInt | typing.SupportsIndex, gamma: typing.SupportsFloat | typing.SupportsIndex | None, beta: typing.SupportsFloat | typing.SupportsIndex | None, hht_alpha: typing.SupportsFloat | typing.SupportsIndex, linear_solver: str, residual_tolerance: typing.SupportsFloat | typing.SupportsIndex, increment_tolerance: typing.SupportsFloat | typing.SupportsIndex, max_iterations: typing.SupportsInt | typing.SupportsIndex, max_halvings: typing.SupportsInt | typing.SupportsIndex, record_from: typing.SupportsFloat | typing.SupportsIndex, max_output_bytes: typing.SupportsFloat | typing.SupportsIndex, progress: typing.Any, progress_interval: typing.SupportsFloat | typing.SupportsIndex, settle_period: typing.SupportsFloat | typing.SupportsIndex | None = None, settle_dofs: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex] = [], settle_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, settle_min_revolutions: typing.SupportsInt | typing.SupportsIndex = 2, settle_max_revolutions: typing.SupportsInt | typing.SupportsIndex = 200) -> dict:
     """
@@ -986,6 +1139,17 @@ def _run(system: Mechanism, duration: typing.SupportsFloat | typing.SupportsInde
     """
     Internal: camfollower.simulate() calls this and wraps the output in a Result.
     """
+def cam_outline(follower: typing.Any, program: MotionProgram, points: typing.SupportsInt | typing.SupportsIndex = 3600, cutter_radius: typing.SupportsFloat | typing.SupportsIndex | None = None, unit: str = 'mm') -> dict:
+    """
+    Cam surface over one revolution (theta_k = 2 pi k / points, cam frame, lengths in `unit`), its outward unit
+    normals, and the cutter-centre path for cutter_radius (m; the surface offset outward by it). Keys: theta,
+    surface_x/y, normal_x/y, cutter_x/y (with a cutter), unit, cutter_radius, notes (the file header lines).
+    Raises ValueError on undercut, or a cutter larger than the tightest concave radius (named with its angle).
+    """
+def length_units() -> dict:
+    """
+    Length units accepted by the exports: {name: metres per unit} (m, mm, um, inch = 0.0254 m).
+    """
 def paper_preset(parameters: Parameters | None = None, program: MotionProgram | None = None, *, eccentricity: CamEccentricity | None = None, guide_clearance: typing.SupportsFloat | typing.SupportsIndex = 0.0, guide_wall_damping_factor: typing.SupportsFloat | typing.SupportsIndex = 0.0, guide_friction: typing.SupportsFloat | typing.SupportsIndex = 0.0, element_damping_ratio: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> Mechanism:
     """
     The paper's 7-DOF model (Tounsi et al.) built from the mechanism parts; DOFs y1..y4, x1..x3,
@@ -994,5 +1158,15 @@ def paper_preset(parameters: Parameters | None = None, program: MotionProgram | 
     'guide'; wall damping factor chi in s/m, Coulomb friction on y3); element_damping_ratio in (0, 1)
     puts a damper on every element (springs, contact, guide walls) at that ratio of its own critical
     damping, in place of the paper's few dampers.
+    """
+def write_cam_csv(path: str, follower: typing.Any, program: MotionProgram, points: typing.SupportsInt | typing.SupportsIndex = 3600, cutter_radius: typing.SupportsFloat | typing.SupportsIndex | None = None, unit: str = 'mm') -> None:
+    """
+    Write the cam outline as CSV (commented header with units, rotation, zero reference, follower, cutter,
+    points; then theta_rad,surface_x_<unit>,surface_y_<unit>[,cutter_x_<unit>,cutter_y_<unit>]), atomically.
+    """
+def write_file_atomically(path: str, content: bytes) -> None:
+    """
+    Replace or create `path` with `content` (bytes) atomically: a temporary in the same folder, then rename.
+    Refuses a target that exists and is not a regular file; leaves nothing behind on failure.
     """
 realistic_damping_ratio: float = 0.03
