@@ -9,6 +9,8 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include "camfollower/contact/contact_pair.hpp"  // Follower
+
 namespace camfollower::python {
 
 namespace py = pybind11;
@@ -40,11 +42,17 @@ py::dict map_to_dict(const DoubleArray& x, const std::array<const char*, K>& nam
     return d;
 }
 
+// A follower object from Python as the C++ variant (mechanism.cpp): no pybind11 caster handles a
+// variant of types without a default constructor.
+Follower follower_from(const py::handle& f);
+
 void bind_motion(py::module_& m);
 void bind_geometry(py::module_& m);
 void bind_model(py::module_& m);
 void bind_solver(py::module_& m);
 void bind_mechanism(py::module_& m);
 void bind_line_contact(py::module_& m);
+void bind_export(py::module_& m);
+void bind_config(py::module_& m);
 
 }  // namespace camfollower::python

@@ -16,16 +16,6 @@ namespace camfollower::python {
 
 namespace {
 
-// std::variant of types without a default constructor has no pybind11 caster: convert by hand.
-Follower export_follower(const py::handle& f) {
-    if (py::isinstance<TranslatingRoller>(f)) return f.cast<TranslatingRoller>();
-    if (py::isinstance<TranslatingFlat>(f)) return f.cast<TranslatingFlat>();
-    if (py::isinstance<OscillatingRoller>(f)) return f.cast<OscillatingRoller>();
-    if (py::isinstance<OscillatingFlat>(f)) return f.cast<OscillatingFlat>();
-    detail::fail("follower must be a TranslatingRoller, TranslatingFlat, OscillatingRoller or OscillatingFlat, got ",
-                 std::string(py::str(py::type::of(f))));
-}
-
 // Python ints of any sign arrive here, so a negative count is a ValueError naming the parameter.
 std::size_t point_count(long long points) {
     if (points < 3) detail::fail("points must be an integer >= 3, got ", points);
@@ -54,7 +44,7 @@ void bind_export(py::module_& m) {
         "cam_outline",
         [](const py::object& follower, const MotionProgram& program, long long points,
            std::optional<double> cutter_radius, const std::string& unit) {
-            const Follower f = export_follower(follower);
+            const Follower f = follower_from(follower);
             const std::size_t n = point_count(points);
             const LengthUnit u = length_unit_from_name(unit);
             CamOutline o;
@@ -89,7 +79,7 @@ void bind_export(py::module_& m) {
         "write_cam_csv",
         [](const std::string& path, const py::object& follower, const MotionProgram& program, long long points,
            std::optional<double> cutter_radius, const std::string& unit) {
-            const Follower f = export_follower(follower);
+            const Follower f = follower_from(follower);
             const std::size_t n = point_count(points);
             const LengthUnit u = length_unit_from_name(unit);
             py::gil_scoped_release release;

@@ -13,6 +13,16 @@
 
 namespace camfollower::python {
 
+// std::variant of types without a default constructor has no pybind11 caster: convert by hand.
+Follower follower_from(const py::handle& f) {
+    if (py::isinstance<TranslatingRoller>(f)) return f.cast<TranslatingRoller>();
+    if (py::isinstance<TranslatingFlat>(f)) return f.cast<TranslatingFlat>();
+    if (py::isinstance<OscillatingRoller>(f)) return f.cast<OscillatingRoller>();
+    if (py::isinstance<OscillatingFlat>(f)) return f.cast<OscillatingFlat>();
+    detail::fail("follower must be a TranslatingRoller, TranslatingFlat, OscillatingRoller or OscillatingFlat, got ",
+                 std::string(py::str(py::type::of(f))));
+}
+
 // One Python type for every mechanism: the paper preset keeps its fixed-size fast path (its size is
 // known at compile time), other mechanisms are dynamic-size. More fixed sizes cost compile time
 // (minutes each) for a few tens of percent of speed on small models.
@@ -102,15 +112,6 @@ py::class_<F> bind_follower(py::module_& m, const char* name, const char* doc) {
     return c;
 }
 
-// std::variant of types without a default constructor has no pybind11 caster: convert by hand.
-Follower follower_from(const py::handle& f) {
-    if (py::isinstance<TranslatingRoller>(f)) return f.cast<TranslatingRoller>();
-    if (py::isinstance<TranslatingFlat>(f)) return f.cast<TranslatingFlat>();
-    if (py::isinstance<OscillatingRoller>(f)) return f.cast<OscillatingRoller>();
-    if (py::isinstance<OscillatingFlat>(f)) return f.cast<OscillatingFlat>();
-    detail::fail("follower must be a TranslatingRoller, TranslatingFlat, OscillatingRoller or OscillatingFlat, got ",
-                 std::string(py::str(py::type::of(f))));
-}
 py::object follower_to_python(const Follower& f) {
     return std::visit([](const auto& x) { return py::cast(x); }, f);
 }

@@ -1,9 +1,6 @@
 // camfollower._core: the compiled half of the Python package.
 #include "bindings.hpp"
 
-namespace camfollower::python { void bind_export(py::module_& m); }  // export.cpp
-namespace camfollower::python { void bind_config(py::module_& m); }  // config.cpp
-
 PYBIND11_MODULE(_core, m) {
     m.doc() = "camfollower compiled core (use the camfollower package, not this module directly)";
     camfollower::python::bind_motion(m);
