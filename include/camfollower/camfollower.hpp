@@ -29,4 +29,6 @@
 #include "camfollower/solver/observers.hpp"
 #include "camfollower/solver/simulate.hpp"
 #include "camfollower/structure/network.hpp"
+#include "camfollower/structure/shaft_assembly.hpp"
+#include "camfollower/structure/timoshenko_beam.hpp"
 #include "camfollower/units.hpp"
