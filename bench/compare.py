@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Side-by-side cost of one revolution of the paper's 7-DOF model at 750 rpm, at equal accuracy.
 
     .venv/bin/python bench/compare.py [--out bench-out] [--quick]

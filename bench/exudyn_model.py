@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The paper's 7-DOF lumped cam-follower model built in Exudyn and integrated by its implicit solver.
 
     python3 bench/exudyn_model.py        # needs `pip install exudyn` (written against 1.13.6)

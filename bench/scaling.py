@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """How the cost of a camfollower run scales with simulated duration and with the time step.
 
     .venv/bin/python bench/scaling.py

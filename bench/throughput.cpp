@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Throughput of the 7-DOF Newmark-Newton integration (Google Benchmark).
 //   cmake -S . -B build-bench -DCAMFOLLOWER_BUILD_BENCHMARKS=ON && cmake --build build-bench
 //   build-bench/bench/camfollower_bench

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """A flat-faced tappet held on its cam by a valve spring with its own mass: spring surge, in its simplest form.
 
 The tappet (DOF "follower", mass m_f, moving along +y, away from the cam) rides a flat face on the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """A follower rod rattling in its guide: the paper's mechanism with a 10 um radial guide clearance,
 realistic damping (3 %), offset (e = 10 mm) and in-line (e = 0) follower, each from its periodic
 steady state (or the report that it never settles).

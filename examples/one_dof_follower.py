@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """A 1-DOF follower on a rigid cam: mass, rod stiffness (the contact), return spring.
 
 The follower (mass m) rides a flat face on a rigid cam through its rod (stiffness k, a linear contact

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """A swing-arm (oscillating) roller follower on a disk cam, held on it by a torsional spring.
 
 The cam centre is the origin of the ground frame and the cam turns counter-clockwise. The arm turns

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Benchmarks (not part of the tests): C++ throughput (Google Benchmark), the side-by-side comparison
 # with scipy and Exudyn at equal accuracy, and the scaling runs. Results go to ./bench-out.
 set -euo pipefail

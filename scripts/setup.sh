@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Install what this machine lacks, then build and install the Python package into .venv.
 # Used by scripts/study.sh (`setup.sh study`: what the study needs), scripts/test.sh and
 # scripts/bench.sh (`setup.sh test`: everything). Safe to run again: it skips what is done.

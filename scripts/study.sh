@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # The main job: set-up, then the paper's study on its built-in default case, written to ./out
 # (extra arguments go to `python -m camfollower.study`, see --help).
 set -euo pipefail

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Every test: set-up, then the C++ tests (Catch2 + install/consumer check) and the Python tests.
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // camfollower command line (CLI11): every subcommand works on a config file (docs/config.md); without
 // one, kinematics and modes describe the paper's mechanism.
 //   camfollower kinematics [CONFIG] [--rpm RPM]   per contact: pressure angle, curvature, lift, acceleration

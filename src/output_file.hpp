@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The command line's output files: every recorded channel as CSV, written atomically, never over the
 // config it came from.
 #pragma once

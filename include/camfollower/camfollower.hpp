@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // camfollower: dynamics of flexible cam-follower mechanisms. Facade header: the whole public API.
 #pragma once
 

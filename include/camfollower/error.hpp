@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Error types and argument checks shared by every header.
 //
 // Bad input throws std::invalid_argument (pybind11 maps it to Python's ValueError) with a message

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Length units for output files (manufacturing exports): the one table of conversion factors.
 //
 // Everything inside the library is SI (m); a unit is applied only when numbers leave it for a file

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """camfollower: dynamics of flexible cam-follower mechanisms.
 
 SI units throughout (m, kg, s, N, rad). The compiled core lives in ``camfollower._core``; this
@@ -11,6 +12,7 @@ package re-exports it and adds the Python-side analysis and the paper study.
 
 import numpy as _numpy  # noqa: F401  (imported here, not lazily inside the first simulate call)
 
+from . import _core
 from ._core import (
     ArmTurn,
     BoundaryContinuity,
@@ -70,4 +72,4 @@ __all__ = [
     "presets",
     "simulate",
 ]
-__version__ = "0.1.0"
+__version__ = _core.__version__  # stated once, in pyproject.toml

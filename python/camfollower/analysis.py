@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Post-processing of simulation results: spectra, sidebands, per-phase statistics, contact loss.
 
 All inputs and outputs are NumPy arrays in SI units. A result is the dict returned by

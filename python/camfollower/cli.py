@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Command line of the Python package: ``python -m camfollower figures CONFIG -o DIR``.
 
 Reads a config (docs/config.md), simulates it, and writes into DIR: the recorded channels

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Config files: a whole case (motion programs, mechanism, solver, output) in one TOML file.
 
 The format is documented in docs/config.md; the command line (``camfollower run CONFIG``) reads the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Cam outlines for manufacturing: the cam surface and a cutter's centre path as arrays, CSV or DXF.
 
 The geometry comes from the compiled core (``include/camfollower/geometry/export.hpp``), for any of

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """User-defined cam motion beyond the built-in laws.
 
 - ``from_callable``: sample a lift function h(theta) (m, theta in rad) into a B-spline, as one segment of

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Plots for any cam and any result (matplotlib, an optional extra: ``pip install camfollower[plot]``).
 
 Every function draws into new axes (or the ``ax``/``axes`` given) and returns the Figure, so it can

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Ready-made mechanisms, built from the same parts as any user mechanism."""
 
 from __future__ import annotations

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The 7-DOF equations written again in NumPy, as a user would for scipy.integrate.solve_ivp.
 
 A second, independent route to the same model: the reference of the solver tests and the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Typed simulation results: named channels as NumPy views on the C++ buffers, statistics, NPZ files."""
 
 from __future__ import annotations

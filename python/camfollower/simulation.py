@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """simulate(): integrate any camfollower system with Newmark-beta / HHT-alpha and Newton-Raphson."""
 
 from __future__ import annotations

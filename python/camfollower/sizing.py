@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Sizing a disk cam: the smallest base circle (and the best offset) for a lift program.
 
 A cam grows with its base circle: the pressure angle falls and the surface's radii of curvature grow

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The paper's study, run as ``python -m camfollower.study`` (or ``camfollower-study``).
 
 The paper's cam at 750 rpm, for the paper's offset follower (e = 10 mm) and an in-line one (e = 0):

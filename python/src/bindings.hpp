@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Shared helpers for the binding files: one vectorizer used by every area.
 #pragma once
 

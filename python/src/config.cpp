@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Config files for Python: the same reader as the command line (src/config, toml++), so a config
 // means the same in both. Python parses with tomllib and hands the dict over (converted to a toml++
 // table); the text route keeps line numbers in the messages.

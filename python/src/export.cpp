@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Bindings for include/camfollower/geometry/export.hpp: the cam outline and cutter path for
 // manufacturing, its CSV writer, the length-unit table and the atomic file writer (which the Python
 // DXF writer reuses, so every output file is written the same way).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Bindings for include/camfollower/geometry: the disk cam with offset translating roller follower.
 #include <optional>
 

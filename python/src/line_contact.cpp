@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Bindings for include/camfollower/contact/line_contact.hpp: Hertz contact stress of the roller (or
 // flat face) on the cam, and Palmgren's roller law.
 #include <cmath>

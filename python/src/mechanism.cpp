@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Bindings for the open mechanism core: follower types, the mechanism builder, the immutable
 // Mechanism (fixed-size Eigen up to 8 DOFs, dynamic above), the paper preset. Everything pickles.
 #include <optional>

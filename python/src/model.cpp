@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Bindings for include/camfollower/model: parameters, defects, the 7-DOF model, modal analysis.
 #include <optional>
 

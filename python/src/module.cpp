@@ -1,8 +1,10 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // camfollower._core: the compiled half of the Python package.
 #include "bindings.hpp"
 
 PYBIND11_MODULE(_core, m) {
     m.doc() = "camfollower compiled core (use the camfollower package, not this module directly)";
+    m.attr("__version__") = CAMFOLLOWER_VERSION;  // from pyproject.toml, through CMake
     camfollower::python::bind_motion(m);
     camfollower::python::bind_geometry(m);
     camfollower::python::bind_model(m);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Bindings for include/camfollower/motion: laws, profile errors and programs.
 #include <array>
 #include <functional>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Shared by the binding files: Newmark settings from keyword arguments, and one templated runner
 // that integrates any system with the GIL released, honours Ctrl-C and hands back NumPy views.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Bindings for include/camfollower/solver: run the original 7-DOF model (mechanisms: mechanism.cpp),
 // get its recording as NumPy views.
 #include "run.hpp"

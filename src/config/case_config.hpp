@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A simulation case described in a TOML config file: motion programs, the mechanism (its parts, or a
 // named preset with overrides), the solver and the output. Used by the command line and by Python's
 // camfollower.load_config; docs/config.md is the reference for the format.

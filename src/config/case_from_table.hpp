@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Building a case from an already parsed TOML table (the Python bindings convert a dict to one).
 #pragma once
 

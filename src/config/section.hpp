@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Reading one table of a parsed config: typed values with units, and errors that name the file, the
 // line and the key path ("cam.toml:12: contact[1].follower.base_radius: ..."). Every key read is
 // marked; finish() refuses the keys nobody read, so a misspelt or misplaced key never passes silently.

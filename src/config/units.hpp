@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Units a config value may carry: a bare number is SI; a string "<number> <unit>" converts from
 // one of the units listed for the quantity's kind. The one table of unit factors for config input.
 #pragma once

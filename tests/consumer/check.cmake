@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # CTest driver: install the project into a scratch prefix, then configure, build and run the
 # consumer project against that install tree (find_package(camfollower)).
 # Inputs: BUILD_DIR (the project's build tree), SOURCE_DIR (the consumer sources), WORK_DIR.

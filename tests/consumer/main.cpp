@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A user's tool built against the installed package: the README's C++ examples, checked.
 #include <camfollower/camfollower.hpp>
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The 7-DOF model: contact law, network assembly, static equilibrium, modes, dynamics limits.
 #include <catch2/catch.hpp>
 

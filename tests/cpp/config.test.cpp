@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The config reader (src/config): units, every part of a mechanism, the preset, and errors that name
 // the file, the line and the key. A config's mechanism is checked against the same mechanism built
 // directly with the C++ builder (a second route to the same model).

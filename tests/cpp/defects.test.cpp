@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Defects from their mechanisms: the eccentric cam (exact geometry, quasi-static start, the paper's
 // literal force), the guide clearance (walls, friction, bushings with tilt), realistic damping.
 // Each checked against a closed form or a second method.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Disk cam kinematics: closed form (paper eqs 2-5) against a purely numerical envelope of roller
 // circles, curvature against finite differences of the sampled curves, closure, errors, CSV export.
 #include <catch2/catch.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The manufacturing export (geometry/export.hpp, detail/atomic_file.hpp) against independent truth:
 // - the cutter path for r_c = r_r is the roller's pitch curve, written out here from its definition;
 // - every cutter-path point lies r_c from the surface, by a brute-force nearest-point search over a

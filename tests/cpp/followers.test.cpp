@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The four follower types against independent truth:
 // - a numerical envelope of the follower positions in the cam frame (roller circles or face lines,
 //   written out here from each follower's definition, with the arm's start angle found by

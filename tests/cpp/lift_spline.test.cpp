@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Lift tables as B-splines. Truth comes from outside the code under test: closed-form functions and
 // their hand-derived derivatives, the textbook 4-5-6-7 law (laws.hpp closed form), the spline
 // approximation theory (error O(step^(degree + 1 - k)) in the k-th derivative), the noise level put in.

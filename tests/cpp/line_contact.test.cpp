@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Contact stress against closed forms written out here (Johnson ch. 4 for the line contact, the
 // Hertz sphere for the crowned roller's circular limit), Palmgren's formula in its own mm/N units,
 // the stress along the paper cam, and bad input.

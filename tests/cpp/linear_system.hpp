@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A linear N-DOF test system, M q'' + C q' + K q = p(t), written against the system contract with only
 // the members a linear system needs (no workspace, no tangent, no contact).
 #pragma once

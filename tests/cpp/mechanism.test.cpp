@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The mechanism builder: assembly, bad input, the paper preset against the original 7-DOF model.
 #include <catch2/catch.hpp>
 

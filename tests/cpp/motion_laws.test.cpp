@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Motion laws against textbook closed forms (Norton, Cam Design and Manufacturing Handbook,
 // table of peak coefficients; the closed forms below are derived by hand from each law's definition,
 // not read from the code), against finite differences, and against each other.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Motion program: paper Table 1, continuity at every boundary, periodicity, validation.
 #include <catch2/catch.hpp>
 

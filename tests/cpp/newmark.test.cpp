@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Newmark-beta / HHT-alpha solver on linear systems with exact solutions.
 #include <catch2/catch.hpp>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Polynomial segments from boundary conditions, custom laws inside programs, and continuity across
 // segment boundaries. Truth: the 3-4-5 and 4-5-6-7 closed forms in laws.hpp (written independently of
 // the solver here), the conditions themselves, and the textbook end behaviour of each law (cycloidal:

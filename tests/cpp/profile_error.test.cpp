@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Profile errors (cam manufacturing errors as a lift error e(theta)) against independent truth:
 // - the component formulas written out again here, and central finite differences for e', e'', e''';
 // - known trigonometric polynomials for the table fit (exact reproduction, projection, and the

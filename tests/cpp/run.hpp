@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Test helper: simulate a system and return its histories row-major (q[n * i + k]), as tests read them.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The Timoshenko shaft element and its assembly against independent truth: the element matrices
 // re-derived here by Gauss quadrature of the exact static (Przemieniecki / Friedman-Kosmatka)
 // interpolation, rigid-body properties, closed-form static deflections (exact for this element),

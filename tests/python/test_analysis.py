@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Analysis helpers on signals with known answers."""
 
 import math

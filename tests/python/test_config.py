@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Config files in Python (camfollower.load_config): the same cases as the command line, checked
 against mechanisms built by hand in Python, the lift table's own data, and the error messages."""
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The defects (guide clearance with walls and friction, eccentric cam, settling, the paper's literal
 eccentricity force) against independent second methods: the same equations written here in NumPy and
 integrated with scipy's solve_ivp, closed-form geometry of a displaced circle, root finding on that

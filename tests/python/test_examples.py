@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The flat-faced train and swing-arm examples against closed forms worked out here, from the masses,
 stiffnesses and geometry the examples set (not from the library's own contact geometry)."""
 

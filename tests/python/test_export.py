@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Manufacturing export (camfollower.export): CSV and DXF round trips against independent truth."""
 
 import math

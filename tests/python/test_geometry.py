@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """DiskCam and MotionProgram through the bindings: arrays out, paper eqs 2-5 re-derived in NumPy,
 CSV export, and ValueError for bad input."""
 

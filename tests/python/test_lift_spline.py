@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """User-defined motion through the bindings: lift tables as splines, polynomial segments, laws from
 callables, continuity, smoothness. Independent truth: closed-form laws written out here, finite
 differences of the spline's own lift, scipy's make_interp_spline (an independent B-spline code),

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The open mechanism core from Python: builder, immutable picklable mechanisms, typed results, the
 paper preset against the original model, and the examples against closed forms."""
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The 7-DOF model and the Newmark solver through the bindings, against independent routes:
 scipy's Radau on the same equations written in NumPy, scipy.linalg.eigh on the exported matrices."""
 

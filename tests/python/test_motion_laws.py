@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Motion laws through the bindings, against peak coefficients derived here with sympy from each
 law's defining conditions (boundary conditions / acceleration shape), independently of the C++ code."""
 

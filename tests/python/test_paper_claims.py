@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The paper's qualitative claims (section 2), checked on this model at 750 rpm, per formulation.
 
 The study (camfollower.study) runs the paper's offset follower and an in-line one, healthy, with an

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """camfollower.plot: the drawn data are the quantities they claim to be."""
 
 import math

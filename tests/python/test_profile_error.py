@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Profile errors (a cam's manufacturing error as a lift error e(theta)) from Python: the components
 against their formulas and finite differences, the table fit against known trigonometric polynomials,
 pickling, ValueError messages, the undercut check, and a simulated follower that traces a waviness."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The README's Python examples run as written (they are documentation users copy)."""
 
 import re

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Sizing helpers against a brute-force search over the same geometry checks."""
 
 import math

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The shipped type stubs (python/camfollower/_core.pyi, generated with pybind11-stubgen) must match
 the compiled module: every public class, function and method in one exists in the other."""
 

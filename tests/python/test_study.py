@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The main job end to end on a short case, and its handling of bad output folders and options."""
 
 import json

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A radial clearance (a rod in a bushing of its guide): the gap coordinate u = sum_j c_j q_j (the
 // rod's lateral displacement at the bushing, e.g. x + z tilt for a bushing at axial position z on a
 // rod with a tilt DOF) moves freely for |u| <= c and meets a wall beyond:

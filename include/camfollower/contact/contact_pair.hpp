@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A cam-follower contact pair: a cam (its motion program and phase on the camshaft), a follower
 // kinematics type, a contact law, and the DOFs it couples:
 //   cam_x, cam_y   translation of the cam centre (ground frame), or ground

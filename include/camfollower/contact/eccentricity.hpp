@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // An eccentric cam: its geometric centre sits at distance epsilon from the bearing axis and turns
 // with it, at u(theta) = epsilon (cos(theta + zeta), sin(theta + zeta)) in the ground frame
 // (contact_geometry.hpp), zeta the direction of the offset in the cam frame. The profile itself is

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Unilateral Hertzian contact law F = K <delta>^n (1 + chi delta_dot), with its exact tangent.
 // n = 1 (paper, K in N/m), 3/2 (point contact), 10/9 (line contact); chi = 0 without damping,
 // Hunt-Crossley / Lankarani-Nikravesh otherwise (CamFollowerParameters::contact_damping_factor).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Contact stress between the roller (or flat face) and the cam, from geometry and elastic constants.
 //
 // Straight roller: two parallel cylinders touching along a line of length L (Johnson, Contact

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The second-order-system contract every integrator in camfollower works on:
 //
 //     M q'' + C q' + K q + f(t, q, q') = p(t)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Writing an output file atomically (POSIX): readers see either the old file or the complete new
 // one, never a partial write, and a failure leaves no stray temporary behind.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Locating the maximum of a smooth scalar function on an interval: dense sampling to find the
 // right bracket, then golden-section refinement (the value converges quadratically, so ~1e-15).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Root of a scalar function by secant steps from x0 and x1 = x0 - f(x0) (good for a nearly affine f
 // of slope ~1, such as a preload calibrated against the spring force it produces).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The lifting sense of an oscillating follower's arm, and the arm's starting angle on the base
 // circle (shared by the oscillating roller and the oscillating flat face).
 #pragma once

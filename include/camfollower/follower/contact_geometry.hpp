@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // What every follower type gives the dynamic model at one cam angle: the contact normal, the lever
 // of the follower's own coordinate, and the nominal follower motion, with their cam-angle rates.
 //

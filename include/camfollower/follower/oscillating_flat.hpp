@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Oscillating flat-faced follower: a straight face on an arm turning about the fixed pivot P. The
 // face is the line {X : m(phi) . X = m(phi) . P + f}, m(phi) = (cos phi, sin phi) its unit normal
 // pointing away from the cam, f the face offset (signed distance of the face from the pivot along

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Oscillating (swinging-arm) roller follower. The arm turns about the fixed pivot P (ground frame);
 // the roller centre is C = P + L u(phi), u(phi) = (cos phi, sin phi), phi = phi0 + sigma s(theta),
 // with s the program's lift in rad and sigma = +1 (counter-clockwise lift) or -1 (clockwise).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Plane-vector helpers shared by the follower types: the quarter turn J, the scalar cross product,
 // rotations and the change from the ground frame to the cam frame (X_cam = Rot(-theta) X_ground).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Cam profile as seen by one follower type, and the sampled design checks that work for any type:
 // largest pressure angle, tightest convex surface radius, and the undercut / cusp test.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Contact normal and pitch-curve curvature of any roller follower, from its centre's path C(theta)
 // in the ground frame and the theta-derivatives of that path.
 //

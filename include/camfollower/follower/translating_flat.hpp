@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Translating flat-faced follower: a straight face, inclined by the face angle g, moving along the
 // axis x = e (ground frame, y along the axis). The face line is {X : n . X = p(theta)} with the
 // constant unit normal n = (-sin g, cos g) and the support distance p = r_b + cos g * h(theta)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Translating roller follower with offset: the roller centre runs along the axis x = e at height
 // R(theta) = s0 + h(theta), s0 = sqrt((r_b + r_r)^2 - e^2). The kinematics are DiskCam's (paper
 // eqs 2-5), reused so that both give bit-identical normals and pressure angles.

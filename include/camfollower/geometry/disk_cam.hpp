@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Disk cam with an offset translating roller follower (paper section 1.2, eqs 2-5).
 //
 // Conventions (SI; angles in rad):

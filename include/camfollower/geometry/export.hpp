@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Cam outline for manufacturing: the cam surface over one revolution and the path of a cutter's
 // centre (milling cutter or grinding wheel of radius r_c), in the cam frame, in a chosen length unit,
 // for any follower type; and a CSV writer whose header states every convention a machinist needs.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The paper's 7-DOF flexible cam-follower model (section 1.1; as implemented: docs/model.md). The
 // same model is built from the mechanism parts by presets::paper (model/presets/paper.hpp); this class
 // stays for the paper's imposed defects until they are rebuilt on those parts.

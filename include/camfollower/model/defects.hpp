@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Manufacturing defects of the paper (section 1.3), both off by default.
 //
 // Camshaft eccentricity (eqs 6-11): the cam's geometric centre turns around the bearing axis at

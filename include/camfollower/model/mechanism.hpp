@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A cam mechanism built from a runtime description: the linear structure (structure/network.hpp),
 // any number of cam-follower contact pairs (contact/contact_pair.hpp) on one camshaft turning at a
 // constant speed. Mechanism<N> is immutable and implements the system contract (core/system.hpp);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Undamped modal analysis of a model linearized about its quasi-static equilibrium at a cam angle:
 // K_t phi = omega^2 M phi (generalized symmetric eigenproblem), K_t = K + k_c g g^T in contact.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A lumped mass-spring-damper network with N DOFs, assembled once into fixed-size M, C, K.
 // Topology is data: masses per DOF, linear spring-dampers between two DOFs or a DOF and ground.
 // Nonlinear elements (the cam contact) live in the model and act through rank-one tangents.

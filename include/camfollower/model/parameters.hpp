@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Parameters of the 7-DOF cam-follower model: paper Table 2 defaults, settable by name, validated.
 #pragma once
 

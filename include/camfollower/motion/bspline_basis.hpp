@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // B-spline basis functions and their derivatives on an arbitrary knot vector (Piegl & Tiller, "The
 // NURBS Book", algorithms A2.1 and A2.3), on the stack: degrees up to max_spline_degree.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Continuity of a motion program across its segment boundaries: the jumps of h, h', h'', h''' at each
 // boundary (the wrap at 2 pi included) and the highest order through which the lift is continuous.
 // MotionProgram::continuity() fills it; MotionProgram::require_continuity(order) enforces it.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The follower lift and its cam-angle derivatives at one theta: the value every motion description
 // (program, spline, polynomial) hands out.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Normalized cam motion laws: S(x), V = dS/dx, A = d2S/dx2, J = d3S/dx3 on x in [0, 1],
 // S(0) = 0, S(1) = 1, plus their peak coefficients C_v, C_a, C_j (peaks of |V|, |A|, |J|).
 //

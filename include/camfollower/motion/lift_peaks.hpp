@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Peaks of |h'|, |h''|, |h'''| of a lift that is smooth between given breaks: a grid over every piece
 // finds the bracket, golden-section refinement (detail::maximize) the peak inside it.
 #pragma once

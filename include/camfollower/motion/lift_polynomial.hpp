@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A polynomial lift from boundary conditions ("polydyne"-style general polynomial): h, h', h'', ...
 // imposed at both ends of a segment and lift values at interior angles. Degree = number of
 // conditions - 1. Solved in the normalized variable x = (theta - theta_start) / span, in which the

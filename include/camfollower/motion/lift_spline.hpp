@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A lift table (theta, h) as a B-spline of odd degree: interpolating (smoothing = 0) or smoothing.
 //
 // Two shapes:

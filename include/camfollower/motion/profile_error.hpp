@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Manufacturing error of a cam, as a lift error e(theta): the deviation of the follower lift from the
 // design lift that a cam-measuring machine reports when it probes with the follower's own roller or
 // face (m; positive = lift higher). It belongs to the cam, so MotionProgram::with_profile_error adds it

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A cam motion program: segments that tile one revolution, giving the follower lift h(theta) and its
 // derivatives with respect to the cam angle (m, m/rad, m/rad^2, m/rad^3). Periodic in theta.
 // The program may carry the cam's manufacturing error (profile_error.hpp), added to the design lift.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // How smooth a motion program is, for judging a lift table: the peaks of |h'|, |h''|, |h'''| and where
 // they occur, how far a smoothing fit passes from its table, and where a table's noise shows up.
 //

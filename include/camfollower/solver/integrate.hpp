@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The integrate driver (odeint's split: stepper / driver / observers): advance a stepper's state to
 // t_end in steps of the stepper's size, calling the observer after the start and after every accepted
 // step. The observer returns false to stop the run early (cancellation); integrate then returns with

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Implicit Newmark-beta / HHT-alpha stepper with Newton-Raphson, for any system of the contract in
 // core/system.hpp (M q'' + C q' + K q + f(t, q, q') = p(t)).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Observers for the integrate driver: a recorder of named channels (decimation, recording window,
 // memory bound) and the composition with progress reporting and cancellation used by simulate().
 #pragma once

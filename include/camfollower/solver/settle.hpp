@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Run a periodically forced system (a camshaft turning at constant speed) revolution by revolution
 // until it has settled on its periodic response: the largest change of the watched accelerations
 // between two successive revolutions, relative to their largest magnitude in the revolution,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // One call for the common case: start a system in its initial state (or a given
 // state), integrate with Newmark/HHT for a duration, record named channels, report progress and
 // honour cancellation.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Cross-section properties of a straight beam (a shaft segment), SI units.
 //
 // The material is given by E and the shear modulus G (not the Poisson ratio) so that a section of

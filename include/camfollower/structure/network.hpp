@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The linear structure of a mechanism as data: named DOFs with masses, spring-dampers between two DOFs
 // or a DOF and ground (with an optional preload), constant loads, gravity and global damping models.
 // Assembled through triplets into M, C, K, so that a sparse backend can take the same triplets.

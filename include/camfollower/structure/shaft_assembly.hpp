@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A uniform shaft of n equal Timoshenko elements along x, assembled into global stiffness and mass
 // (sparse through triplets, dense as a convenience), with bearings as spring supports to ground and
 // boundary conditions by removing DOFs.

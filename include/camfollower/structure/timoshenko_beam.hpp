@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The 2-node, 12-DOF Timoshenko beam element along the x axis: stiffness with shear deformation and
 // the consistent mass matrix with rotary inertia.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The paper's 7-DOF cam-follower model (Tounsi et al., docs/model.md) as a preset of the mechanism
 // builder: disk cam, offset translating roller follower, camshaft on bearings, roller on its pin,
 // follower rod in its guide, follower top on the return spring.
