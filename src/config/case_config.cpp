@@ -177,6 +177,36 @@ Segment read_segment(const Section& s, double start, double level, const std::st
     }
 }
 
+// Runs f; an error it throws without a location gets this table's.
+template <class F>
+void located(const Section& s, F&& f) {
+    try {
+        f();
+    } catch (const std::invalid_argument& e) {
+        const std::string what = e.what();
+        if (what.rfind(s.origin(), 0) == 0) throw;
+        s.fail_here(what);
+    }
+}
+
+// The cam's manufacturing error on a program's lift: waviness orders and dents, summed.
+ProfileError read_profile_error(const Section& s) {
+    ProfileError e;
+    for (const Section& w : s.tables("waviness")) {
+        const double amplitude = w.quantity("amplitude", "m"), phase = w.quantity("phase", "rad", 0.0);
+        const long long order = w.integer("order", 0, 1, 100000);
+        w.finish({"amplitude", "order", "phase"});
+        located(w, [&] { e = e + ProfileError::waviness(amplitude, int(order), phase); });
+    }
+    for (const Section& d : s.tables("dent")) {
+        const double centre = d.quantity("centre", "rad"), width = d.quantity("width", "rad"), depth = d.quantity("depth", "m");
+        d.finish({"centre", "width", "depth"});
+        located(d, [&] { e = e + ProfileError::dent(centre, width, depth); });
+    }
+    s.finish({"waviness", "dent"});
+    return e;
+}
+
 struct NamedProgram {
     MotionProgram program;
     LiftDimension dimension;
@@ -214,7 +244,11 @@ NamedProgram read_program(const Section& s, const std::string& base_dir) {
             s.fail("continuity", e.what());
         }
     }
-    s.finish({"segments", "start_h", "file", "theta", "h", "theta_unit", "h_unit", "degree", "smoothing", "continuity"});
+    if (const std::optional<Section> error = s.table("error")) {
+        const ProfileError e = read_profile_error(*error);
+        located(*error, [&] { program = program.with_profile_error(e); });
+    }
+    s.finish({"segments", "start_h", "file", "theta", "h", "theta_unit", "h_unit", "degree", "smoothing", "continuity", "error"});
     return {std::move(program), lift.dimension};
 }
 
@@ -299,16 +333,6 @@ std::string dof_name(const Section& s, std::string_view key, const MechanismBuil
     s.fail(key, "unknown DOF '" + name + "'; the [[dof]] blocks define: " + known + (ground_ok ? " (or \"ground\")" : ""));
 }
 
-template <class F>
-void located(const Section& s, F&& f) {
-    try {
-        f();
-    } catch (const std::invalid_argument& e) {
-        const std::string what = e.what();
-        if (what.rfind(s.origin(), 0) == 0) throw;
-        s.fail_here(what);
-    }
-}
 
 using Dimensions = std::map<std::string, LiftDimension>;
 

@@ -246,3 +246,40 @@ TEST_CASE("config: files: a directory, an empty file, a missing lift table") {
     CHECK_THROWS_WITH(parse_case("[camshaft]\nspeed = 600\n[program.m]\nfile = \"no_such_lift.csv\"\n", "c.toml", "/tmp"),
                       Catch::Contains("c.toml:4: program.m.file: cannot read the lift table '/tmp/no_such_lift.csv'"));
 }
+
+TEST_CASE("config: a program's manufacturing error is the one the API adds") {
+    const cf::config::CaseConfig c = parse_case(R"(
+[camshaft]
+speed = 750
+[program.worn]
+segments = [
+  { law = "dwell", end = "30 deg" },
+  { law = "modified_trapezoid", end = "180 deg", h = "10 mm" },
+  { law = "dwell", end = "210 deg" },
+  { law = "modified_trapezoid", end = "360 deg", h = 0 },
+]
+[program.worn.error]
+waviness = [{ amplitude = "5 um", order = 3, phase = "10 deg" }]
+dent = [{ centre = "100 deg", width = "4 deg", depth = "20 um" }]
+[preset]
+name = "paper"
+program = "worn"
+)", "worn.toml");
+    const cf::MotionProgram expected = cf::MotionProgram::paper_default().with_profile_error(
+        cf::ProfileError::waviness(5e-6, 3, cf::degrees_to_radians(10.0)) +
+        cf::ProfileError::dent(cf::degrees_to_radians(100.0), cf::degrees_to_radians(4.0), 20e-6));
+    for (double deg : {0.0, 45.0, 99.0, 100.0, 101.5, 250.0}) {
+        const double t = cf::degrees_to_radians(deg);
+        CHECK(c.program("worn").evaluate(t).h == Approx(expected.evaluate(t).h).margin(1e-15));
+        CHECK(c.program("worn").evaluate(t).d2h == Approx(expected.evaluate(t).d2h).margin(1e-9));
+    }
+    // The dent is in: at its centre the lift differs from the design-plus-waviness lift by its depth.
+    const cf::MotionProgram wavy = cf::MotionProgram::paper_default().with_profile_error(
+        cf::ProfileError::waviness(5e-6, 3, cf::degrees_to_radians(10.0)));
+    const double centre = cf::degrees_to_radians(100.0);
+    CHECK(std::abs(c.program("worn").evaluate(centre).h - wavy.evaluate(centre).h) == Approx(20e-6).epsilon(1e-9));
+    CHECK_THROWS_WITH(parse_case("[camshaft]\nspeed = 750\n[program.w]\nsegments = [{ law = \"dwell\", end = \"360 deg\" }]\n"
+                                 "[program.w.error]\nwaviness = [{ amplitude = \"5 um\", order = 0 }]\n[preset]\nname = \"paper\"\nprogram = \"w\"\n",
+                                 "w.toml"),
+                      Catch::Contains("w.toml:6: program.w.error.waviness[0].order: must be in [1, "));
+}
