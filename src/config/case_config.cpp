@@ -19,6 +19,19 @@ namespace camfollower::config {
 
 namespace {
 
+// Runs f and returns its result; an error f throws without a location gets this table's (one that
+// already names the file passes through).
+template <class F>
+decltype(auto) located(const Section& s, F&& f) {
+    try {
+        return f();
+    } catch (const std::invalid_argument& e) {
+        const std::string what = e.what();
+        if (what.rfind(s.origin(), 0) == 0) throw;
+        s.fail_here(what);
+    }
+}
+
 
 // ---- motion programs -------------------------------------------------------------------------
 
@@ -137,7 +150,7 @@ Segment read_segment(const Section& s, double start, double level, const std::st
     const std::string law = s.choice("law", "", {"dwell", "simple_harmonic", "cycloidal", "modified_trapezoid",
                                                  "modified_sine", "polynomial_345", "polynomial_4567",
                                                  "constant_acceleration", "sine_constant_cosine", "polynomial", "table"});
-    try {
+    return located(s, [&]() -> Segment {
         if (law == "table") {
             Table t = read_table(s, base_dir, lift);
             std::vector<double> d0, d1;
@@ -170,24 +183,9 @@ Segment read_segment(const Section& s, double start, double level, const std::st
         const double h = m.is_dwell() ? s.quantity("h", "lift", level) : s.quantity("h", "lift");
         s.finish({"law", "end", "h", "b", "c", "d"});
         return Segment{m, start, end, level, h};
-    } catch (const std::invalid_argument& e) {
-        const std::string what = e.what();
-        if (what.rfind(s.origin(), 0) == 0) throw;  // already located
-        s.fail_here(what);
-    }
+    });
 }
 
-// Runs f; an error it throws without a location gets this table's.
-template <class F>
-void located(const Section& s, F&& f) {
-    try {
-        f();
-    } catch (const std::invalid_argument& e) {
-        const std::string what = e.what();
-        if (what.rfind(s.origin(), 0) == 0) throw;
-        s.fail_here(what);
-    }
-}
 
 // The cam's manufacturing error on a program's lift: waviness orders and dents, summed.
 ProfileError read_profile_error(const Section& s) {
@@ -262,7 +260,7 @@ Eigen::Vector2d point(const Section& s, std::string_view key) {
 
 Follower read_follower(const Section& s) {
     const std::string type = s.choice("type", "", {"translating_roller", "translating_flat", "oscillating_roller", "oscillating_flat"});
-    try {
+    return located(s, [&]() -> Follower {
         const double rb = s.quantity("base_radius", "m");
         Follower f = [&]() -> Follower {
             if (type == "translating_roller")
@@ -277,11 +275,7 @@ Follower read_follower(const Section& s) {
         }();
         s.finish({"type", "base_radius", "roller_radius", "offset", "face_angle", "pivot", "arm_length", "face_offset", "turn"});
         return f;
-    } catch (const std::invalid_argument& e) {
-        const std::string what = e.what();
-        if (what.rfind(s.origin(), 0) == 0) throw;
-        s.fail_here(what);
-    }
+    });
 }
 
 CamEccentricity read_eccentricity(const Section& s) {
