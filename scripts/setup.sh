@@ -9,7 +9,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 mode=${1:-test}
 
-apt_packages=(build-essential cmake ninja-build libeigen3-dev libsuitesparse-dev libtomlplusplus-dev libcli11-dev catch2 libbenchmark-dev
+apt_packages=(build-essential cmake ninja-build libeigen3-dev libsuitesparse-dev libspectra-dev libtomlplusplus-dev libcli11-dev catch2 libbenchmark-dev
               python3 python3-dev python3-venv)
 missing=()
 for p in "${apt_packages[@]}"; do

@@ -2,7 +2,7 @@
 // camfollower command line (CLI11): every subcommand works on a config file (docs/config.md); without
 // one, kinematics and modes describe the paper's mechanism.
 //   camfollower kinematics [CONFIG] [--rpm RPM]   per contact: pressure angle, curvature, lift, acceleration
-//   camfollower modes [CONFIG] [--theta DEG]      natural frequencies, contacts linearized at a cam angle
+//   camfollower modes [CONFIG] [--theta DEG] [--count N]   natural frequencies, contacts linearized at a cam angle
 //   camfollower run CONFIG [-o FILE]              simulate the case, CSV of every recorded channel
 //   camfollower export CONFIG -o FILE [--contact NAME] [--unit mm] [--cutter-radius R] [--points N]
 //                                                 cam surface (and cutter path) for manufacturing, CSV
@@ -67,22 +67,22 @@ int kinematics(const std::string& config, double rpm) {
     return 0;
 }
 
-int modes(const std::string& config, double theta_deg) {
+int modes(const std::string& config, double theta_deg, int count) {
     const cf::config::CaseConfig c = case_from(config);
     const double theta = cf::degrees_to_radians(theta_deg);
     with_mechanism(c.mechanism, [&](const auto& m) {
-        using M = std::decay_t<decltype(m)>;
-        const typename M::Vector q = m.static_equilibrium(theta);
-        const Eigen::GeneralizedSelfAdjointEigenSolver<typename M::Matrix> eig(m.tangent_stiffness(theta, q), m.mass());
-        if (eig.info() != Eigen::Success) cf::detail::fail("modal analysis: the eigen solver did not converge");
-        std::printf("%s: natural frequencies (Hz), contacts linearized at the static equilibrium, theta = %g deg\n",
-                    c.origin.c_str(), theta_deg);
+        // All modes of a small model; the lowest `count` of a large one (sparse shift-invert).
+        if (count <= 0 && m.size() > cf::dense_modes_limit) count = 20;
+        const cf::MechanismModes r = cf::lowest_modes(m, theta, std::min(count, m.size()));
+        std::printf("%s: natural frequencies (Hz), contacts linearized at the static equilibrium, theta = %g deg%s\n",
+                    c.origin.c_str(), theta_deg,
+                    r.frequencies_hz.size() < m.size() ? cf::detail::concat(" (lowest ", r.frequencies_hz.size(), " of ", m.size(), ")").c_str() : "");
         const std::vector<std::string> names = m.dof_names();
-        for (Eigen::Index k = 0; k < eig.eigenvalues().size(); ++k) {
+        for (Eigen::Index k = 0; k < r.frequencies_hz.size(); ++k) {
             Eigen::Index dominant = 0;
-            eig.eigenvectors().col(k).cwiseAbs().maxCoeff(&dominant);
-            std::printf("mode %-3ld %14.2f   largest motion: %s\n", long(k + 1),
-                        std::sqrt(std::max(eig.eigenvalues()[k], 0.0)) / cf::two_pi, names[std::size_t(dominant)].c_str());
+            r.shapes.col(k).cwiseAbs().maxCoeff(&dominant);
+            std::printf("mode %-3ld %14.2f   largest motion: %s\n", long(k + 1), r.frequencies_hz[k],
+                        names[std::size_t(dominant)].c_str());
         }
     });
     return 0;
@@ -171,6 +171,9 @@ int main(int argc, char** argv) {
     CLI::App* mod = app.add_subcommand("modes", "Natural frequencies of the mechanism, contacts linearized at a cam angle");
     mod->add_option("config", config, "config file (default: the paper's mechanism)")->check(CLI::ExistingFile);
     mod->add_option("--theta", theta_deg, "camshaft angle of the linearization, deg")->check(CLI::Range(-1e6, 1e6));
+    int mode_count = 0;
+    mod->add_option("--count", mode_count, "how many of the lowest modes (default: all; 20 above 200 DOFs)")
+        ->check(CLI::Range(1, 100000));
 
     CLI::App* runc = app.add_subcommand("run", "Simulate the case the config describes; write every recorded channel as CSV");
     runc->add_option("config", config, "config file")->required()->check(CLI::ExistingFile);
@@ -196,7 +199,7 @@ int main(int argc, char** argv) {
     }
     try {
         if (*kin) return kinematics(config, rpm);
-        if (*mod) return modes(config, theta_deg);
+        if (*mod) return modes(config, theta_deg, mode_count);
         if (*runc) return run(config, output);
         if (*exp) return export_cam(config, output, contact, unit, cutter_radius, points);
     } catch (const std::exception& e) {

@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: BSD-3-Clause
-"""Command line of the Python package: ``python -m camfollower figures CONFIG -o DIR``.
+"""Command line of the Python package: ``python -m camfollower figures CONFIG -o DIR`` and
+``python -m camfollower camshaft CONFIG --engine-rpm 2000 4000 6000 -o DIR``.
 
 Reads a config (docs/config.md), simulates it, and writes into DIR: the recorded channels
 (``run.csv``), per contact its SVAJ diagram, the cam profile, pressure angle and
@@ -94,18 +95,78 @@ def figures(config: str, out: str) -> dict:
     return summary
 
 
+def camshaft(config: str, out: str, rpm=None, engine_rpm=None, revolutions: float = 2.0) -> dict:
+    """A flexible camshaft at several speeds (camfollower.camshaft): summary.csv (one row per speed and
+    cam), study.png (the figures against speed), traces_<rpm>rpm.png per speed, summary.json last."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from .camshaft import camshaft_study, plot_study, plot_traces
+
+    case = load_config(config)
+    folder = Path(out)
+    if folder.exists() and not folder.is_dir():
+        raise ValueError(f"--out: '{folder}' exists and is not a directory")
+    if rpm and engine_rpm:
+        raise ValueError("give --rpm (camshaft) or --engine-rpm (twice the camshaft's), not both")
+    speeds = list(rpm) if rpm else [0.5 * e for e in engine_rpm] if engine_rpm else None
+    summaries, results = camshaft_study(case, speeds, revolutions=revolutions)
+    folder.mkdir(parents=True, exist_ok=True)
+    written = []
+    rows = ["camshaft_rpm,cam,lift_error_mm,max_force_N,min_force_lifting_N,contact_lost_s,twist_peak_to_peak_deg,"
+            "surge_peak_to_peak_mm,surge_main_frequency_Hz"]
+    for s in summaries:
+        for cam, c in s["cams"].items():
+            rows.append(",".join([f"{s['camshaft_speed_rpm']:.6g}", cam] + [
+                f"{c.get(k, float('nan')):.6g}" for k in ("lift_error_mm", "max_force_N", "min_force_lifting_N",
+                                                           "contact_lost_s", "twist_peak_to_peak_deg",
+                                                           "surge_peak_to_peak_mm", "surge_main_frequency_Hz")]))
+    _write(folder / "summary.csv", ("\n".join(rows) + "\n").encode())
+    written.append("summary.csv")
+    _save(plot_study(summaries, engine=bool(engine_rpm)), folder / "study.png")
+    written.append("study.png")
+    for s, r in zip(summaries, results):
+        m = case.mechanism.with_camshaft_speed_rpm(s["camshaft_speed_rpm"])
+        file = f"traces_{s['camshaft_speed_rpm']:g}rpm.png"
+        _save(plot_traces(m, r), folder / file)
+        written.append(file)
+    summary = {"config": str(case.path), "speeds": summaries, "files": written + ["summary.json"]}
+    _write(folder / "summary.json", (json.dumps(summary, indent=2) + "\n").encode())
+    return summary
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(prog="python -m camfollower", description=__doc__.split("\n\n")[0])
     sub = parser.add_subparsers(dest="command", required=True)
     f = sub.add_parser("figures", help="simulate a config; write run.csv, figures and summary.json")
     f.add_argument("config", help="config file (docs/config.md)")
     f.add_argument("-o", "--out", default="out", help="output folder (default: ./out)")
+    c = sub.add_parser("camshaft", help="a flexible camshaft at several speeds: summary.csv, study.png, traces, summary.json")
+    c.add_argument("config", help="config file with a flexible camshaft (docs/camshaft.md)")
+    c.add_argument("--rpm", type=float, nargs="+", help="camshaft speeds (default: the config's)")
+    c.add_argument("--engine-rpm", type=float, nargs="+", help="engine speeds (the camshaft turns at half)")
+    c.add_argument("--revolutions", type=float, default=2.0, help="camshaft revolutions per speed; the last is recorded")
+    c.add_argument("-o", "--out", default="out", help="output folder (default: ./out)")
     args = parser.parse_args(argv)
     try:
-        summary = figures(args.config, args.out)
+        if args.command == "camshaft":
+            study = camshaft(args.config, args.out, args.rpm, args.engine_rpm, args.revolutions)
+        else:
+            summary = figures(args.config, args.out)
     except (ValueError, RuntimeError, OSError) as e:
         print(f"camfollower: error: {e}", file=sys.stderr)
         return 1
+    if args.command == "camshaft":
+        for s in study["speeds"]:
+            cams = s["cams"].values()
+            drive = "; ".join(f"{n} torque {d['mean_torque_Nm']:.2f} N m mean, {d['torque_peak_to_peak_Nm']:.2f} p-p"
+                              for n, d in s["drives"].items())
+            print(f"{s['camshaft_speed_rpm']:g} rpm: lift error <= {max(c['lift_error_mm'] for c in cams):.3f} mm, "
+                  f"min contact force lifting {min(c['min_force_lifting_N'] for c in cams):.1f} N, "
+                  f"twist <= {max(c['twist_peak_to_peak_deg'] for c in cams):.3f} deg p-p, "
+                  f"surge <= {max(c.get('surge_peak_to_peak_mm', 0.0) for c in cams):.4f} mm p-p; {drive}")
+        print(f"{len(study['files'])} files -> {args.out}")
+        return 0
     for name, c in summary["contacts"].items():
         print(f"{name}: force {c['min_force_N']:.1f} to {c['max_force_N']:.1f} N, contact lost {c['contact_lost_s']:.3g} s, "
               f"max |a| {c['max_abs_acceleration']:.4g} (rigid {c['max_abs_rigid_acceleration']:.4g})")

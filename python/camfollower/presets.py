@@ -5,7 +5,8 @@ from __future__ import annotations
 
 from typing import Optional
 
-from ._core import CamEccentricity, Mechanism, MotionProgram, Parameters, paper_preset, realistic_damping_ratio
+from ._core import (CamEccentricity, Mechanism, MotionProgram, Parameters, paper_preset, realistic_damping_ratio,
+                    valve_train_parameter_units, valve_train_preset)
 
 #: Element damping ratio of :func:`paper_damped` (machine structures: 2-5 % of critical; defined in C++).
 REALISTIC_DAMPING_RATIO: float = realistic_damping_ratio
@@ -42,4 +43,21 @@ def paper_damped(parameters: Optional[Parameters] = None, program: Optional[Moti
     return paper(parameters, program, element_damping_ratio=damping_ratio, **options)
 
 
-__all__ = ["paper", "paper_damped", "REALISTIC_DAMPING_RATIO"]
+def valve_train(engine_speed_rpm: float = 4000.0, **parameters) -> Mechanism:
+    """An inline engine's camshaft: one flexible, twisting hollow shaft on radial bearings between the
+    cylinders, driven at x = 0 through the timing drive's torsional compliance, with
+    ``valves_per_cylinder`` cams per cylinder phased by ``firing_order``; each cam lifts a roller
+    tappet and valve (one mass, DOF "c<cyl>v<valve>.valve") against a valve spring that surges (a
+    chain of masses "c<cyl>v<valve>.spring.<k>"). The camshaft turns at half ``engine_speed_rpm``.
+
+    Defaults: a four-cylinder, four-valve head's intake camshaft (8 cams, firing order 1-3-4-2, 9 mm
+    lift). ``parameters``: ``cylinders``, ``valves_per_cylinder`` (1 or 2), ``spring_elements``,
+    ``firing_order`` and every real parameter of :data:`VALVE_TRAIN_PARAMETERS` (SI units). Contacts
+    are named "c<cyl>v<valve>"; the shaft "camshaft", bearings "bearing<k>", the drive "drive"."""
+    return valve_train_preset(float(engine_speed_rpm), parameters)
+
+
+#: The valve-train preset's real-valued parameters and their SI units.
+VALVE_TRAIN_PARAMETERS: dict = valve_train_parameter_units()
+
+__all__ = ["paper", "paper_damped", "valve_train", "REALISTIC_DAMPING_RATIO", "VALVE_TRAIN_PARAMETERS"]

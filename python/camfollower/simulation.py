@@ -13,7 +13,7 @@ from .results import Result
 def simulate(system, *, duration: Optional[float] = None, revolutions: Optional[float] = None,
              time_step: float = 3e-6, decimation: int = 1, record_from: Optional[float] = None,
              record_last_revolutions: Optional[float] = None, gamma: Optional[float] = None,
-             beta: Optional[float] = None, hht_alpha: float = 0.0, linear_solver: str = "low_rank",
+             beta: Optional[float] = None, hht_alpha: float = 0.0, linear_solver: str = "auto",
              residual_tolerance: float = 1e-10, increment_tolerance: float = 1e-10, max_iterations: int = 25,
              max_halvings: int = 6, max_output_bytes: float = 4.0 * 1024 ** 3,
              progress: Optional[Callable[[int, int], Optional[bool]]] = None,
@@ -26,8 +26,10 @@ def simulate(system, *, duration: Optional[float] = None, revolutions: Optional[
     is recorded every ``decimation`` steps, from ``record_from`` (s) or over the
     ``record_last_revolutions`` on. ``gamma``/``beta`` default to 1/2, 1/4 (average acceleration) or,
     with ``hht_alpha`` < 0, to HHT's 1/2 - alpha and (1 - alpha)^2 / 4; beta < 1/4 is only
-    conditionally stable and a step beyond its limit is refused. ``linear_solver``: "low_rank"
-    (Sherman-Morrison / Woodbury on the contact rank) or "dense_lu".
+    conditionally stable and a step beyond its limit is refused. ``linear_solver``: "auto" (dense
+    below 150 DOFs, sparse above), "low_rank" (dense: Sherman-Morrison / Woodbury on the contact
+    rank), "dense_lu", "sparse" (SuiteSparse: CHOLMOD when symmetric positive definite, else KLU) or
+    "klu"; ``stats["backend"]`` says which ran.
 
     ``system`` is a Mechanism (camfollower.MechanismBuilder, camfollower.presets) or a CamFollowerModel.
     ``progress(steps_done, steps_planned)`` is called about every ``progress_interval`` seconds;

@@ -58,7 +58,7 @@ py::dict to_python(const config::CaseConfig& c) {
     solver["gamma"] = s.newmark.gamma;
     solver["beta"] = s.newmark.beta;
     solver["hht_alpha"] = s.newmark.hht_alpha;
-    solver["linear_solver"] = s.newmark.linear_solver == LinearSolver::dense_lu ? "dense_lu" : "low_rank";
+    solver["linear_solver"] = linear_solver_name(s.newmark);
     solver["residual_tolerance"] = s.newmark.residual_tolerance;
     solver["increment_tolerance"] = s.newmark.increment_tolerance;
     solver["max_iterations"] = s.newmark.max_iterations;

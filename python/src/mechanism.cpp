@@ -9,7 +9,9 @@
 
 #include "bindings.hpp"
 #include "camfollower/model/mechanism.hpp"
+#include "camfollower/model/mechanism_modes.hpp"
 #include "camfollower/model/presets/paper.hpp"
+#include "camfollower/model/presets/valve_train.hpp"
 #include "run.hpp"
 
 namespace camfollower::python {
@@ -126,10 +128,29 @@ ArmTurn turn_from(const std::string& s) {
 
 // Builder state as plain, self-describing Python data (pickling, and Mechanism.__reduce__).
 py::dict builder_state(const MechanismBuilder& b) {
-    py::list dofs, springs, loads, contacts;
-    for (const DofSpec& d : b.structure.dofs())
-        dofs.append(py::dict(py::arg("name") = d.name, py::arg("mass") = d.mass,
-                             py::arg("direction") = Eigen::Vector3d(d.direction)));
+    py::list dofs, springs, loads, contacts, masses;
+    // DOFs in order; a shaft's DOFs as one entry describing the shaft, where they start.
+    const std::vector<DofSpec>& all = b.structure.dofs();
+    for (std::size_t k = 0; k < all.size(); ++k) {
+        const ShaftEntry* shaft = nullptr;
+        for (const ShaftEntry& e : b.structure.shafts())
+            if (e.first_dof == int(k)) shaft = &e;
+        if (shaft) {
+            const ShaftSpec& sp = shaft->spec;
+            const BeamSection& sec = sp.section;
+            dofs.append(py::dict(py::arg("shaft") = sp.name, py::arg("length") = sp.length,
+                                 py::arg("max_element_length") = sp.max_element_length, py::arg("stations") = sp.stations,
+                                 py::arg("axial") = sp.axial,
+                                 py::arg("section") = std::vector<double>{sec.youngs_modulus, sec.shear_modulus, sec.density, sec.area,
+                                                                          sec.second_moment_y, sec.second_moment_z, sec.polar_moment,
+                                                                          sec.shear_coefficient_y, sec.shear_coefficient_z}));
+            k += std::size_t(shaft->nodes.size()) * std::size_t(shaft->dofs_per_node()) - 1;
+            continue;
+        }
+        const DofSpec& d = all[k];
+        dofs.append(py::dict(py::arg("name") = d.name, py::arg("mass") = d.mass, py::arg("direction") = Eigen::Vector3d(d.direction)));
+    }
+    for (const PointMassSpec& pm : b.structure.masses()) masses.append(py::make_tuple(pm.dof, pm.mass));
     for (const SpringSpec& s : b.structure.springs())
         springs.append(py::dict(py::arg("name") = s.name, py::arg("a") = s.a, py::arg("b") = s.b,
                                 py::arg("stiffness") = s.stiffness, py::arg("damping") = s.damping,
@@ -141,14 +162,14 @@ py::dict builder_state(const MechanismBuilder& b) {
                                  py::arg("exponent") = c.law.exponent, py::arg("damping_factor") = c.law.damping_factor,
                                  py::arg("phase") = c.phase, py::arg("cam_x") = c.cam_x, py::arg("cam_y") = c.cam_y,
                                  py::arg("follower_dof") = c.follower_dof, py::arg("lateral") = c.lateral,
-                                 py::arg("eccentricity") = c.eccentricity));
+                                 py::arg("eccentricity") = c.eccentricity, py::arg("cam_twist") = c.cam_twist));
     py::list clearances;
     for (const ClearanceSpec& c : b.clearances)
         clearances.append(py::dict(py::arg("name") = c.name, py::arg("gap") = c.gap, py::arg("clearance") = c.clearance,
                                    py::arg("stiffness") = c.wall.stiffness, py::arg("exponent") = c.wall.exponent,
                                    py::arg("damping_factor") = c.wall.damping_factor, py::arg("friction") = c.friction,
                                    py::arg("sliding_dof") = c.sliding_dof, py::arg("slip_velocity") = c.slip_velocity));
-    return py::dict(py::arg("clearances") = clearances, py::arg("dofs") = dofs, py::arg("springs") = springs, py::arg("loads") = loads,
+    return py::dict(py::arg("masses") = masses, py::arg("clearances") = clearances, py::arg("dofs") = dofs, py::arg("springs") = springs, py::arg("loads") = loads,
                     py::arg("gravity") = Eigen::Vector3d(b.structure.gravity()),
                     py::arg("rayleigh_alpha") = b.structure.rayleigh_alpha(),
                     py::arg("rayleigh_beta") = b.structure.rayleigh_beta(),
@@ -160,8 +181,21 @@ MechanismBuilder builder_from(const py::dict& t) {
     MechanismBuilder b;
     for (const auto& item : t["dofs"].cast<py::list>()) {
         const auto d = item.cast<py::dict>();
+        if (d.contains("shaft")) {
+            const std::vector<double> v = d["section"].cast<std::vector<double>>();
+            if (v.size() != 9) detail::fail("shaft section: 9 values expected");
+            b.add_shaft({d["shaft"].cast<std::string>(), BeamSection{v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8]},
+                         d["length"].cast<double>(), d["max_element_length"].cast<double>(),
+                         d["stations"].cast<std::vector<double>>(), d["axial"].cast<bool>()});
+            continue;
+        }
         b.add_dof(d["name"].cast<std::string>(), d["mass"].cast<double>(), d["direction"].cast<Eigen::Vector3d>());
     }
+    if (t.contains("masses"))
+        for (const auto& item : t["masses"].cast<py::list>()) {
+            const auto m = item.cast<py::tuple>();
+            b.add_mass(m[0].cast<std::string>(), m[1].cast<double>());
+        }
     for (const auto& item : t["springs"].cast<py::list>()) {
         const auto s = item.cast<py::dict>();
         b.add_spring(s["name"].cast<std::string>(), s["a"].cast<std::string>(), s["b"].cast<std::string>(),
@@ -181,7 +215,8 @@ MechanismBuilder builder_from(const py::dict& t) {
                                     c["damping_factor"].cast<double>()},
                        c["phase"].cast<double>(), c["cam_x"].cast<std::string>(), c["cam_y"].cast<std::string>(),
                        c["follower_dof"].cast<std::string>(), c["lateral"].cast<std::string>(),
-                       c.contains("eccentricity") ? c["eccentricity"].cast<CamEccentricity>() : CamEccentricity{}});
+                       c.contains("eccentricity") ? c["eccentricity"].cast<CamEccentricity>() : CamEccentricity{},
+                       c.contains("cam_twist") ? c["cam_twist"].cast<std::string>() : std::string(ground_name)});
     }
     if (t.contains("clearances"))
         for (const auto& item : t["clearances"].cast<py::list>()) {
@@ -349,18 +384,81 @@ void bind_mechanism(py::module_& m) {
             [](MechanismBuilder& b, const std::string& name, const MotionProgram& program, const py::object& follower,
                const std::string& follower_dof, double stiffness, double exponent, double damping_factor, double phase,
                const std::string& cam_x, const std::string& cam_y, const std::string& lateral,
-               const std::optional<CamEccentricity>& eccentricity) {
+               const std::optional<CamEccentricity>& eccentricity, const std::string& cam_twist) {
                 b.add_contact({name, program, follower_from(follower), HertzContact{stiffness, exponent, damping_factor}, phase, cam_x,
-                               cam_y, follower_dof, lateral, eccentricity.value_or(CamEccentricity{})});
+                               cam_y, follower_dof, lateral, eccentricity.value_or(CamEccentricity{}), cam_twist});
             },
             py::arg("name"), py::arg("program"), py::arg("follower"), py::kw_only(), py::arg("follower_dof"),
             py::arg("stiffness"), py::arg("exponent") = 1.0, py::arg("damping_factor") = 0.0, py::arg("phase") = 0.0,
             py::arg("cam_x") = ground_name, py::arg("cam_y") = ground_name, py::arg("lateral") = ground_name,
-            py::arg("eccentricity") = py::none(),
+            py::arg("eccentricity") = py::none(), py::arg("cam_twist") = ground_name,
             "A cam-follower contact pair: the cam's lift program (m, or rad for an oscillating follower), the follower\n"
             "type, the DOF of the follower's coordinate, a Hertz law F = k delta^n (1 + chi delta'), the cam's\n"
-            "phase on the shaft (rad), the cam centre's DOFs, a translating follower's lateral DOF and an optional\n"
-            "CamEccentricity.")
+            "phase on the shaft (rad), the cam centre's DOFs, a translating follower's lateral DOF, an optional\n"
+            "CamEccentricity, and the camshaft's twist DOF at the cam (rad; the cam angle is then omega t + phase +\n"
+            "twist, a state, and the contact's moment loads the twist: channel <name>.cam_torque).")
+        .def(
+            "add_shaft",
+            [](MechanismBuilder& b, const std::string& name, double length, double outer_diameter, double inner_diameter,
+               const std::vector<double>& stations, double max_element_length, double youngs_modulus, double poisson_ratio,
+               double density, bool axial) {
+                b.add_shaft({name, BeamSection::hollow_circle(outer_diameter, inner_diameter, youngs_modulus, poisson_ratio, density),
+                             length, max_element_length, stations, axial});
+            },
+            py::arg("name"), py::kw_only(), py::arg("length"), py::arg("outer_diameter"), py::arg("inner_diameter") = 0.0,
+            py::arg("stations") = std::vector<double>{}, py::arg("max_element_length") = 0.0, py::arg("youngs_modulus") = 210e9,
+            py::arg("poisson_ratio") = 0.3, py::arg("density") = 7850.0, py::arg("axial") = false,
+            "A flexible shaft along x from 0 to `length` (m): Timoshenko beam elements (bending in two planes with\n"
+            "shear and rotary inertia, torsion; axial if asked) of a solid or hollow circular steel section (SI\n"
+            "units). Every station (m) where a cam, bearing, drive or mass will sit must be listed; no element is\n"
+            "longer than max_element_length (0: one element between stations). Node DOFs are named\n"
+            "'<name>.<node>.<uy|uz|rx|ry|rz>' (shaft_dof()); the twist rx is relative to the rigid rotation.")
+        .def(
+            "shaft_dof",
+            [](const MechanismBuilder& b, const std::string& shaft, double at, const std::string& dof) {
+                static const char* names[] = {"ux", "uy", "uz", "rx", "ry", "rz"};
+                for (int d = 0; d < 6; ++d)
+                    if (dof == names[d]) return b.structure.shaft_dof_at(shaft, at, d);
+                detail::fail("dof must be one of 'ux', 'uy', 'uz', 'rx', 'ry', 'rz', got '", dof, "'");
+            },
+            py::arg("shaft"), py::arg("at"), py::arg("dof"), "The DOF name of a shaft's node at station `at` (m).")
+        .def("add_bearing", &MechanismBuilder::add_bearing, py::arg("name"), py::arg("shaft"), py::arg("at"), py::kw_only(),
+             py::arg("stiffness"), py::arg("damping") = 0.0,
+             "A radial bearing at station `at` (m): spring-dampers (N/m, N s/m) from u_y and u_z to ground.")
+        .def("add_drive", &MechanismBuilder::add_drive, py::arg("name"), py::arg("shaft"), py::arg("at") = 0.0, py::kw_only(),
+             py::arg("stiffness"), py::arg("damping") = 0.0,
+             "The drive as an imposed speed through a compliance: a torsional spring-damper (N m/rad, N m s/rad)\n"
+             "from the twist at station `at` to the rigid rotation omega t.")
+        .def("add_motor", &MechanismBuilder::add_motor, py::arg("name"), py::arg("shaft"), py::arg("at") = 0.0, py::kw_only(),
+             py::arg("inertia"), py::arg("slip_slope"), py::arg("torque") = 0.0,
+             "The drive as a motor with a flywheel: inertia (kg m^2) on the twist at `at`, torque falling with\n"
+             "speed at slip_slope (N m s/rad) about the nominal speed, and the torque there (N m).")
+        .def(
+            "mount_cam",
+            [](MechanismBuilder& b, const std::string& name, const MotionProgram& program, const py::object& follower,
+               const std::string& follower_dof, const std::string& shaft, double at, double stiffness, double exponent,
+               double damping_factor, double phase, double width, double cam_mass, double cam_inertia,
+               const std::string& lateral) {
+                b.mount_cam({name, program, follower_from(follower), HertzContact{stiffness, exponent, damping_factor}, phase,
+                             ground_name, ground_name, follower_dof, lateral, CamEccentricity{}, ground_name},
+                            shaft, at, width, cam_mass, cam_inertia);
+            },
+            py::arg("name"), py::arg("program"), py::arg("follower"), py::kw_only(), py::arg("follower_dof"), py::arg("shaft"),
+            py::arg("at"), py::arg("stiffness"), py::arg("exponent") = 1.0, py::arg("damping_factor") = 0.0,
+            py::arg("phase") = 0.0, py::arg("width") = 0.0, py::arg("cam_mass") = 0.0, py::arg("cam_inertia") = 0.0,
+            py::arg("lateral") = ground_name,
+            "A contact pair whose cam sits on a shaft at station `at` (m): the cam centre is the node's (u_y, u_z), its\n"
+            "angle omega t + phase + the node's twist. Its contact frame has x along the global y and the follower's\n"
+            "axis along the global z. width (m) is checked against the other cams; cam_mass (kg) and cam_inertia\n"
+            "(kg m^2) are added to the node.")
+        .def("add_spring_chain", &MechanismBuilder::add_spring_chain, py::arg("name"), py::arg("a"), py::arg("b") = ground_name,
+             py::kw_only(), py::arg("stiffness"), py::arg("mass"), py::arg("elements") = 6, py::arg("damping") = 0.0,
+             py::arg("preload") = 0.0, py::arg("direction") = Eigen::Vector3d::Zero(),
+             "A spring with its own mass (a valve spring that surges): `elements` equal springs in series with\n"
+             "interior masses '<name>.1', ...; its surge frequencies tend to (j / 2) sqrt(stiffness / mass) with both\n"
+             "ends held. stiffness, damping and preload are the whole spring's.")
+        .def("add_mass", &MechanismBuilder::add_mass, py::arg("dof"), py::arg("mass"),
+             "A lumped mass (kg) or inertia (kg m^2) added to a DOF (e.g. a flywheel on a shaft's twist).")
         .def(
             "add_clearance",
             [](MechanismBuilder& b, const std::string& name, const std::vector<std::pair<std::string, double>>& gap,
@@ -455,6 +553,18 @@ void bind_mechanism(py::module_& m) {
         .def("modal_analysis", &modal, py::arg("theta") = 0.0,
              "Undamped natural frequencies (Hz, ascending), mass-normalized mode shapes and the tangent stiffness at\n"
              "the quasi-static equilibrium at camshaft angle theta (rad), contacts linearized.")
+        .def(
+            "lowest_modes",
+            [](const AnyMechanism& a, double theta, int count) {
+                return a.visit([&](const auto& x) {
+                    const MechanismModes r = lowest_modes(x, theta, count);
+                    return py::make_tuple(r.frequencies_hz, r.shapes);
+                });
+            },
+            py::arg("theta") = 0.0, py::arg("count") = 0,
+            "(frequencies in Hz ascending, mass-normalized mode shapes as columns) of the lowest `count` modes at\n"
+            "camshaft angle theta (rad), contacts linearized; count = 0: all (models up to 200 DOFs). Large\n"
+            "models (a flexible camshaft) use shift-invert Lanczos on the sparse factor (Spectra).")
         .def("builder", [](const AnyMechanism& a) { return a.visit([](const auto& x) { return x.description(); }); },
              "A copy of the description it was built from: change it and build() a changed mechanism.")
         .def("with_camshaft_speed_rpm",
@@ -499,6 +609,38 @@ void bind_mechanism(py::module_& m) {
         "'guide'; wall damping factor chi in s/m, Coulomb friction on y3); element_damping_ratio in (0, 1)\n"
         "puts a damper on every element (springs, contact, guide walls) at that ratio of its own critical\n"
         "damping, in place of the paper's few dampers.");
+
+    m.def(
+        "valve_train_preset",
+        [](double engine_speed_rpm, const py::dict& parameters) {
+            presets::ValveTrainParameters p;
+            p.engine_speed_rpm = engine_speed_rpm;
+            for (const auto& [k, v] : parameters) {
+                const std::string key = py::str(k);
+                if (key == "cylinders") p.cylinders = v.cast<int>();
+                else if (key == "valves_per_cylinder") p.valves_per_cylinder = v.cast<int>();
+                else if (key == "spring_elements") p.spring_elements = v.cast<int>();
+                else if (key == "firing_order") p.firing_order = v.cast<std::vector<int>>();
+                else {
+                    const presets::ValveTrainParameters::Field* field = nullptr;
+                    for (const auto& f : presets::ValveTrainParameters::fields())
+                        if (key == f.name) field = &f;
+                    if (!field) {
+                        std::string known = "cylinders, valves_per_cylinder, spring_elements, firing_order";
+                        for (const auto& f : presets::ValveTrainParameters::fields()) known += ", " + std::string(f.name);
+                        detail::fail("unknown valve-train parameter '", key, "'; known: ", known);
+                    }
+                    p.*(field->member) = v.cast<double>();
+                }
+            }
+            return AnyMechanism::build(presets::valve_train(p));
+        },
+        py::arg("engine_speed_rpm"), py::arg("parameters"), "Internal: camfollower.presets.valve_train() calls this.");
+    m.def("valve_train_parameter_units", [] {
+        py::dict d;
+        for (const auto& f : presets::ValveTrainParameters::fields()) d[py::str(f.name)] = f.unit;
+        return d;
+    }, "The valve-train preset's real-valued parameters and their SI units.");
 
     bind_run<AnyMechanism>(m, [](const AnyMechanism& a, auto&&... args) {
         return a.visit([&](const auto& mech) { return run_system(mech, args...); });

@@ -28,9 +28,7 @@ inline NewmarkSettings settings_from(double time_step, std::optional<double> gam
     s.increment_tolerance = increment_tolerance;
     s.max_iterations = max_iterations;
     s.max_halvings = max_halvings;
-    if (linear_solver == "sherman_morrison" || linear_solver == "low_rank") s.linear_solver = LinearSolver::sherman_morrison;
-    else if (linear_solver == "dense_lu") s.linear_solver = LinearSolver::dense_lu;
-    else detail::fail("linear_solver must be 'low_rank' (alias 'sherman_morrison') or 'dense_lu', got '", linear_solver, "'");
+    set_linear_solver(s, linear_solver);
     s.validate();
     return s;
 }
@@ -117,6 +115,7 @@ py::dict run_system(const System& system, double duration, const NewmarkSettings
     stats["time_step"] = result->time_step;
     stats["decimation"] = result->decimation;
     stats["cancelled"] = result->report.cancelled;
+    stats["backend"] = result->backend;
     const SettleReport& sr = result->settle;
     if (sr.requested) {
         py::dict st;

@@ -351,6 +351,49 @@ void read_parts(const Section& root, const CaseConfig& c, const Dimensions& dims
         s.finish({"name", "mass", "direction"});
         located(s, [&] { b.add_dof(name, mass, direction); });
     }
+    // Flexible shafts: every station a bearing, drive, motor or cam names becomes a node.
+    std::map<std::string, std::vector<double>> stations;
+    for (const char* kind : {"bearing", "drive", "motor", "contact"})
+        for (const Section& s : root.tables(kind))
+            if (s.has("shaft")) stations[s.text("shaft")].push_back(s.quantity("at", "m", 0.0));
+    for (const Section& s : root.tables("shaft")) {
+        ShaftSpec spec;
+        spec.name = s.text("name");
+        const double outer = s.quantity("outer_diameter", "m"), inner = s.quantity("inner_diameter", "m", 0.0);
+        const double E = s.quantity("youngs_modulus", "Pa", 210e9), nu = s.quantity("poisson_ratio", "-", 0.3);
+        const double rho = s.quantity("density", "kg/m^3", 7850.0);
+        located(s, [&] { spec.section = BeamSection::hollow_circle(outer, inner, E, nu, rho); });
+        spec.length = s.quantity("length", "m");
+        spec.max_element_length = s.quantity("max_element_length", "m", 0.0);
+        spec.axial = s.flag("axial", false);
+        spec.stations = stations[spec.name];
+        s.finish({"name", "outer_diameter", "inner_diameter", "youngs_modulus", "poisson_ratio", "density", "length",
+                  "max_element_length", "axial"});
+        located(s, [&] { b.add_shaft(spec); });
+    }
+    for (const Section& s : root.tables("bearing")) {
+        const std::string name = s.text("name"), shaft = s.text("shaft");
+        const double x = s.quantity("at", "m"), k = s.quantity("stiffness", "N/m"), d = s.quantity("damping", "N s/m", 0.0);
+        s.finish({"name", "shaft", "at", "stiffness", "damping"});
+        located(s, [&] { b.add_bearing(name, shaft, x, k, d); });
+    }
+    for (const Section& s : root.tables("drive")) {
+        const std::string name = s.text("name", "drive"), shaft = s.text("shaft");
+        const double x = s.quantity("at", "m", 0.0), k = s.quantity("stiffness", "N/m"), d = s.quantity("damping", "N s/m", 0.0);
+        const double inertia = s.quantity("inertia", "kg", 0.0);
+        s.finish({"name", "shaft", "at", "stiffness", "damping", "inertia"});
+        located(s, [&] {
+            b.add_drive(name, shaft, x, k, d);
+            if (inertia > 0.0) b.add_mass(b.structure.shaft_dof_at(shaft, x, 3), inertia);
+        });
+    }
+    for (const Section& s : root.tables("motor")) {
+        const std::string name = s.text("name", "motor"), shaft = s.text("shaft");
+        const double x = s.quantity("at", "m", 0.0), inertia = s.quantity("inertia", "kg"), slope = s.quantity("slip_slope", "N s/m");
+        const double torque = s.quantity("torque", "N m", 0.0);
+        s.finish({"name", "shaft", "at", "inertia", "slip_slope", "torque"});
+        located(s, [&] { b.add_motor(name, shaft, x, inertia, slope, torque); });
+    }
     for (const Section& s : root.tables("spring")) {
         const std::string name = s.text("name"), a = dof_name(s, "a", b, false, ""), bb = dof_name(s, "b", b, true, ground_name);
         const double k = s.quantity("stiffness", "N/m"), d = s.quantity("damping", "N s/m", 0.0), p = s.quantity("preload", "N", 0.0);
@@ -363,6 +406,20 @@ void read_parts(const Section& root, const CaseConfig& c, const Dimensions& dims
         s.finish({"name", "a", "b", "damping"});
         located(s, [&] { b.add_damper(name, a, bb, d); });
     }
+    for (const Section& s : root.tables("spring_chain")) {
+        const std::string name = s.text("name"), a = dof_name(s, "a", b, false, ""), bb = dof_name(s, "b", b, true, ground_name);
+        const double k = s.quantity("stiffness", "N/m"), m = s.quantity("mass", "kg");
+        const int elements = int(s.integer("elements", 6, 1, 1000));
+        const double d = s.quantity("damping", "N s/m", 0.0), p = s.quantity("preload", "N", 0.0);
+        Eigen::Vector3d direction = Eigen::Vector3d::Zero();
+        if (s.has("direction")) {
+            const std::vector<double> v = s.quantities("direction", "-");
+            if (v.size() != 3) s.fail("direction", "must be [x, y, z] (a unit vector)");
+            direction = {v[0], v[1], v[2]};
+        }
+        s.finish({"name", "a", "b", "stiffness", "mass", "elements", "damping", "preload", "direction"});
+        located(s, [&] { b.add_spring_chain(name, a, bb, k, m, elements, d, p, direction); });
+    }
     for (const Section& s : root.tables("load")) {
         const std::string dof = dof_name(s, "dof", b, false, "");
         const double f = s.quantity("force", "N");
@@ -371,7 +428,7 @@ void read_parts(const Section& root, const CaseConfig& c, const Dimensions& dims
     }
     for (const Section& s : root.tables("contact")) {
         ContactPairSpec p{s.text("name"), MotionProgram::paper_default(), TranslatingRoller(0.03, 0.008, 0.0), HertzContact{},
-                          0.0, ground_name, ground_name, "", ground_name, CamEccentricity{}};
+                          0.0, ground_name, ground_name, "", ground_name, CamEccentricity{}, ground_name};
         const std::string program = s.text("program");
         located(s, [&] { p.program = c.program(program); });
         const std::optional<Section> follower = s.table("follower");
@@ -384,10 +441,27 @@ void read_parts(const Section& root, const CaseConfig& c, const Dimensions& dims
         p.cam_x = dof_name(s, "cam_x", b, true, ground_name);
         p.cam_y = dof_name(s, "cam_y", b, true, ground_name);
         p.lateral = dof_name(s, "lateral", b, true, ground_name);
+        p.cam_twist = dof_name(s, "cam_twist", b, true, ground_name);
         if (const std::optional<Section> e = s.table("eccentricity")) p.eccentricity = read_eccentricity(*e);
+        const bool mounted = s.has("shaft");
+        std::string shaft;
+        double x = 0.0, width = 0.0, mass = 0.0, inertia = 0.0;
+        if (mounted) {
+            // Mounted on a flexible shaft: the node's DOFs are the cam's centre and twist.
+            for (const char* key : {"cam_x", "cam_y", "cam_twist"})
+                if (s.has(key)) s.fail(key, "is the shaft's node DOF for a cam mounted on a shaft; leave it out");
+            shaft = s.text("shaft");
+            x = s.quantity("at", "m"), width = s.quantity("width", "m", 0.0);
+            mass = s.quantity("cam_mass", "kg", 0.0), inertia = s.quantity("cam_inertia", "kg", 0.0);
+        } else {
+            for (const char* key : {"at", "width", "cam_mass", "cam_inertia"})
+                if (s.has(key)) s.fail(key, "belongs to a cam mounted on a shaft (give shaft = \"<name>\")");
+        }
         s.finish({"name", "program", "follower", "stiffness", "exponent", "damping_factor", "roller_width", "phase",
-                  "follower_dof", "cam_x", "cam_y", "lateral", "eccentricity"});
-        located(s, [&] { b.add_contact(p); });
+                  "follower_dof", "cam_x", "cam_y", "lateral", "cam_twist", "eccentricity", "shaft", "at", "width",
+                  "cam_mass", "cam_inertia"});
+        if (mounted) located(s, [&] { b.mount_cam(p, shaft, x, width, mass, inertia); });
+        else located(s, [&] { b.add_contact(p); });
     }
     for (const Section& s : root.tables("clearance")) {
         ClearanceSpec cl;
@@ -440,8 +514,44 @@ void read_parts(const Section& root, const CaseConfig& c, const Dimensions& dims
 
 // ---- the paper preset ------------------------------------------------------------------------
 
+// The valve-train preset: parameters by name (SI units as in presets::ValveTrainParameters); the
+// camshaft speed is [camshaft] speed (the engine turns twice as fast).
+MechanismBuilder read_valve_train(const Section& s, double rpm) {
+    presets::ValveTrainParameters p;
+    if (const std::optional<Section> ps = s.table("parameters")) {
+        for (const std::string& key : ps->keys()) {
+            if (key == "cylinders") p.cylinders = int(ps->integer(key, p.cylinders, 1, 64));
+            else if (key == "valves_per_cylinder") p.valves_per_cylinder = int(ps->integer(key, p.valves_per_cylinder, 1, 2));
+            else if (key == "spring_elements") p.spring_elements = int(ps->integer(key, p.spring_elements, 1, 1000));
+            else if (key == "firing_order") {
+                p.firing_order.clear();
+                for (double v : ps->quantities(key, "-")) {
+                    if (v != std::floor(v) || v < 1 || v > 64) ps->fail(key, "must list cylinder numbers 1, 2, ...");
+                    p.firing_order.push_back(int(v));
+                }
+            } else {
+                const presets::ValveTrainParameters::Field* field = nullptr;
+                for (const auto& f : presets::ValveTrainParameters::fields())
+                    if (key == f.name) field = &f;
+                if (!field) {
+                    std::string known = "cylinders, valves_per_cylinder, spring_elements, firing_order";
+                    for (const auto& f : presets::ValveTrainParameters::fields()) known += ", " + std::string(f.name);
+                    ps->fail(key, "unknown parameter; known: " + known);
+                }
+                p.*(field->member) = ps->quantity(key, field->unit);
+            }
+        }
+    }
+    p.engine_speed_rpm = 2.0 * rpm;
+    s.finish({"name", "parameters"});
+    MechanismBuilder b;
+    located(s, [&] { b = presets::valve_train(p); });
+    return b;
+}
+
 MechanismBuilder read_preset(const Section& s, const CaseConfig& c, const Dimensions& dims, double rpm) {
-    const std::string name = s.choice("name", "", {"paper", "paper_damped"});
+    const std::string name = s.choice("name", "", {"paper", "paper_damped", "valve_train"});
+    if (name == "valve_train") return read_valve_train(s, rpm);
     CamFollowerParameters p;
     if (const std::optional<Section> ps = s.table("parameters")) {
         for (const std::string& key : ps->keys()) {
@@ -513,8 +623,7 @@ SolverConfig read_solver(const Section& s) {
     n.increment_tolerance = s.quantity("increment_tolerance", "-", n.increment_tolerance);
     n.max_iterations = int(s.integer("max_iterations", n.max_iterations, 1, 1000));
     n.max_halvings = int(s.integer("max_halvings", n.max_halvings, 0, 30));
-    n.linear_solver = s.choice("linear_solver", "low_rank", {"low_rank", "dense_lu"}) == "dense_lu" ? LinearSolver::dense_lu
-                                                                                               : LinearSolver::sherman_morrison;
+    set_linear_solver(n, s.choice("linear_solver", "auto", {"auto", "low_rank", "dense_lu", "sparse", "klu"}));
     v.settle = s.flag("settle", false);
     v.settle_tolerance = s.quantity("settle_tolerance", "-", v.settle_tolerance);
     if (s.has("settle_dofs")) v.settle_dofs = s.texts("settle_dofs");
@@ -573,7 +682,7 @@ CaseConfig build_case(const toml::table& table, const std::string& origin, const
     } else {
         root.fail_here("a [camshaft] table with its speed is required, e.g. [camshaft] speed = \"750 rpm\"");
     }
-    const bool parts = root.has("dof") || root.has("contact") || root.has("spring");
+    const bool parts = root.has("dof") || root.has("contact") || root.has("spring") || root.has("shaft");
     if (const std::optional<Section> preset = root.table("preset")) {
         if (parts)
             root.fail(root.has("dof") ? "dof" : root.has("contact") ? "contact" : "spring",
@@ -588,7 +697,7 @@ CaseConfig build_case(const toml::table& table, const std::string& origin, const
     if (const std::optional<Section> s = root.table("solver")) c.solver = read_solver(*s);
     if (const std::optional<Section> s = root.table("output")) c.output = read_output(*s);
     root.finish({"camshaft", "program", "preset", "dof", "spring", "damper", "load", "contact", "clearance", "guide",
-                 "damping", "gravity", "solver", "output"});
+                 "damping", "gravity", "solver", "output", "shaft", "bearing", "drive", "motor", "spring_chain"});
     // The description must build (DOF references, contact geometry): fail now, located at the file.
     try {
         if (c.mechanism.structure.size() == presets::paper_dofs) (void)Mechanism<presets::paper_dofs>(c.mechanism);

@@ -39,6 +39,9 @@ const QuantityKind& quantity_kind(std::string_view si) {
         {"lift", {"m or rad", lengths(true)}},
         {"rad", {"rad", {{"rad", 1.0}, {"deg", pi / 180.0}}}},
         {"s", {"s", {{"s", 1.0}, {"ms", 1e-3}, {"us", 1e-6}}}},
+        {"Pa", {"Pa", {{"Pa", 1.0}, {"kPa", 1e3}, {"MPa", 1e6}, {"GPa", 1e9}, {"N/mm^2", 1e6}}}},
+        {"kg/m^3", {"kg/m^3", {{"kg/m^3", 1.0}, {"g/cm^3", 1e3}}}},
+        {"N m", {"N m", {{"N m", 1.0}, {"N*m", 1.0}, {"Nm", 1.0}, {"N mm", 1e-3}}}},
         {"-", {"-", {}}},
     };
     const auto it = table.find(si);

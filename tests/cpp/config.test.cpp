@@ -71,7 +71,7 @@ cf::MechanismBuilder two_mass_by_hand() {
     b.add_spring("top", "tappet", "mid", 6e4, 0.0, 250.0);
     b.add_spring("bottom", "mid", "ground", 6e4, 3.0, 250.0);
     b.add_contact({"cam", p, cf::TranslatingFlat(0.02), cf::HertzContact{2e8, 1.0, 0.0}, 0.0, "ground", "ground", "tappet",
-                   "ground", cf::CamEccentricity{}});
+                   "ground", cf::CamEccentricity{}, "ground"});
     b.set_gravity({0, -9.81, 0});
     b.set_camshaft_speed_rpm(900.0);
     return b;

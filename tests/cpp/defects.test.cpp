@@ -105,7 +105,7 @@ Mechanism<> follower_on_eccentric_circle(double rpm, const CamEccentricity& ecc,
     b.add_dof("s", 0.5, {0, 1, 0});
     b.add_spring("return", "s", "ground", 2e4, 0.0, 300.0);
     ContactPairSpec c{"cam", circle(), TranslatingRoller(0.04, 0.0125, 0.01), HertzContact{1e8, 1.0, chi}, 0.0,
-                      "ground", "ground", "s", "ground", ecc};
+                      "ground", "ground", "s", "ground", ecc, "ground"};
     b.add_contact(c);
     b.set_camshaft_speed_rpm(rpm);
     return Mechanism<>(b);

@@ -84,7 +84,7 @@ MechanismBuilder small_mechanism(const F& follower, const MotionProgram& program
     b.add_spring("bearing_x", "cx", "ground", 1e8, 50.0);
     b.add_spring("bearing_y", "cy", "ground", 1e8, 50.0);
     b.add_spring("return", "s", "ground", lateral ? 2e4 : 20.0, 0.0, lateral ? 300.0 : 3.0);
-    ContactPairSpec c{"cam", program, follower, HertzContact{1e11, 1.5, 0.5}, 0.3, "cx", "cy", "s", "ground", CamEccentricity{}};
+    ContactPairSpec c{"cam", program, follower, HertzContact{1e11, 1.5, 0.5}, 0.3, "cx", "cy", "s", "ground", CamEccentricity{}, "ground"};
     if (lateral) {
         b.add_dof("lat", 0.2, {1, 0, 0});
         b.add_spring("guide", "lat", "ground", 1e8);
@@ -166,7 +166,7 @@ TEST_CASE("two cams on one shaft: rank-two Woodbury update equals the dense LU, 
         b.add_dof(f, 0.4, {0, 1, 0});
         b.add_spring("spring_" + std::string(name), f, "ground", 1.4e4, 0.0, 180.0);
         b.add_contact({std::string("cam_") + name, MotionProgram::paper_default(), TranslatingRoller(0.03, 0.008, 0.01),
-                       HertzContact{1.9e8, 1.0, 0.0}, name[0] == 'a' ? 0.0 : pi, "ground", "shaft", f, "ground", CamEccentricity{}});
+                       HertzContact{1.9e8, 1.0, 0.0}, name[0] == 'a' ? 0.0 : pi, "ground", "shaft", f, "ground", CamEccentricity{}, "ground"});
     }
     const Mechanism<> m(b);
     REQUIRE(m.max_rank() == 2);
@@ -202,7 +202,7 @@ TEST_CASE("bad descriptions: a clear error naming the element, and nothing half-
     c.add_dof("y", 1.0);
     c.add_spring("k", "y", "ground", 1e4, 0.0, 100.0);
     c.add_contact({"cam", MotionProgram::paper_default(), TranslatingRoller(0.03, 0.008, 0.0), HertzContact{}, 0.0,
-                   "ground", "ground", "w", "ground", CamEccentricity{}});
+                   "ground", "ground", "w", "ground", CamEccentricity{}, "ground"});
     CHECK_THROWS_WITH(Mechanism<>(c), Catch::Contains("contact 'cam' follower_dof refers to DOF 'w'"));
     CHECK_THROWS_WITH(Mechanism<3>(b), Catch::Contains("Mechanism<3> built from a description with 1 DOFs"));
     MechanismBuilder osc;
@@ -211,6 +211,6 @@ TEST_CASE("bad descriptions: a clear error naming the element, and nothing half-
     osc.add_dof("x", 1.0);
     osc.add_spring("kx", "x", "ground", 1e6);
     osc.add_contact({"cam", MotionProgram::paper_default(0.2), OscillatingRoller(0.03, 0.008, {0.06, 0.05}, 0.06),
-                     HertzContact{}, 0.0, "ground", "ground", "arm", "x", CamEccentricity{}});
+                     HertzContact{}, 0.0, "ground", "ground", "arm", "x", CamEccentricity{}, "ground"});
     CHECK_THROWS_WITH(Mechanism<>(osc), Catch::Contains("lateral is defined for translating followers only"));
 }

@@ -4,9 +4,15 @@
 //   cam_x, cam_y   translation of the cam centre (ground frame), or ground
 //   follower       the follower's own coordinate s (m along a translating axis, rad of an arm)
 //   lateral        translation of a translating follower across its axis, or ground
-// Its penetration is linear in q with time-only coefficients (contact_geometry.hpp):
-//   delta = g(t)^T q + delta0(t),  g = n_x e_cam_x + n_y e_cam_y - n_x e_lateral - lever e_follower,
-//   delta0 = lever s(theta),       theta = omega t + phase.
+//   cam_twist      the camshaft's twist at the cam (rad, relative to its rigid rotation), or ground
+// Its penetration is linear in q with coefficients that depend on the cam angle only
+// (contact_geometry.hpp):
+//   delta = g(theta)^T q + delta0(theta),  g = n_x e_cam_x + n_y e_cam_y - n_x e_lateral - lever e_follower,
+//   delta0 = lever s(theta),               theta = omega t + phase (+ q_twist).
+// Without a twist DOF theta depends on time only (terms prepared once per step). With one the cam angle
+// is a state: delta depends on q_twist through theta, the generalized force on the twist is the
+// contact force's moment about the shaft axis, F d delta / d theta (virtual work), and the terms are
+// evaluated at every force evaluation.
 // An eccentric cam (contact/eccentricity.hpp) changes the time-only terms (exact geometry of the
 // displaced profile) and may add time-only loads p(t) on the pair's DOFs (unbalance, or the paper's
 // literal force).
@@ -15,6 +21,7 @@
 #include <array>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include "camfollower/contact/eccentricity.hpp"
 #include "camfollower/contact/hertz.hpp"
@@ -46,6 +53,7 @@ struct ContactPairSpec {
     double phase = 0.0;  // rad: cam angle = omega t + phase
     std::string cam_x = "ground", cam_y = "ground", follower_dof, lateral = "ground";
     CamEccentricity eccentricity;  // none by default
+    std::string cam_twist = "ground";  // the shaft's twist DOF at the cam (ground: a rigid camshaft)
 };
 
 // The time-only terms of one pair at one instant: sparse g and its rate (up to four DOFs).
@@ -53,8 +61,14 @@ struct ContactTerms {
     double theta = 0.0;  // cam angle, rad
     std::array<int, 4> dof{};
     std::array<double, 4> g{}, g_dot{};
+    std::array<double, 4> g_theta{};  // d g / d theta
     int count = 0;
     double delta0 = 0.0, delta0_dot = 0.0;
+    double delta0_theta = 0.0;  // d delta0 / d theta
+    // With a twist DOF: its index and d delta / d theta at the last evaluated q (the moment arm of
+    // the contact force about the shaft axis, m); twist = -1 on a rigid camshaft.
+    int twist = -1;
+    double moment_arm = 0.0;
     double cos_alpha = 1.0, sin_alpha = 0.0;
     std::array<double, 4> p{}, p_dot{};  // time-only external loads on the same slots, N, N/s
     bool loaded = false;                 // any p != 0
@@ -63,10 +77,12 @@ struct ContactTerms {
 // A pair with its DOFs resolved to indices (-1: ground), ready for the time loop.
 class ContactPair {
 public:
-    ContactPair(ContactPairSpec spec, int cam_x, int cam_y, int follower, int lateral)
-        : spec_(std::move(spec)), cam_x_(cam_x), cam_y_(cam_y), follower_(follower), lateral_(lateral) {
+    ContactPair(ContactPairSpec spec, int cam_x, int cam_y, int follower, int lateral, int twist = -1)
+        : spec_(std::move(spec)), cam_x_(cam_x), cam_y_(cam_y), follower_(follower), lateral_(lateral), twist_(twist) {
         const std::string who = "contact '" + spec_.name + "'";
         if (follower_ < 0) detail::fail(who, ": follower_dof must be a DOF, not ground");
+        for (int role : {cam_x_, cam_y_, follower_, lateral_})
+            if (twist_ >= 0 && role == twist_) detail::fail(who, ": cam_twist must be a DOF of its own, not one of the pair's other roles");
         if (lateral_ >= 0 && !is_translating(spec_.follower))
             detail::fail(who, ": lateral is defined for translating followers only (", follower_type_name(spec_.follower), ")");
         detail::require_positive(spec_.law.stiffness, (who + " contact stiffness").c_str(), "(N/m^n)");
@@ -83,6 +99,9 @@ public:
         }, spec_.follower);
         const CamEccentricity& ecc = spec_.eccentricity;
         ecc.validate(who);
+        if (twist_ >= 0 && ecc.paper_force() && ecc.any())
+            detail::fail(who, ": the paper's eccentricity force (", eccentricity_formulation_name(ecc.formulation),
+                         ") is not defined on a twisting camshaft; use 'exact'");
         if (ecc.paper_force() && ecc.any()) {
             if (!is_translating(spec_.follower))
                 detail::fail(who, ": the paper's eccentricity force (", eccentricity_formulation_name(ecc.formulation),
@@ -117,30 +136,43 @@ public:
 
     const ContactPairSpec& spec() const { return spec_; }
     const std::string& name() const { return spec_.name; }
+    int twist() const { return twist_; }  // the twist DOF, -1 on a rigid camshaft
+    // The distinct DOFs of g (the twist not included).
+    std::vector<int> dofs() const { return std::vector<int>(dofs_.begin(), dofs_.begin() + count_); }
 
-    void prepare(double t, double omega, ContactTerms& c) const {
-        c.theta = omega * t + spec_.phase;
+    // The terms at time t on a rigid camshaft turning at omega (theta = omega t + phase).
+    void prepare(double t, double omega, ContactTerms& c) const { evaluate(omega * t + spec_.phase, omega, c); }
+
+    // The terms at cam angle theta turning at theta_rate (rad/s): on a twisting camshaft
+    // theta = omega t + phase + q_twist and theta_rate = omega + v_twist.
+    void evaluate(double theta, double theta_rate, ContactTerms& c) const {
+        const double omega = theta_rate;
+        c.theta = theta;
+        c.twist = twist_;
         const ContactGeometry k = geometry(c.theta);
         c.count = count_;
         c.dof = dofs_;
-        c.g.fill(0.0), c.g_dot.fill(0.0);
+        c.g.fill(0.0), c.g_theta.fill(0.0);
         const double g[4] = {k.normal.x(), k.normal.y(), -k.normal.x(), -k.lever};
-        const double g_dot[4] = {k.dnormal.x(), k.dnormal.y(), -k.dnormal.x(), -k.dlever};
+        const double g_theta[4] = {k.dnormal.x(), k.dnormal.y(), -k.dnormal.x(), -k.dlever};
         for (int r = 0; r < 4; ++r)
-            if (slot_[r] >= 0) c.g[slot_[r]] += g[r], c.g_dot[slot_[r]] += omega * g_dot[r];
+            if (slot_[r] >= 0) c.g[slot_[r]] += g[r], c.g_theta[slot_[r]] += g_theta[r];
+        for (int i = 0; i < 4; ++i) c.g_dot[i] = omega * c.g_theta[i];
         c.delta0 = k.lever * k.lift;
-        c.delta0_dot = omega * (k.dlever * k.lift + k.lever * k.dlift);
+        c.delta0_theta = k.dlever * k.lift + k.lever * k.dlift;
         c.cos_alpha = k.cos_alpha, c.sin_alpha = k.sin_alpha;
         const CamEccentricity& ecc = spec_.eccentricity;
         c.loaded = false;
         c.p.fill(0.0), c.p_dot.fill(0.0);
+        c.delta0_dot = omega * c.delta0_theta;
         if (!ecc.any()) return;
         const Eigen::Vector2d u = ecc.offset(c.theta), du = ecc.offset_rate(c.theta);
         if (!ecc.paper_force() && !std::holds_alternative<TranslatingRoller>(spec_.follower)) {
             // n . u: exact for flat faces, first order for the oscillating roller.
             c.delta0 += k.normal.dot(u);
-            c.delta0_dot += omega * (k.dnormal.dot(u) + k.normal.dot(du));
+            c.delta0_theta += k.dnormal.dot(u) + k.normal.dot(du);
         }
+        c.delta0_dot = omega * c.delta0_theta;
         // Loads along +q of each role, and their time rates (d/dt = omega d/dtheta).
         double p[4] = {0.0, 0.0, 0.0, 0.0}, p_dot[4] = {0.0, 0.0, 0.0, 0.0};
         const double centrifugal = ecc.unbalance_mass * omega * omega;
@@ -196,7 +228,7 @@ public:
 
 private:
     ContactPairSpec spec_;
-    int cam_x_, cam_y_, follower_, lateral_;
+    int cam_x_, cam_y_, follower_, lateral_, twist_;
     std::array<int, 4> dofs_{}, slot_{};  // the distinct DOFs of g; slot of each role (-1: ground)
     int count_ = 0;
 };

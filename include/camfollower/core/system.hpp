@@ -30,6 +30,12 @@
 //              void observe(const Workspace&, const Vector& q, const Vector& v, double* out) const;
 //                                                     the named output channels at an accepted state
 //
+// A system the sparse backend (solver/sparse_newmark.hpp) can run also has
+//              const Eigen::SparseMatrix<double>& sparse_mass() const;   (and sparse_damping, sparse_stiffness)
+//              std::vector<std::vector<int>> tangent_pattern() const;   the DOFs each tangent column can touch
+//              void tangent(const Workspace&, const Vector& q, const Vector& v, double cq, double cv,
+//                           SparseLowRank&) const;   the same tangent, each column on its few DOFs
+//
 // Call order within a step: prepare(t), then for each Newton iterate force(q, v) followed by
 // tangent(q, v) at the same q, v; after acceptance force() at the accepted state, then accepted(). A
 // system may therefore cache in the workspace what force() computed (mutable members) and reuse it in
@@ -67,6 +73,24 @@ struct LowRank {
         V.col(rank) = v;
         ++rank;
     }
+};
+
+// A rank-k matrix U V^T whose column pairs each live on a few DOFs: column k has the entries
+// [start[k], start[k + 1]) of (dof, u, v) (the last column runs to the end); entries of one column
+// with the same DOF add up. Capacity is reserved once, so clear() and refilling allocate nothing.
+struct SparseLowRank {
+    std::vector<int> start, dof;
+    std::vector<double> u, v;
+
+    void reserve(std::size_t columns, std::size_t entries) {
+        start.reserve(columns), dof.reserve(entries), u.reserve(entries), v.reserve(entries);
+    }
+    void clear() { start.clear(), dof.clear(), u.clear(), v.clear(); }
+    int rank() const { return int(start.size()); }
+    void start_column() { start.push_back(int(dof.size())); }
+    void add(int d, double u_value, double v_value) { dof.push_back(d), u.push_back(u_value), v.push_back(v_value); }
+    int begin(int k) const { return start[std::size_t(k)]; }
+    int end(int k) const { return k + 1 < rank() ? start[std::size_t(k) + 1] : int(dof.size()); }
 };
 
 namespace detail {

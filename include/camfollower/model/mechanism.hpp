@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // A cam mechanism built from a runtime description: the linear structure (structure/network.hpp),
 // any number of cam-follower contact pairs (contact/contact_pair.hpp) on one camshaft turning at a
-// constant speed. Mechanism<N> is immutable and implements the system contract (core/system.hpp);
+// constant nominal speed; with flexible shafts (structure/shaft_spec.hpp) a cam's angle adds the
+// shaft's twist at the cam, a state. Mechanism<N> is immutable and implements the system contract (core/system.hpp);
 // N is the DOF count when known at compile time (fixed-size Eigen, the fast path), Eigen::Dynamic
 // otherwise.
 //
@@ -22,6 +23,8 @@
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
+#include <Eigen/SparseCore>
+#include <Eigen/SparseLU>
 
 #include "camfollower/contact/clearance.hpp"
 #include "camfollower/contact/contact_pair.hpp"
@@ -70,11 +73,90 @@ struct MechanismBuilder {
     void add_guide(const GuideSpec& g) {
         for (const ClearanceSpec& c : g.clearances()) add_clearance(c);
     }
+    // --- flexible camshafts (structure/shaft_spec.hpp); the shaft's axis is the global x axis, a cam's
+    // contact frame has its x along global y and its y (a translating follower's axis) along global z.
+    void add_shaft(const ShaftSpec& shaft) { structure.add_shaft(shaft); }
+
+    // A bearing at station x: radial spring-dampers from u_y and u_z to ground ("<name>.y", "<name>.z").
+    void add_bearing(const std::string& name, const std::string& shaft, double x, double radial_stiffness,
+                     double radial_damping = 0.0) {
+        const int node = structure.shaft(shaft).spec.node_at(x);
+        for (const Mount& b : bearings_)
+            if (b.shaft == shaft && b.node == node)
+                detail::fail("bearings '", b.name, "' and '", name, "' are at the same station x = ", x, " m of shaft '", shaft, "'");
+        detail::require_positive(radial_stiffness, ("radial stiffness of bearing '" + name + "'").c_str(), "(N/m)");
+        add_spring(name + ".y", structure.shaft_dof_at(shaft, x, 1), ground_name, radial_stiffness, radial_damping);
+        add_spring(name + ".z", structure.shaft_dof_at(shaft, x, 2), ground_name, radial_stiffness, radial_damping);
+        bearings_.push_back({name, shaft, x, node, 0.0});
+    }
+
+    // The drive as an imposed speed through a compliance: a torsional spring-damper (N m/rad, N m s/rad)
+    // from the shaft's twist at station x to the rigid rotation omega t.
+    void add_drive(const std::string& name, const std::string& shaft, double x, double stiffness, double damping = 0.0) {
+        detail::require_positive(stiffness, ("stiffness of drive '" + name + "'").c_str(), "(N m/rad)");
+        add_spring(name, structure.shaft_dof_at(shaft, x, 3), ground_name, stiffness, damping);
+    }
+
+    // The drive as a motor with a flywheel at station x: the flywheel's inertia (kg m^2) on the twist,
+    // the motor's torque falling with speed at slip_slope (N m s/rad) about the nominal speed, and its
+    // torque there (N m, which should balance the cams' mean torque).
+    void add_motor(const std::string& name, const std::string& shaft, double x, double inertia, double slip_slope,
+                   double torque) {
+        const std::string twist = structure.shaft_dof_at(shaft, x, 3);
+        add_mass(twist, inertia);
+        detail::require_positive(slip_slope, ("slip_slope of motor '" + name + "'").c_str(), "(N m s/rad)");
+        add_damper(name, twist, ground_name, slip_slope);
+        add_load(twist, -torque);  // drives the cam forward: the twist's load is the motor torque, and
+                                   // the contact's moment loads it back (see cam_torque)
+    }
+
+    // A cam mounted at station x of a shaft: the contact's cam centre and twist become the node's u_y,
+    // u_z and theta_x; the cam's mass (kg) and inertia (kg m^2) are added there; `width` (m) is its
+    // axial extent, checked against the other cams on the shaft.
+    void mount_cam(ContactPairSpec contact, const std::string& shaft, double x, double width = 0.0, double mass = 0.0,
+                   double inertia = 0.0) {
+        const ShaftEntry& s = structure.shaft(shaft);
+        if (!(std::isfinite(x) && x >= 0.0 && x <= s.spec.length))
+            detail::fail("cam '", contact.name, "' at x = ", x, " m is outside shaft '", shaft, "' [0, ", s.spec.length, "] m");
+        detail::require_non_negative(width, ("width of cam '" + contact.name + "'").c_str(), "(m)");
+        detail::require_non_negative(mass, ("mass of cam '" + contact.name + "'").c_str(), "(kg)");
+        detail::require_non_negative(inertia, ("inertia of cam '" + contact.name + "'").c_str(), "(kg m^2)");
+        if (x - 0.5 * width < -ShaftSpec::merge_distance || x + 0.5 * width > s.spec.length + ShaftSpec::merge_distance)
+            detail::fail("cam '", contact.name, "' (x = ", x, " m, width ", width, " m) reaches past the ends of shaft '", shaft, "'");
+        const int node = s.spec.node_at(x);
+        for (const Mount& o : cams_)
+            if (o.shaft == shaft && (o.node == node || std::abs(o.x - x) < 0.5 * (o.width + width)))
+                detail::fail("cams '", o.name, "' (x = ", o.x, " m, width ", o.width, " m) and '", contact.name, "' (x = ", x,
+                             " m, width ", width, " m) overlap on shaft '", shaft, "'");
+        contact.cam_x = structure.shaft_dof_at(shaft, x, 1);
+        contact.cam_y = structure.shaft_dof_at(shaft, x, 2);
+        contact.cam_twist = structure.shaft_dof_at(shaft, x, 3);
+        add_contact(contact);
+        if (mass > 0.0) add_mass(contact.cam_x, mass), add_mass(contact.cam_y, mass);
+        if (inertia > 0.0) add_mass(contact.cam_twist, inertia);
+        cams_.push_back({contact.name, shaft, x, node, width});
+    }
+    void add_mass(const std::string& dof, double mass) { structure.add_mass(dof, mass); }
+    void add_spring_chain(const std::string& name, const std::string& a, const std::string& b, double stiffness,
+                          double mass, int elements, double damping = 0.0, double preload = 0.0,
+                          const Eigen::Vector3d& direction = Eigen::Vector3d::Zero()) {
+        structure.add_spring_chain(name, a, b, stiffness, mass, elements, damping, preload, direction);
+    }
+
     void set_camshaft_speed_rpm(double rpm) {
         detail::require_positive(rpm, "camshaft_speed_rpm", "(rpm)");
         camshaft_speed = rpm * two_pi / 60.0;
     }
     double camshaft_speed_rpm() const { return camshaft_speed * 60.0 / two_pi; }
+
+private:
+    struct Mount {
+        std::string name, shaft;
+        double x;
+        int node;
+        double width;
+    };
+    std::vector<Mount> cams_, bearings_;
 };
 
 template <int N = Eigen::Dynamic>
@@ -90,7 +172,8 @@ public:
     };
     struct Workspace {
         double t = 0.0;
-        std::vector<ContactTerms> terms;     // one per contact pair
+        // One per contact pair; on a twisting camshaft re-evaluated at every force() call.
+        mutable std::vector<ContactTerms> terms;
         std::vector<ContactMemory> memory;   // path memory: contact-loss intervals
         // Contact responses of the last force() call, reused by tangent() and accepted() (which the
         // stepper calls at the same q, v: core/system.hpp).
@@ -113,7 +196,8 @@ public:
         for (const ContactPairSpec& c : spec_.contacts) {
             const std::string who = "contact '" + c.name + "'";
             contacts_.emplace_back(c, net.index(c.cam_x, who + " cam_x"), net.index(c.cam_y, who + " cam_y"),
-                                   net.index(c.follower_dof, who + " follower_dof"), net.index(c.lateral, who + " lateral"));
+                                   net.index(c.follower_dof, who + " follower_dof"), net.index(c.lateral, who + " lateral"),
+                                   net.index(c.cam_twist, who + " cam_twist"));
         }
         for (const ClearanceSpec& c : spec_.clearances) {
             c.validate();
@@ -133,6 +217,7 @@ public:
             C_ += net.rayleigh_alpha() * M_ + net.rayleigh_beta() * K_;
         initial_ = static_equilibrium(0.0);
         if (!net.modal_ratios().empty()) add_modal_damping(net.modal_ratios());
+        M_sparse_ = M_.sparseView(), C_sparse_ = C_.sparseView(), K_sparse_ = K_.sparseView();
         initial_velocity_ = quasi_static_velocity(0.0, initial_);
         for (const ContactPair& c : contacts_) {
             const double amplitude = c.paper_force_amplitude();
@@ -167,64 +252,51 @@ public:
     }
     void prepare(double t, Workspace& w) const {
         w.t = t;
-        for (std::size_t i = 0; i < contacts_.size(); ++i) contacts_[i].prepare(t, spec_.camshaft_speed, w.terms[i]);
+        for (std::size_t i = 0; i < contacts_.size(); ++i)
+            if (contacts_[i].twist() < 0) contacts_[i].prepare(t, spec_.camshaft_speed, w.terms[i]);
     }
     void force(const Workspace& w, const Vector& q, const Vector& v, Vector& f) const {
         f = -load_;
         for (std::size_t i = 0; i < contacts_.size(); ++i) {
             const ContactTerms& c = w.terms[i];
+            if (contacts_[i].twist() >= 0) twist_terms(w.t, i, q, v[contacts_[i].twist()], w.terms[i]);
             w.last[i] = contacts_[i].response(c, q, v);
             const double F = w.last[i].force;
             if (c.loaded)
                 for (int k = 0; k < c.count; ++k) f[c.dof[k]] -= c.p[k];
             if (F == 0.0) continue;
             for (int k = 0; k < c.count; ++k) f[c.dof[k]] += F * c.g[k];
+            if (c.twist >= 0) f[c.twist] += F * c.moment_arm;
         }
         for (std::size_t i = 0; i < clearances_.size(); ++i) {
             w.last_clearance[i] = clearances_[i].response(q, v);
             clearances_[i].add_force(w.last_clearance[i], f);
         }
     }
-    void tangent(const Workspace& w, const Vector&, const Vector&, double cq, double cv, LowRank<Vector>& uv) const {
-        for (std::size_t i = 0; i < contacts_.size(); ++i) {
-            const ContactTerms& c = w.terms[i];
-            const ContactResponse& r = w.last[i];
-            if (!r.in_contact || (r.stiffness == 0.0 && r.damping == 0.0)) continue;
-            const double a = cq * r.stiffness + cv * r.damping, b = cq * r.damping;
-            auto u = uv.U.col(uv.rank);
-            auto vv = uv.V.col(uv.rank);
-            u.setZero(), vv.setZero();
-            for (int k = 0; k < c.count; ++k) {
-                u[c.dof[k]] = c.g[k];
-                vv[c.dof[k]] = a * c.g[k] + b * c.g_dot[k];
-            }
-            ++uv.rank;
-        }
-        for (std::size_t i = 0; i < clearances_.size(); ++i) {
-            const Clearance& cl = clearances_[i];
-            const ClearanceResponse& r = w.last_clearance[i];
-            if (r.side == 0 || (r.wall.stiffness == 0.0 && r.wall.damping == 0.0)) continue;
-            const std::vector<int>& dofs = cl.dofs();
-            const std::vector<double>& c = cl.coefficients();
-            // Normal: c (cq N_delta + cv N_rate) c^T.
-            auto u = uv.U.col(uv.rank);
-            auto vv = uv.V.col(uv.rank);
-            u.setZero(), vv.setZero();
-            const double a = cq * r.wall.stiffness + cv * r.wall.damping;
-            for (std::size_t j = 0; j < dofs.size(); ++j) u[dofs[j]] = c[j], vv[dofs[j]] = a * c[j];
-            ++uv.rank;
-            if (!cl.has_friction()) continue;
-            // Friction row w: mu T sign(u) (cq N_delta + cv N_rate) c^T + cv mu N T' e_w^T.
-            const double mu = cl.spec().friction;
-            auto uf = uv.U.col(uv.rank);
-            auto vf = uv.V.col(uv.rank);
-            uf.setZero(), vf.setZero();
-            uf[cl.sliding()] = 1.0;
-            for (std::size_t j = 0; j < dofs.size(); ++j) vf[dofs[j]] = mu * r.slip * r.side * a * c[j];
-            vf[cl.sliding()] += cv * mu * r.wall.force * r.dslip;
-            ++uv.rank;
-        }
+    void tangent(const Workspace& w, const Vector&, const Vector& v, double cq, double cv, LowRank<Vector>& uv) const {
+        DenseColumns sink{uv};
+        tangent_columns(w, v, cq, cv, sink);
     }
+    // The same tangent with each column pair stored on its few DOFs (the sparse backend).
+    void tangent(const Workspace& w, const Vector&, const Vector& v, double cq, double cv, SparseLowRank& uv) const {
+        tangent_columns(w, v, cq, cv, uv);
+    }
+    // The DOFs each tangent column pair can touch: the sparse backend's fill pattern.
+    std::vector<std::vector<int>> tangent_pattern() const {
+        std::vector<std::vector<int>> groups;
+        for (const ContactPair& c : contacts_) {
+            groups.push_back(c.dofs());
+            if (c.twist() >= 0) groups.back().push_back(c.twist());
+        }
+        for (const Clearance& cl : clearances_) {
+            groups.push_back(cl.dofs());
+            if (cl.has_friction()) groups.back().push_back(cl.sliding());
+        }
+        return groups;
+    }
+    const Eigen::SparseMatrix<double>& sparse_mass() const { return M_sparse_; }
+    const Eigen::SparseMatrix<double>& sparse_damping() const { return C_sparse_; }
+    const Eigen::SparseMatrix<double>& sparse_stiffness() const { return K_sparse_; }
     void accepted(Workspace& w, const Vector&, const Vector&) const {
         for (std::size_t i = 0; i < contacts_.size(); ++i) {
             ContactMemory& m = w.memory[i];
@@ -241,7 +313,8 @@ public:
         return names;
     }
     // Per contact: <name>.force (N), .penetration (m), .stiffness (dF/d delta, N/m), .pressure_angle
-    // (rad), .cam_angle (rad), .in_contact (0/1).
+    // (rad), .cam_angle (rad, with the shaft's twist), .in_contact (0/1); on a twisting camshaft also
+    // .cam_torque (N m: the contact's moment about the shaft axis against the cam's rotation).
     // Per clearance: <name>.force (wall force, N, >= 0), .side (-1, 0 free, +1), .gap (u, m),
     // .friction (N, along +sliding DOF on the rod).
     static constexpr int channels_per_contact = 6;
@@ -249,8 +322,11 @@ public:
     std::vector<std::string> channel_names() const {
         std::vector<std::string> names{"theta"};
         for (const ContactPair& c : contacts_)
+        {
             for (const char* s : {".force", ".penetration", ".stiffness", ".pressure_angle", ".cam_angle", ".in_contact"})
                 names.push_back(c.name() + s);
+            if (c.twist() >= 0) names.push_back(c.name() + ".cam_torque");
+        }
         for (const Clearance& c : clearances_)
             for (const char* s : {".force", ".side", ".gap", ".friction"}) names.push_back(c.name() + s);
         return names;
@@ -267,6 +343,7 @@ public:
             *out++ = std::atan2(c.sin_alpha, c.cos_alpha);
             *out++ = c.theta;
             *out++ = r.in_contact ? 1.0 : 0.0;
+            if (c.twist >= 0) *out++ = r.force * c.moment_arm;
         }
         for (const Clearance& cl : clearances_) {
             const ClearanceResponse r = cl.response(q, v);
@@ -293,7 +370,8 @@ public:
     // Contact force of contact i at rest at camshaft angle theta and displacement q, N.
     double static_contact_force(double theta, const Vector& q, std::size_t i) const {
         const Workspace w = workspace_at(theta);
-        return contacts_.at(i).spec().law(ContactPair::penetration(w.terms[i], q), 0.0).force;
+        if (contacts_.at(i).twist() >= 0) twist_terms(w.t, i, q, 0.0, w.terms[i]);
+        return contacts_[i].spec().law(ContactPair::penetration(w.terms[i], q), 0.0).force;
     }
     double omega() const { return spec_.camshaft_speed; }
     double period() const { return two_pi / spec_.camshaft_speed; }
@@ -314,10 +392,8 @@ public:
     Vector static_equilibrium(double theta) const {
         detail::require_finite(theta, "theta");
         const Workspace w = workspace_at(theta);
-        Vector q = Vector::Zero(n_);
-        const Eigen::PartialPivLU<Matrix> k_lu(K_);
-        const double det = k_lu.determinant();
-        if (std::isfinite(det) && det != 0.0) q = k_lu.solve(load_);
+        Vector q = Vector::Zero(n_), dq(n_);
+        if (solve_static(K_, load_, dq)) q = dq;
         const double scale = load_.cwiseAbs().maxCoeff() + 1.0;
         const double norm_K = K_.cwiseAbs().rowwise().sum().maxCoeff();
         Vector r(n_);
@@ -328,21 +404,20 @@ public:
             const double tolerance =
                 std::max(1e-12 * scale, 64.0 * std::numeric_limits<double>::epsilon() * norm_K * q.cwiseAbs().maxCoeff());
             if (r.cwiseAbs().maxCoeff() <= tolerance) return q;
-            Eigen::FullPivLU<Matrix> lu(Kt);
             // A follower held only by its contact (gravity or a load, no spring) starts with the
             // contact just touching, where the law has no stiffness: take the step as if every
             // contact were closed (the active-set guess), with the law's stiffness at 1 um, and every
             // free clearance seated on the wall its load pushes it to.
-            if (!lu.isInvertible()) {
+            if (!solve_static(Kt, r, dq)) {
                 Kt += closed_contact_stiffness(w);
                 close_free_clearances(q, r, Kt);
-                lu.compute(Kt);
+                if (!solve_static(Kt, r, dq))
+                    detail::fail("static equilibrium at theta = ", radians_to_degrees(theta),
+                                 " deg: the structure with its active contacts is not held in place (a DOF with no "
+                                 "spring to ground and no contact, e.g. a follower without a return spring or load, "
+                                 "or a shaft without bearings or drive); unconstrained: ", unconstrained_dofs(dq));
             }
-            if (!lu.isInvertible())
-                detail::fail("static equilibrium at theta = ", radians_to_degrees(theta),
-                             " deg: the structure with its active contacts is not held in place (a DOF with no "
-                             "spring to ground and no contact, e.g. a follower without a return spring or load)");
-            q -= lu.solve(r);
+            q -= dq;
         }
         throw ConvergenceError(detail::concat("static equilibrium at theta = ", radians_to_degrees(theta),
                                               " deg did not converge in 200 Newton iterations"));
@@ -372,11 +447,13 @@ private:
         Kt = K_;
         for (std::size_t i = 0; i < contacts_.size(); ++i) {
             const ContactTerms& c = w.terms[i];
+            if (contacts_[i].twist() >= 0) twist_terms(w.t, i, q, 0.0, w.terms[i]);
             const ContactResponse f = contacts_[i].spec().law(ContactPair::penetration(c, q), 0.0);
-            for (int a = 0; a < c.count; ++a) {
-                r[c.dof[a]] += f.force * c.g[a] - c.p[a];
-                for (int b = 0; b < c.count; ++b) Kt(c.dof[a], c.dof[b]) += f.stiffness * c.g[a] * c.g[b];
-            }
+            for (int a = 0; a < c.count; ++a) r[c.dof[a]] += f.force * c.g[a] - c.p[a];
+            if (c.twist >= 0) r[c.twist] += f.force * c.moment_arm;
+            for_each_gradient(c, [&](int a, double ga) {
+                for_each_gradient(c, [&](int b, double gb) { Kt(a, b) += f.stiffness * ga * gb; });
+            });
         }
         for (const Clearance& cl : clearances_) {
             const ClearanceResponse f = cl.response(q, q, true);
@@ -421,11 +498,13 @@ private:
             for (int a = 0; a < c.count; ++a) delta_rate += c.g_dot[a] * q[c.dof[a]];
             for (int a = 0; a < c.count; ++a)
                 rate[c.dof[a]] += f.stiffness * delta_rate * c.g[a] + f.force * c.g_dot[a] - c.p_dot[a];
+            // The moment arm's own rate is left out (a start close to, not exactly at, quasi-statics).
+            if (c.twist >= 0) rate[c.twist] += f.stiffness * delta_rate * c.moment_arm;
         }
         if (rate.isZero(0.0)) return Vector::Zero(n_);
-        const Eigen::FullPivLU<Matrix> lu(Kt);
-        if (!lu.isInvertible()) return Vector::Zero(n_);  // not held statically: start at rest
-        return -lu.solve(rate);
+        Vector dq(n_);
+        if (!solve_static(Kt, rate, dq)) return Vector::Zero(n_);  // not held statically: start at rest
+        return -dq;
     }
 
     Matrix closed_contact_stiffness(const Workspace& w) const {
@@ -433,10 +512,123 @@ private:
         for (std::size_t i = 0; i < contacts_.size(); ++i) {
             const ContactTerms& c = w.terms[i];
             const double k = contacts_[i].spec().law(1e-6, 0.0).stiffness;
-            for (int a = 0; a < c.count; ++a)
-                for (int b = 0; b < c.count; ++b) Kc(c.dof[a], c.dof[b]) += k * c.g[a] * c.g[b];
+            for_each_gradient(c, [&](int a, double ga) {
+                for_each_gradient(c, [&](int b, double gb) { Kc(a, b) += k * ga * gb; });
+            });
         }
         return Kc;
+    }
+
+    // Writes a dense LowRank's columns through the column-sink interface of tangent_columns().
+    struct DenseColumns {
+        LowRank<Vector>& uv;
+        void start_column() {
+            uv.U.col(uv.rank).setZero();
+            uv.V.col(uv.rank).setZero();
+            ++uv.rank;
+        }
+        void add(int dof, double u, double v) {
+            uv.U(dof, uv.rank - 1) += u;
+            uv.V(dof, uv.rank - 1) += v;
+        }
+    };
+
+    // cq df/dq + cv df/dv = sum of u v^T column pairs, written to sink.start_column() / sink.add(dof,
+    // u, v) (entries of one column add up).
+    template <class Sink>
+    void tangent_columns(const Workspace& w, const Vector& v, double cq, double cv, Sink& sink) const {
+        for (std::size_t i = 0; i < contacts_.size(); ++i) {
+            const ContactTerms& c = w.terms[i];
+            const ContactResponse& r = w.last[i];
+            if (!r.in_contact || (r.stiffness == 0.0 && r.damping == 0.0)) continue;
+            const double a = cq * r.stiffness + cv * r.damping, b = cq * r.damping;
+            sink.start_column();
+            for (int k = 0; k < c.count; ++k) sink.add(c.dof[k], c.g[k], a * c.g[k] + b * c.g_dot[k]);
+            // d delta / d q_twist = moment arm; d delta' / d q_twist ~ g_theta . v (the arm's own rate
+            // and F d2 delta / d theta2 are left out: a quasi-Newton tangent, the residual is exact).
+            if (c.twist >= 0) sink.add(c.twist, c.moment_arm, a * c.moment_arm + b * twist_rate_term(c, v));
+        }
+        for (std::size_t i = 0; i < clearances_.size(); ++i) {
+            const Clearance& cl = clearances_[i];
+            const ClearanceResponse& r = w.last_clearance[i];
+            if (r.side == 0 || (r.wall.stiffness == 0.0 && r.wall.damping == 0.0)) continue;
+            const std::vector<int>& dofs = cl.dofs();
+            const std::vector<double>& c = cl.coefficients();
+            // Normal: c (cq N_delta + cv N_rate) c^T.
+            const double a = cq * r.wall.stiffness + cv * r.wall.damping;
+            sink.start_column();
+            for (std::size_t j = 0; j < dofs.size(); ++j) sink.add(dofs[j], c[j], a * c[j]);
+            if (!cl.has_friction()) continue;
+            // Friction row w: mu T sign(u) (cq N_delta + cv N_rate) c^T + cv mu N T' e_w^T.
+            const double mu = cl.spec().friction;
+            sink.start_column();
+            sink.add(cl.sliding(), 1.0, cv * mu * r.wall.force * r.dslip);
+            for (std::size_t j = 0; j < dofs.size(); ++j) sink.add(dofs[j], 0.0, mu * r.slip * r.side * a * c[j]);
+        }
+    }
+
+    // The terms of twisting-camshaft contact i at time t, displacement q and twist rate v_twist:
+    // theta = omega t + phase + q_twist, and the moment arm d delta / d theta at q.
+    void twist_terms(double t, std::size_t i, const Vector& q, double v_twist, ContactTerms& c) const {
+        const ContactPair& pair = contacts_[i];
+        const double omega = spec_.camshaft_speed;
+        pair.evaluate(omega * t + pair.spec().phase + q[pair.twist()], omega + v_twist, c);
+        double arm = c.delta0_theta;
+        for (int k = 0; k < c.count; ++k) arm += c.g_theta[k] * q[c.dof[k]];
+        c.moment_arm = arm;
+    }
+    // d delta' / d q_twist without the arm's own rate: g_theta . v.
+    static double twist_rate_term(const ContactTerms& c, const Vector& v) {
+        double d = 0.0;
+        for (int k = 0; k < c.count; ++k) d += c.g_theta[k] * v[c.dof[k]];
+        return d;
+    }
+    // f(dof, d delta / d q_dof) over the pair's gradient, the twist included.
+    template <class F>
+    static void for_each_gradient(const ContactTerms& c, F&& f) {
+        for (int k = 0; k < c.count; ++k) f(c.dof[k], c.g[k]);
+        if (c.twist >= 0) f(c.twist, c.moment_arm);
+    }
+
+    // x = A^-1 b for a static analysis: dense full-pivoting LU up to dense_static_limit DOFs, sparse LU
+    // above. False when A is singular; x is then the direction that is not held (a null vector).
+    static constexpr int dense_static_limit = 200;
+    bool solve_static(const Matrix& A, const Vector& b, Vector& x) const {
+        if (n_ <= dense_static_limit) {
+            const Eigen::FullPivLU<Matrix> lu(A);
+            if (lu.isInvertible()) return x = lu.solve(b), true;
+            const auto kernel = lu.kernel();
+            x = kernel.col(0);
+            return false;
+        }
+        const Eigen::SparseMatrix<double> S = A.sparseView();
+        Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
+        lu.compute(S);
+        if (lu.info() == Eigen::Success) {
+            x = lu.solve(b);
+            // A rigid-body mode that rounding hides from the pivots shows as a displacement no machine
+            // has (the solution is then that mode, amplified).
+            if (x.allFinite() && x.cwiseAbs().maxCoeff() < 1e3) return true;
+            if (!x.allFinite()) x = Vector::Ones(n_);
+            return false;
+        }
+        x = Vector::Ones(n_);  // the factorization does not say which DOFs: name none in particular
+        return false;
+    }
+    // The DOFs that dominate a direction not held in place (at least a tenth of its largest entry).
+    std::string unconstrained_dofs(const Vector& direction) const {
+        const double largest = direction.cwiseAbs().maxCoeff();
+        std::string out;
+        int listed = 0;
+        for (int i = 0; i < n_; ++i)
+            if (std::abs(direction[i]) >= 0.1 * largest) {
+                if (++listed > 12) {
+                    out += ", ...";
+                    break;
+                }
+                out += (out.empty() ? "" : ", ") + spec_.structure.dofs()[std::size_t(i)].name;
+            }
+        return out;
     }
 
     Matrix dense(const NetworkSpec::Triplets& t) const {
@@ -463,6 +655,7 @@ private:
     MechanismBuilder spec_;
     int n_ = 0;
     Matrix M_, C_, K_;
+    Eigen::SparseMatrix<double> M_sparse_, C_sparse_, K_sparse_;
     Vector load_, initial_, initial_velocity_;
     std::vector<ContactPair> contacts_;
     std::vector<Clearance> clearances_;

@@ -7,8 +7,10 @@
 //   q(a) = q_pred + beta dt^2 a, v(a) = v_pred + gamma dt a.
 // In displacement units the Newton matrix is A0 + (1 + alpha) U V^T with
 // A0 = M / (beta dt^2) + (1 + alpha)(gamma / (beta dt) C + K), constant for a given dt (inverted once
-// per step size), and U V^T the system's low-rank tangent (rank = active contacts). Rank one is
-// solved by Sherman-Morrison, small ranks by Woodbury, larger ranks by a dense LU of the full matrix.
+// per step size), and U V^T the system's low-rank tangent (rank = active contacts). How that matrix
+// is solved is the linear backend's job: DenseNewtonSolve (here; small models, fixed-size Eigen)
+// solves rank one by Sherman-Morrison, small ranks by Woodbury, larger ranks by a dense LU of the
+// full matrix; SparseNewtonSolve (solver/sparse_newton.hpp) factors the sparse matrix on SuiteSparse.
 // Convergence: residual below tolerance (or its rounding floor) and Newton increment below tolerance.
 // When the tangent is symmetric positive semi-definite (V = U diag(s), s >= 0) the next increment is
 // bounded by |r|_2 / lambda_min(A0) and the confirming solve is skipped: a step whose contact state
@@ -20,10 +22,13 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <string>
+#include <type_traits>
 
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
+#include <Eigen/SparseCore>
 
 #include "camfollower/core/system.hpp"
 #include "camfollower/error.hpp"
@@ -31,6 +36,13 @@
 namespace camfollower {
 
 enum class LinearSolver { sherman_morrison, dense_lu };
+// Dense (small models, fixed-size Eigen) or sparse (SuiteSparse: solver/sparse_newton.hpp) Newton
+// algebra; automatic picks sparse from sparse_backend_threshold DOFs on systems that support it.
+enum class Backend { automatic, dense, sparse };
+// The sparse backend's factorization: automatic is CHOLMOD when the Newton matrix is symmetric
+// positive definite, KLU otherwise; klu always uses KLU.
+enum class SparseFactorization { automatic, klu };
+inline constexpr int sparse_backend_threshold = 150;
 
 struct NewmarkSettings {
     double time_step = 3e-6;            // s
@@ -41,7 +53,9 @@ struct NewmarkSettings {
     double increment_tolerance = 1e-10; // relative to max |q| (+ 1 nm floor)
     int max_iterations = 25;
     int max_halvings = 6;
-    LinearSolver linear_solver = LinearSolver::sherman_morrison;  // low-rank updates, or dense LU always
+    LinearSolver linear_solver = LinearSolver::sherman_morrison;  // dense backend: low-rank updates, or dense LU always
+    Backend backend = Backend::automatic;
+    SparseFactorization sparse_factorization = SparseFactorization::automatic;
 
     // HHT-alpha with its second-order, unconditionally stable gamma and beta.
     static NewmarkSettings hht(double alpha, double time_step = 3e-6) {
@@ -74,6 +88,28 @@ struct NewmarkSettings {
     static constexpr int max_levels = 16;
 };
 
+// The linear-algebra choice by one name (config files, Python):
+//   "auto"      dense low-rank below sparse_backend_threshold DOFs, sparse above (the default)
+//   "low_rank"  dense backend, Sherman-Morrison / Woodbury ("sherman_morrison" is an alias)
+//   "dense_lu"  dense backend, a full LU at every Newton iteration
+//   "sparse"    sparse backend, CHOLMOD when the matrix is symmetric positive definite, else KLU
+//   "klu"       sparse backend, KLU always
+inline void set_linear_solver(NewmarkSettings& s, const std::string& name) {
+    s.linear_solver = LinearSolver::sherman_morrison;
+    s.sparse_factorization = SparseFactorization::automatic;
+    if (name == "auto") s.backend = Backend::automatic;
+    else if (name == "low_rank" || name == "sherman_morrison") s.backend = Backend::dense;
+    else if (name == "dense_lu") s.backend = Backend::dense, s.linear_solver = LinearSolver::dense_lu;
+    else if (name == "sparse") s.backend = Backend::sparse;
+    else if (name == "klu") s.backend = Backend::sparse, s.sparse_factorization = SparseFactorization::klu;
+    else detail::fail("linear_solver must be 'auto', 'low_rank', 'dense_lu', 'sparse' or 'klu', got '", name, "'");
+}
+inline const char* linear_solver_name(const NewmarkSettings& s) {
+    if (s.backend == Backend::sparse) return s.sparse_factorization == SparseFactorization::klu ? "klu" : "sparse";
+    if (s.linear_solver == LinearSolver::dense_lu) return "dense_lu";
+    return s.backend == Backend::dense ? "low_rank" : "auto";
+}
+
 struct SolverStatistics {
     std::uint64_t steps = 0;              // accepted steps, substeps included
     std::uint64_t newton_iterations = 0;  // linear solves
@@ -96,20 +132,20 @@ struct State {
     workspace_t<System> workspace;
 };
 
+// The Newton matrix's algebra for dense systems: A0 = M / (beta dt^2) + (1 + alpha)(gamma / (beta dt) C
+// + K) inverted once per step size, the tangent as dense low-rank columns, Sherman-Morrison / Woodbury
+// / dense LU by rank.
 template <class System>
-class Newmark {
-    static_assert(check_system<System>());
-
+class DenseNewtonSolve {
 public:
     using Vector = typename System::Vector;
     using Matrix = typename System::Matrix;
-    using StateType = State<System>;
+    using Tangent = LowRank<Vector>;
     // Ranks up to this are solved by Woodbury with a fixed-capacity k x k matrix (no allocation).
     static constexpr int max_woodbury_rank = 8;
 
-    Newmark(const System& system, const NewmarkSettings& settings)
-        : system_(system), s_(settings), n_(system.size()), uv_(n_, std::max(1, max_rank(system))) {
-        s_.validate();
+    DenseNewtonSolve(const System& system, const NewmarkSettings& s)
+        : system_(system), s_(s), n_(system.size()), uv_(n_, std::max(1, max_rank(system))) {
         const Matrix& M = system.mass();
         if (M.rows() != n_ || M.cols() != n_ || system.damping().rows() != n_ || system.damping().cols() != n_ ||
             system.stiffness().rows() != n_ || system.stiffness().cols() != n_)
@@ -119,7 +155,8 @@ public:
         const int levels = s_.max_halvings + 1;
         for (int level = 0; level < levels; ++level) {
             const double dt = s_.time_step / double(1 << level);
-            A0_[level] = effective_matrix(dt);
+            A0_[level] = system.mass() / (s_.beta * dt * dt) +
+                         (1.0 + s_.hht_alpha) * (s_.gamma / (s_.beta * dt) * system.damping() + system.stiffness());
             Aa_[level] = (s_.beta * dt * dt) * A0_[level];
             // An explicit inverse applied as one matrix-vector product beats two triangular solves for
             // the small, well-conditioned matrices of lumped models.
@@ -132,15 +169,142 @@ public:
                     inverse_bound_[level] = 1.0 / eig.eigenvalues()[0];
             }
         }
-        norm_M_ = M.cwiseAbs().rowwise().sum().maxCoeff();
-        norm_C_ = system.damping().cwiseAbs().rowwise().sum().maxCoeff();
-        norm_K_ = system.stiffness().cwiseAbs().rowwise().sum().maxCoeff();
         const int cap = uv_.capacity();
         Z_.resize(n_, cap);
         U_cached_.resize(n_, cap);
-        for (Vector* v : {&q_pred_, &v_pred_, &b_, &a_, &q_, &v_, &r_, &x_, &dq_}) v->resize(n_);
+        x_.resize(n_);
         full_.resize(n_, n_);
         if constexpr (Matrix::RowsAtCompileTime == Eigen::Dynamic) lu_ = Eigen::PartialPivLU<Matrix>(n_);
+    }
+
+    const Matrix& mass() const { return system_.mass(); }
+    const Matrix& damping() const { return system_.damping(); }
+    const Matrix& stiffness() const { return system_.stiffness(); }
+    const Matrix& residual_matrix(int level) const { return Aa_[level]; }  // r = Aa a + ...
+    double inverse_bound(int level) const { return inverse_bound_[level]; }
+    Tangent& tangent() { return uv_; }
+    int rank() const { return uv_.rank; }
+    void fill_tangent(const workspace_t<System>& ws, const Vector& q, const Vector& v, double cq, double cv) {
+        camfollower::tangent(system_, ws, q, v, cq, cv, uv_);
+    }
+    // sum_k max|U_k| |V_k|_1: the tangent's contribution to the residual's rounding floor.
+    double tangent_norm() const {
+        double norm = 0.0;
+        for (int k = 0; k < uv_.rank; ++k) norm += uv_.U.col(k).cwiseAbs().maxCoeff() * uv_.V.col(k).cwiseAbs().sum();
+        return norm;
+    }
+    // True when (1 + alpha) U V^T is symmetric positive semi-definite: every V column a non-negative
+    // multiple of its U column.
+    bool tangent_is_spd() const {
+        for (int k = 0; k < uv_.rank; ++k) {
+            const auto u = uv_.U.col(k);
+            const auto w = uv_.V.col(k);
+            const double s = w.dot(u) / u.squaredNorm();
+            if (!(s >= 0.0) || (w - s * u).squaredNorm() > 1e-24 * w.squaredNorm()) return false;
+        }
+        return true;
+    }
+    void new_step() { cached_rank_ = 0; }
+
+    // dq = -(A0 + (1 + alpha) U V^T)^-1 r.
+    void solve(int level, double one_alpha, const Vector& r, Vector& dq) {
+        update_woodbury_columns(level, one_alpha);
+        const int k = uv_.rank;
+        if (s_.linear_solver == LinearSolver::dense_lu || k > max_woodbury_rank || 2 * k > n_) {
+            full_ = A0_[level];
+            if (k > 0) full_.noalias() += one_alpha * uv_.U.leftCols(k) * uv_.V.leftCols(k).transpose();
+            lu_.compute(full_);
+            dq.noalias() = lu_.solve(r);
+            dq = -dq;
+            return;
+        }
+        x_.noalias() = A0_inv_[level] * r;
+        if (k == 0) {
+            dq = -x_;
+        } else if (k == 1) {  // Sherman-Morrison
+            const auto w = uv_.V.col(0);
+            const auto z = Z_.col(0);
+            dq = -(x_ - z * (w.dot(x_) / (1.0 + w.dot(z))));
+        } else {  // Woodbury: (A0 + Z' V^T)^-1 r = x - Z (I + V^T Z)^-1 V^T x
+            Small S = Small::Identity(k, k);
+            S.noalias() += uv_.V.leftCols(k).transpose() * Z_.leftCols(k);
+            SmallVector y = uv_.V.leftCols(k).transpose() * x_;
+            y = S.partialPivLu().solve(y);
+            dq = -x_;
+            dq.noalias() += Z_.leftCols(k) * y;
+        }
+    }
+
+    // M a = rhs.
+    Vector solve_mass(const Vector& rhs) const { return system_.mass().partialPivLu().solve(rhs); }
+
+    // beta < gamma / 2 is only conditionally stable: omega_max dt < 1 / sqrt(gamma / 2 - beta)
+    // (undamped). omega_max from the tangent stiffness at the start, with a 10 % margin for its
+    // variation along the motion (contact directions turn with the cam).
+    template <class StateType>
+    void check_stability_limit(const StateType& s0) {
+        if (s_.beta >= 0.5 * s_.gamma) return;
+        fill_tangent(s0.workspace, s0.q, s0.v, 1.0, 0.0);
+        const Matrix uv = uv_.U.leftCols(uv_.rank) * uv_.V.leftCols(uv_.rank).transpose();
+        const Matrix Kt = system_.stiffness() + 0.5 * (uv + uv.transpose());
+        const Eigen::GeneralizedSelfAdjointEigenSolver<Matrix> eig(Kt, system_.mass(), Eigen::EigenvaluesOnly);
+        if (eig.info() != Eigen::Success) return;
+        const double omega_max = std::sqrt(std::max(eig.eigenvalues().maxCoeff(), 0.0));
+        const double limit = 0.9 / (omega_max * std::sqrt(0.5 * s_.gamma - s_.beta));
+        if (s_.time_step > limit)
+            detail::fail("time_step = ", s_.time_step, " s exceeds the stability limit ", limit, " s of Newmark with beta = ",
+                         s_.beta, " < gamma / 2 (highest mode ", omega_max / (2.0 * 3.14159265358979323846),
+                         " Hz); reduce time_step or use beta = 1/4");
+    }
+
+private:
+    // Z = A0^-1 (1 + alpha) U for the active columns; a column is recomputed only when U changed
+    // (contact directions depend on time only, so usually once per step).
+    void update_woodbury_columns(int level, double one_alpha) {
+        for (int k = 0; k < uv_.rank; ++k) {
+            if (k < cached_rank_ && cached_level_ == level && U_cached_.col(k) == uv_.U.col(k)) continue;
+            U_cached_.col(k) = uv_.U.col(k);
+            Z_.col(k).noalias() = A0_inv_[level] * uv_.U.col(k);
+            Z_.col(k) *= one_alpha;
+        }
+        cached_rank_ = uv_.rank;
+        cached_level_ = level;
+    }
+
+    using Columns = typename LowRank<Vector>::Columns;
+    using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, max_woodbury_rank, max_woodbury_rank>;
+    using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, max_woodbury_rank, 1>;
+
+    const System& system_;
+    NewmarkSettings s_;
+    int n_;
+    std::array<Matrix, NewmarkSettings::max_levels> A0_, Aa_, A0_inv_;
+    std::array<double, NewmarkSettings::max_levels> inverse_bound_{};
+    // Scratch, sized once: nothing is allocated inside the time loop.
+    LowRank<Vector> uv_;
+    Columns Z_, U_cached_;
+    int cached_rank_ = 0, cached_level_ = -1;
+    Vector x_;
+    Matrix full_;
+    Eigen::PartialPivLU<Matrix> lu_;
+};
+
+// The stepper, on a linear backend (DenseNewtonSolve by default; SparseNewtonSolve in
+// solver/sparse_newton.hpp for large models).
+template <class System, class Linear = DenseNewtonSolve<System>>
+class Newmark {
+    static_assert(check_system<System>());
+
+public:
+    using Vector = typename System::Vector;
+    using StateType = State<System>;
+
+    Newmark(const System& system, const NewmarkSettings& settings)
+        : system_(system), s_(validated(settings)), n_(system.size()), linear_(system, s_) {
+        norm_M_ = row_sum_norm(linear_.mass());
+        norm_C_ = row_sum_norm(linear_.damping());
+        norm_K_ = row_sum_norm(linear_.stiffness());
+        for (Vector* v : {&q_pred_, &v_pred_, &b_, &a_, &q_, &v_, &r_, &dq_}) v->resize(n_);
     }
 
     // The stepper keeps a reference to the system: a temporary would dangle.
@@ -150,6 +314,7 @@ public:
     const System& system() const { return system_; }
     double time_step() const { return s_.time_step; }
     double force_scale() const { return force_scale_; }
+    const Linear& linear_solver() const { return linear_; }
 
     // A state at (t, q, v) with the consistent acceleration M a = -(C v + K q + f). Sets the
     // residual scale from it and refuses a conditionally stable scheme beyond its step limit.
@@ -163,9 +328,13 @@ public:
         prepare(system_, t, s.workspace);
         s.f.resize(n_);
         nonlinear_force(system_, s.workspace, s.q, s.v, s.f);
-        s.a = system_.mass().partialPivLu().solve(-(system_.damping() * s.v + system_.stiffness() * s.q + s.f));
-        force_scale_ = std::max({1.0, (system_.stiffness() * s.q).cwiseAbs().maxCoeff(), s.f.cwiseAbs().maxCoeff()});
-        check_stability_limit(s);
+        Vector rhs = linear_.damping() * s.v;
+        rhs += linear_.stiffness() * s.q;
+        rhs += s.f;
+        s.a = linear_.solve_mass(-rhs);
+        const Vector Kq = linear_.stiffness() * s.q;
+        force_scale_ = std::max({1.0, Kq.cwiseAbs().maxCoeff(), s.f.cwiseAbs().maxCoeff()});
+        linear_.check_stability_limit(s);
         accepted(system_, s.workspace, s.q, s.v);  // path memory starts from the initial state
         return s;
     }
@@ -199,87 +368,27 @@ public:
     }
 
 private:
-    Matrix effective_matrix(double dt) const {
-        const double one_alpha = 1.0 + s_.hht_alpha;
-        return system_.mass() / (s_.beta * dt * dt) +
-               one_alpha * (s_.gamma / (s_.beta * dt) * system_.damping() + system_.stiffness());
+    static NewmarkSettings validated(const NewmarkSettings& s) {
+        s.validate();
+        return s;
     }
-
-    // beta < gamma / 2 is only conditionally stable: omega_max dt < 1 / sqrt(gamma / 2 - beta)
-    // (undamped). omega_max from the tangent stiffness at the start, with a 10 % margin for its
-    // variation along the motion (contact directions turn with the cam).
-    void check_stability_limit(const StateType& s0) {
-        if (s_.beta >= 0.5 * s_.gamma) return;
-        tangent(system_, s0.workspace, s0.q, s0.v, 1.0, 0.0, uv_);
-        const Matrix uv = uv_.U.leftCols(uv_.rank) * uv_.V.leftCols(uv_.rank).transpose();
-        const Matrix Kt = system_.stiffness() + 0.5 * (uv + uv.transpose());
-        const Eigen::GeneralizedSelfAdjointEigenSolver<Matrix> eig(Kt, system_.mass(), Eigen::EigenvaluesOnly);
-        if (eig.info() != Eigen::Success) return;
-        const double omega_max = std::sqrt(std::max(eig.eigenvalues().maxCoeff(), 0.0));
-        const double limit = 0.9 / (omega_max * std::sqrt(0.5 * s_.gamma - s_.beta));
-        if (s_.time_step > limit)
-            detail::fail("time_step = ", s_.time_step, " s exceeds the stability limit ", limit, " s of Newmark with beta = ",
-                         s_.beta, " < gamma / 2 (highest mode ", omega_max / two_pi_, " Hz); reduce time_step or use beta = 1/4");
-    }
-
-    // Z = A0^-1 (1 + alpha) U for the active columns; a column is recomputed only when U changed
-    // (contact directions depend on time only, so usually once per step).
-    void update_woodbury_columns(int level, double one_alpha) {
-        for (int k = 0; k < uv_.rank; ++k) {
-            if (k < cached_rank_ && cached_level_ == level && U_cached_.col(k) == uv_.U.col(k)) continue;
-            U_cached_.col(k) = uv_.U.col(k);
-            Z_.col(k).noalias() = A0_inv_[level] * uv_.U.col(k);
-            Z_.col(k) *= one_alpha;
+    template <class A>
+    static double row_sum_norm(const A& matrix) {
+        Eigen::VectorXd sums = Eigen::VectorXd::Zero(matrix.rows());
+        if constexpr (std::is_base_of_v<Eigen::SparseMatrixBase<A>, A>) {
+            for (int col = 0; col < matrix.outerSize(); ++col)
+                for (typename A::InnerIterator it(matrix, col); it; ++it) sums[it.row()] += std::abs(it.value());
+        } else {
+            sums = matrix.cwiseAbs().rowwise().sum();
         }
-        cached_rank_ = uv_.rank;
-        cached_level_ = level;
-    }
-
-    // True when (1 + alpha) U V^T is symmetric positive semi-definite: every V column a non-negative
-    // multiple of its U column.
-    bool tangent_is_spd() const {
-        for (int k = 0; k < uv_.rank; ++k) {
-            const auto u = uv_.U.col(k);
-            const auto w = uv_.V.col(k);
-            const double s = w.dot(u) / u.squaredNorm();
-            if (!(s >= 0.0) || (w - s * u).squaredNorm() > 1e-24 * w.squaredNorm()) return false;
-        }
-        return true;
-    }
-
-    // dq = -(A0 + (1 + alpha) U V^T)^-1 r, into dq_.
-    void solve(int level, double one_alpha) {
-        const int k = uv_.rank;
-        if (s_.linear_solver == LinearSolver::dense_lu || k > max_woodbury_rank || 2 * k > n_) {
-            full_ = A0_[level];
-            if (k > 0) full_.noalias() += one_alpha * uv_.U.leftCols(k) * uv_.V.leftCols(k).transpose();
-            lu_.compute(full_);
-            dq_.noalias() = lu_.solve(r_);
-            dq_ = -dq_;
-            return;
-        }
-        x_.noalias() = A0_inv_[level] * r_;
-        if (k == 0) {
-            dq_ = -x_;
-        } else if (k == 1) {  // Sherman-Morrison
-            const auto w = uv_.V.col(0);
-            const auto z = Z_.col(0);
-            dq_ = -(x_ - z * (w.dot(x_) / (1.0 + w.dot(z))));
-        } else {  // Woodbury: (A0 + Z' V^T)^-1 r = x - Z (I + V^T Z)^-1 V^T x
-            Small S = Small::Identity(k, k);
-            S.noalias() += uv_.V.leftCols(k).transpose() * Z_.leftCols(k);
-            SmallVector y = uv_.V.leftCols(k).transpose() * x_;
-            y = S.partialPivLu().solve(y);
-            dq_ = -x_;
-            dq_.noalias() += Z_.leftCols(k) * y;
-        }
+        return sums.size() ? sums.maxCoeff() : 0.0;
     }
 
     bool try_step(StateType& s, int level, int& iterations, double& residual) {
         const double dt = s_.time_step / double(1 << level);
         const double alpha = s_.hht_alpha, one_alpha = 1.0 + alpha;
-        const Matrix& C = system_.damping();
-        const Matrix& K = system_.stiffness();
+        const auto& C = linear_.damping();
+        const auto& K = linear_.stiffness();
         const double t1 = s.t + dt;
         prepare(system_, t1, s.workspace);
         q_pred_ = s.q + dt * s.v + (dt * dt * (0.5 - s_.beta)) * s.a;
@@ -295,7 +404,7 @@ private:
         }
         const double v_factor = s_.gamma / (s_.beta * dt);
         const double r_tol = s_.residual_tolerance * force_scale_;
-        cached_rank_ = 0;
+        linear_.new_step();
 
         // The unknown is the new acceleration (q and v follow from it): unlike q, no rounding error
         // gets amplified by 1/(beta dt^2) in the residual.
@@ -305,32 +414,28 @@ private:
             q_ = q_pred_ + q_step * a_;
             v_ = v_pred_ + v_step * a_;
             nonlinear_force(system_, s.workspace, q_, v_, s.f);
-            r_.noalias() = Aa_[level] * a_;
+            r_.noalias() = linear_.residual_matrix(level) * a_;
             r_ += b_;
             r_ += one_alpha * s.f;
             residual = r_.cwiseAbs().maxCoeff();
             if (!std::isfinite(residual)) return fail_step(s);
-            tangent(system_, s.workspace, q_, v_, 1.0, v_factor, uv_);
+            linear_.fill_tangent(s.workspace, q_, v_, 1.0, v_factor);
             // Rounding floor of the residual: a few ulps of its largest terms, the contacts' included
             // (a stiff contact turns the rounding of q into k eps |q| of force: preloads that balance
             // each other leave no large term in the residual to hide it).
-            double norm_tangent = 0.0;
-            for (int k = 0; k < uv_.rank; ++k)
-                norm_tangent += uv_.U.col(k).cwiseAbs().maxCoeff() * uv_.V.col(k).cwiseAbs().sum();
             const double q_max = q_.cwiseAbs().maxCoeff();
             const double floor = 64.0 * std::numeric_limits<double>::epsilon() *
                                  (norm_M_ * a_.cwiseAbs().maxCoeff() + norm_C_ * v_.cwiseAbs().maxCoeff() +
-                                  (norm_K_ + norm_tangent) * q_max);
+                                  (norm_K_ + linear_.tangent_norm()) * q_max);
             const bool residual_ok = residual <= std::max(r_tol, floor);
             const double q_tol = s_.increment_tolerance * (q_max + 1e-9);
             // Skip the confirming solve when the next increment is bounded below tolerance.
-            if (iterations > 0 && residual_ok && inverse_bound_[level] > 0.0 &&
-                r_.norm() * inverse_bound_[level] <= q_tol && tangent_is_spd()) {
+            if (iterations > 0 && residual_ok && linear_.inverse_bound(level) > 0.0 &&
+                r_.norm() * linear_.inverse_bound(level) <= q_tol && linear_.tangent_is_spd()) {
                 accept(s, t1, false);  // s.f is already the force at (q_, v_)
                 return true;
             }
-            update_woodbury_columns(level, one_alpha);
-            solve(level, one_alpha);
+            linear_.solve(level, one_alpha, r_, dq_);
             a_ += dq_ / q_step;
             ++iterations;
             if (residual_ok && dq_.cwiseAbs().maxCoeff() <= q_tol) {
@@ -360,25 +465,14 @@ private:
         return false;
     }
 
-    using Columns = typename LowRank<Vector>::Columns;
-    using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, max_woodbury_rank, max_woodbury_rank>;
-    using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, max_woodbury_rank, 1>;
-    static constexpr double two_pi_ = 6.283185307179586476925286766559;
-
     const System& system_;
     NewmarkSettings s_;
     int n_;
-    std::array<Matrix, NewmarkSettings::max_levels> A0_, Aa_, A0_inv_;
-    std::array<double, NewmarkSettings::max_levels> inverse_bound_{};
+    Linear linear_;
     double force_scale_ = 1.0;
     double norm_M_ = 0.0, norm_C_ = 0.0, norm_K_ = 0.0;  // infinity norms, for the rounding floor
     // Scratch, sized once: nothing is allocated inside the time loop.
-    LowRank<Vector> uv_;
-    Columns Z_, U_cached_;
-    int cached_rank_ = 0, cached_level_ = -1;
-    Vector q_pred_, v_pred_, b_, a_, q_, v_, r_, x_, dq_;
-    Matrix full_;
-    Eigen::PartialPivLU<Matrix> lu_;
+    Vector q_pred_, v_pred_, b_, a_, q_, v_, r_, dq_;
 };
 
 }  // namespace camfollower

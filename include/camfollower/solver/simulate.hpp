@@ -7,11 +7,13 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <type_traits>
 
 #include "camfollower/solver/integrate.hpp"
 #include "camfollower/solver/newmark.hpp"
 #include "camfollower/solver/observers.hpp"
 #include "camfollower/solver/settle.hpp"
+#include "camfollower/solver/sparse_newton.hpp"
 
 namespace camfollower {
 
@@ -34,15 +36,24 @@ struct RunResult {
     double time_step = 0.0;
     std::size_t decimation = 1;
     SettleReport settle;
+    const char* backend = "dense";  // the Newton algebra used: "dense" or "sparse"
 };
 
-template <class System>
-RunResult<System> simulate(const System& system, const NewmarkSettings& settings, const RunOptions& options,
-                           const std::optional<typename System::Vector>& q0 = std::nullopt,
-                           const std::optional<typename System::Vector>& v0 = std::nullopt) {
+namespace detail {
+
+template <class S, class = void>
+struct has_sparse_matrices : std::false_type {};
+template <class S>
+struct has_sparse_matrices<S, void_t<decltype(std::declval<const S&>().sparse_mass()),
+                                     decltype(std::declval<const S&>().tangent_pattern())>>
+    : std::bool_constant<S::Vector::RowsAtCompileTime == Eigen::Dynamic> {};
+
+template <class Stepper, class System>
+RunResult<System> run(const System& system, const NewmarkSettings& settings, const RunOptions& options,
+                      const std::optional<typename System::Vector>& q0,
+                      const std::optional<typename System::Vector>& v0) {
     using Vector = typename System::Vector;
-    if (options.progress && options.progress_every < 1) detail::fail("progress_every must be >= 1");
-    Newmark<System> stepper(system, settings);
+    Stepper stepper(system, settings);
     const std::uint64_t steps = steps_for(options.duration, settings.time_step);
     const Vector q = q0 ? *q0 : initial_displacement(system);
     const Vector v = v0 ? *v0 : initial_velocity(system);
@@ -79,7 +90,36 @@ RunResult<System> simulate(const System& system, const NewmarkSettings& settings
     result.recording = recorder.take();
     result.time_step = settings.time_step;
     result.decimation = options.record.decimation;
+    result.backend = std::is_same_v<Stepper, Newmark<System>> ? "dense" : "sparse";
     return result;
+}
+
+}  // namespace detail
+
+// Whether simulate() runs `system` on the sparse backend with these settings.
+template <class System>
+bool uses_sparse_backend(const System& system, const NewmarkSettings& settings) {
+    if constexpr (detail::has_sparse_matrices<System>::value) {
+        if (settings.backend == Backend::sparse) return true;
+        return settings.backend == Backend::automatic && system.size() >= sparse_backend_threshold;
+    } else {
+        if (settings.backend == Backend::sparse)
+            detail::fail("linear_solver 'sparse' or 'klu' (the sparse backend) needs a dynamic-size system with sparse matrices (a Mechanism of other than the paper preset's 7 DOFs)");
+        return false;
+    }
+}
+
+template <class System>
+RunResult<System> simulate(const System& system, const NewmarkSettings& settings, const RunOptions& options,
+                           const std::optional<typename System::Vector>& q0 = std::nullopt,
+                           const std::optional<typename System::Vector>& v0 = std::nullopt) {
+    if (options.progress && options.progress_every < 1) detail::fail("progress_every must be >= 1");
+    if constexpr (detail::has_sparse_matrices<System>::value) {
+        if (uses_sparse_backend(system, settings)) return detail::run<SparseNewmark<System>>(system, settings, options, q0, v0);
+    } else {
+        (void)uses_sparse_backend(system, settings);  // refuses backend = sparse
+    }
+    return detail::run<Newmark<System>>(system, settings, options, q0, v0);
 }
 
 }  // namespace camfollower

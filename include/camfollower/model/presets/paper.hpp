@@ -113,7 +113,8 @@ inline MechanismBuilder paper_spec(const CamFollowerParameters& p, const MotionP
                       "y1",
                       "y2",
                       "x2",
-                      options.eccentricity};
+                      options.eccentricity,
+                      "ground"};
     spec.add_contact(c);
     return spec;
 }
