@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['ArmTurn', 'BoundaryContinuity', 'CamEccentricity', 'CamFollowerModel', 'ContinuityReport', 'Defects', 'DiskCam', 'Elastic', 'LineContact', 'Mechanism', 'MechanismBuilder', 'MotionLaw', 'MotionProgram', 'OscillatingFlat', 'OscillatingRoller', 'Parameters', 'PeakCoefficients', 'ProfileError', 'Segment', 'TranslatingFlat', 'TranslatingRoller', 'cam_outline', 'length_units', 'paper_preset', 'realistic_damping_ratio', 'write_cam_csv', 'write_file_atomically']
+__all__: list[str] = ['ArmTurn', 'BoundaryContinuity', 'CamEccentricity', 'CamFollowerModel', 'ContinuityReport', 'Defects', 'DiskCam', 'Elastic', 'LineContact', 'Mechanism', 'MechanismBuilder', 'MotionLaw', 'MotionProgram', 'OscillatingFlat', 'OscillatingRoller', 'Parameters', 'PeakCoefficients', 'ProfileError', 'Segment', 'TranslatingFlat', 'TranslatingRoller', 'cam_outline', 'length_units', 'paper_preset', 'realistic_damping_ratio', 'valve_train_parameter_units', 'valve_train_preset', 'write_cam_csv', 'write_file_atomically']
 class PeakCoefficients:
     """
     Peaks of |V|, |A|, |J| of a normalized law.
@@ -903,24 +903,34 @@ class MechanismBuilder:
         ...
     def __setstate__(self, arg0: dict) -> None:
         ...
+    def add_bearing(self, name: str, shaft: str, at: typing.SupportsFloat | typing.SupportsIndex, *, stiffness: typing.SupportsFloat | typing.SupportsIndex, damping: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+        """
+        A radial bearing at station `at` (m): spring-dampers (N/m, N s/m) from u_y and u_z to ground.
+        """
     def add_clearance(self, name: str, gap: collections.abc.Sequence[tuple[str, typing.SupportsFloat | typing.SupportsIndex]], *, clearance: typing.SupportsFloat | typing.SupportsIndex, stiffness: typing.SupportsFloat | typing.SupportsIndex, exponent: typing.SupportsFloat | typing.SupportsIndex = 1.0, damping_factor: typing.SupportsFloat | typing.SupportsIndex = 0.0, friction: typing.SupportsFloat | typing.SupportsIndex = 0.0, sliding_dof: str = '', slip_velocity: typing.SupportsFloat | typing.SupportsIndex = 0.001) -> None:
         """
         A radial clearance: the gap coordinate u = sum c_j q_j (gap: [(dof, c_j), ...], m) is free for |u| <= clearance
         (m) and meets a wall law F = k delta^n (1 + chi delta') beyond; with friction > 0, regularized Coulomb
         friction mu F tanh(v / slip_velocity) on sliding_dof. Channels <name>.force, .side, .gap, .friction.
         """
-    def add_contact(self, name: str, program: MotionProgram, follower: typing.Any, *, follower_dof: str, stiffness: typing.SupportsFloat | typing.SupportsIndex, exponent: typing.SupportsFloat | typing.SupportsIndex = 1.0, damping_factor: typing.SupportsFloat | typing.SupportsIndex = 0.0, phase: typing.SupportsFloat | typing.SupportsIndex = 0.0, cam_x: str = 'ground', cam_y: str = 'ground', lateral: str = 'ground', eccentricity: CamEccentricity | None = None) -> None:
+    def add_contact(self, name: str, program: MotionProgram, follower: typing.Any, *, follower_dof: str, stiffness: typing.SupportsFloat | typing.SupportsIndex, exponent: typing.SupportsFloat | typing.SupportsIndex = 1.0, damping_factor: typing.SupportsFloat | typing.SupportsIndex = 0.0, phase: typing.SupportsFloat | typing.SupportsIndex = 0.0, cam_x: str = 'ground', cam_y: str = 'ground', lateral: str = 'ground', eccentricity: CamEccentricity | None = None, cam_twist: str = 'ground') -> None:
         """
         A cam-follower contact pair: the cam's lift program (m, or rad for an oscillating follower), the follower
         type, the DOF of the follower's coordinate, a Hertz law F = k delta^n (1 + chi delta'), the cam's
-        phase on the shaft (rad), the cam centre's DOFs, a translating follower's lateral DOF and an optional
-        CamEccentricity.
+        phase on the shaft (rad), the cam centre's DOFs, a translating follower's lateral DOF, an optional
+        CamEccentricity, and the camshaft's twist DOF at the cam (rad; the cam angle is then omega t + phase +
+        twist, a state, and the contact's moment loads the twist: channel <name>.cam_torque).
         """
     def add_damper(self, name: str, a: str, b: str = 'ground', *, damping: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     def add_dof(self, name: str, mass: typing.SupportsFloat | typing.SupportsIndex, direction: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"] = ...) -> None:
         """
         A DOF: mass (kg, or kg m^2 for a rotation) and, for a translation, its unit direction in space (for gravity).
+        """
+    def add_drive(self, name: str, shaft: str, at: typing.SupportsFloat | typing.SupportsIndex = 0.0, *, stiffness: typing.SupportsFloat | typing.SupportsIndex, damping: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+        """
+        The drive as an imposed speed through a compliance: a torsional spring-damper (N m/rad, N m s/rad)
+        from the twist at station `at` to the rigid rotation omega t.
         """
     def add_guide(self, name: str, lateral_dof: str, *, clearance: typing.SupportsFloat | typing.SupportsIndex, length: typing.SupportsFloat | typing.SupportsIndex, bushings: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], tilt_dof: str = '', tilt_reference: typing.SupportsFloat | typing.SupportsIndex = 0.0, stiffness: typing.SupportsFloat | typing.SupportsIndex, exponent: typing.SupportsFloat | typing.SupportsIndex = 1.0, damping_factor: typing.SupportsFloat | typing.SupportsIndex = 0.0, friction: typing.SupportsFloat | typing.SupportsIndex = 0.0, sliding_dof: str = '', slip_velocity: typing.SupportsFloat | typing.SupportsIndex = 0.001) -> None:
         """
@@ -932,13 +942,43 @@ class MechanismBuilder:
         """
         Constant load along +q (N).
         """
+    def add_mass(self, dof: str, mass: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        """
+        A lumped mass (kg) or inertia (kg m^2) added to a DOF (e.g. a flywheel on a shaft's twist).
+        """
+    def add_motor(self, name: str, shaft: str, at: typing.SupportsFloat | typing.SupportsIndex = 0.0, *, inertia: typing.SupportsFloat | typing.SupportsIndex, slip_slope: typing.SupportsFloat | typing.SupportsIndex, torque: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+        """
+        The drive as a motor with a flywheel: inertia (kg m^2) on the twist at `at`, torque falling with
+        speed at slip_slope (N m s/rad) about the nominal speed, and the torque there (N m).
+        """
+    def add_shaft(self, name: str, *, length: typing.SupportsFloat | typing.SupportsIndex, outer_diameter: typing.SupportsFloat | typing.SupportsIndex, inner_diameter: typing.SupportsFloat | typing.SupportsIndex = 0.0, stations: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex] = [], max_element_length: typing.SupportsFloat | typing.SupportsIndex = 0.0, youngs_modulus: typing.SupportsFloat | typing.SupportsIndex = 210000000000.0, poisson_ratio: typing.SupportsFloat | typing.SupportsIndex = 0.3, density: typing.SupportsFloat | typing.SupportsIndex = 7850.0, axial: bool = False) -> None:
+        """
+        A flexible shaft along x from 0 to `length` (m): Timoshenko beam elements (bending in two planes with
+        shear and rotary inertia, torsion; axial if asked) of a solid or hollow circular steel section (SI
+        units). Every station (m) where a cam, bearing, drive or mass will sit must be listed; no element is
+        longer than max_element_length (0: one element between stations). Node DOFs are named
+        '<name>.<node>.<uy|uz|rx|ry|rz>' (shaft_dof()); the twist rx is relative to the rigid rotation.
+        """
     def add_spring(self, name: str, a: str, b: str = 'ground', *, stiffness: typing.SupportsFloat | typing.SupportsIndex, damping: typing.SupportsFloat | typing.SupportsIndex = 0.0, preload: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
         """
         Spring-damper between DOFs a and b (or 'ground'); force on a: -(preload + k (q_a - q_b) + c (v_a - v_b)).
         """
+    def add_spring_chain(self, name: str, a: str, b: str = 'ground', *, stiffness: typing.SupportsFloat | typing.SupportsIndex, mass: typing.SupportsFloat | typing.SupportsIndex, elements: typing.SupportsInt | typing.SupportsIndex = 6, damping: typing.SupportsFloat | typing.SupportsIndex = 0.0, preload: typing.SupportsFloat | typing.SupportsIndex = 0.0, direction: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"] = ...) -> None:
+        """
+        A spring with its own mass (a valve spring that surges): `elements` equal springs in series with
+        interior masses '<name>.1', ...; its surge frequencies tend to (j / 2) sqrt(stiffness / mass) with both
+        ends held. stiffness, damping and preload are the whole spring's.
+        """
     def build(self) -> ...:
         """
         Validate and assemble the immutable Mechanism.
+        """
+    def mount_cam(self, name: str, program: MotionProgram, follower: typing.Any, *, follower_dof: str, shaft: str, at: typing.SupportsFloat | typing.SupportsIndex, stiffness: typing.SupportsFloat | typing.SupportsIndex, exponent: typing.SupportsFloat | typing.SupportsIndex = 1.0, damping_factor: typing.SupportsFloat | typing.SupportsIndex = 0.0, phase: typing.SupportsFloat | typing.SupportsIndex = 0.0, width: typing.SupportsFloat | typing.SupportsIndex = 0.0, cam_mass: typing.SupportsFloat | typing.SupportsIndex = 0.0, cam_inertia: typing.SupportsFloat | typing.SupportsIndex = 0.0, lateral: str = 'ground') -> None:
+        """
+        A contact pair whose cam sits on a shaft at station `at` (m): the cam centre is the node's (u_y, u_z), its
+        angle omega t + phase + the node's twist. Its contact frame has x along the global y and the follower's
+        axis along the global z. width (m) is checked against the other cams; cam_mass (kg) and cam_inertia
+        (kg m^2) are added to the node.
         """
     def set_gravity(self, gravity: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> None:
         """
@@ -951,6 +991,10 @@ class MechanismBuilder:
     def set_rayleigh_damping(self, alpha: typing.SupportsFloat | typing.SupportsIndex, beta: typing.SupportsFloat | typing.SupportsIndex) -> None:
         """
         C += alpha M + beta K.
+        """
+    def shaft_dof(self, shaft: str, at: typing.SupportsFloat | typing.SupportsIndex, dof: str) -> str:
+        """
+        The DOF name of a shaft's node at station `at` (m).
         """
     @property
     def camshaft_speed_rpm(self) -> float:
@@ -978,6 +1022,12 @@ class Mechanism:
     def builder(self) -> MechanismBuilder:
         """
         A copy of the description it was built from: change it and build() a changed mechanism.
+        """
+    def lowest_modes(self, theta: typing.SupportsFloat | typing.SupportsIndex = 0.0, count: typing.SupportsInt | typing.SupportsIndex = 0) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]]:
+        """
+        (frequencies in Hz ascending, mass-normalized mode shapes as columns) of the lowest `count` modes at
+        camshaft angle theta (rad), contacts linearized; count = 0: all (models up to 200 DOFs). Large
+        models (a flexible camshaft) use shift-invert Lanczos on the sparse factor (Spectra).
         """
     def modal_analysis(self, theta: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> dict:
         """
@@ -1159,6 +1209,14 @@ def paper_preset(parameters: Parameters | None = None, program: MotionProgram | 
     puts a damper on every element (springs, contact, guide walls) at that ratio of its own critical
     damping, in place of the paper's few dampers.
     """
+def valve_train_parameter_units() -> dict:
+    """
+    The valve-train preset's real-valued parameters and their SI units.
+    """
+def valve_train_preset(engine_speed_rpm: typing.SupportsFloat | typing.SupportsIndex, parameters: dict) -> Mechanism:
+    """
+    Internal: camfollower.presets.valve_train() calls this.
+    """
 def write_cam_csv(path: str, follower: typing.Any, program: MotionProgram, points: typing.SupportsInt | typing.SupportsIndex = 3600, cutter_radius: typing.SupportsFloat | typing.SupportsIndex | None = None, unit: str = 'mm') -> None:
     """
     Write the cam outline as CSV (commented header with units, rotation, zero reference, follower, cutter,
@@ -1169,4 +1227,5 @@ def write_file_atomically(path: str, content: bytes) -> None:
     Replace or create `path` with `content` (bytes) atomically: a temporary in the same folder, then rename.
     Refuses a target that exists and is not a regular file; leaves nothing behind on failure.
     """
+__version__: str = '0.1.0'
 realistic_damping_ratio: float = 0.03

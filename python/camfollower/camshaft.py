@@ -12,7 +12,8 @@
   middle coil's departure from the straight line between the spring's ends, and its main frequency;
 
 and per bearing (a pair of springs "<name>.y", "<name>.z" to ground) its largest radial load, and for
-the drive (a spring from a shaft's twist to ground) its mean torque and peak-to-peak fluctuation.
+the drive (a spring from a shaft's twist to ground) the torque it delivers to the shaft, mean and
+peak-to-peak.
 """
 
 from __future__ import annotations
@@ -51,6 +52,11 @@ def _bearings(state: dict) -> Dict[str, tuple]:
 
 def _drives(state: dict) -> List[dict]:
     return [s for s in state["springs"] if s["a"].endswith(".rx") and s["b"] == "ground" and s["stiffness"] > 0]
+
+
+def _drive_torque(s: dict, result) -> np.ndarray:
+    """Torque a drive spring delivers to the shaft (N m, positive driving it forward): -(k rx + c rx')."""
+    return -(s["stiffness"] * np.asarray(result[f"q.{s['a']}"]) + s["damping"] * np.asarray(result[f"v.{s['a']}"]))
 
 
 def _main_frequency(x: np.ndarray, sample_rate: float) -> float:
@@ -104,7 +110,7 @@ def run_summary(mechanism: Mechanism, result) -> Dict[str, Any]:
         bearings[name] = {"max_load_N": float(np.hypot(fy, fz).max())}
     drives = {}
     for s in _drives(state):
-        torque = s["stiffness"] * np.asarray(result[f"q.{s['a']}"]) + s["damping"] * np.asarray(result[f"v.{s['a']}"])
+        torque = _drive_torque(s, result)
         drives[s["name"]] = {"mean_torque_Nm": float(torque.mean()),
                              "torque_peak_to_peak_Nm": float(torque.max() - torque.min())}
     return {"camshaft_speed_rpm": mechanism.camshaft_speed_rpm, "cams": cams, "bearings": bearings, "drives": drives,
@@ -190,8 +196,7 @@ def plot_traces(mechanism: Mechanism, result):
     a.set_ylabel("contact force (N)")
     a.legend(fontsize=7, ncol=4)
     for s in _drives(state):
-        torque = s["stiffness"] * np.asarray(result[f"q.{s['a']}"]) + s["damping"] * np.asarray(result[f"v.{s['a']}"])
-        b.plot(theta, torque, lw=0.8, label=s["name"])
+        b.plot(theta, _drive_torque(s, result), lw=0.8, label=s["name"])
     b.set_ylabel("drive torque (N m)")
     b.set_xlabel("camshaft angle (deg)")
     for ax in (a, b):

@@ -117,12 +117,15 @@ class Result:
             raise ValueError(f"path must end in .npz, got {str(path)!r}")
         if path.exists() and not path.is_file():
             raise ValueError(f"path {str(path)!r} exists and is not a regular file")
+        numbers = {k: v for k, v in self.stats.items() if not isinstance(v, str)}
+        texts = {k: v for k, v in self.stats.items() if isinstance(v, str)}  # e.g. "backend"
         fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent or ".")
         try:
             with os.fdopen(fd, "wb") as f:
                 np.savez(f, format=np.array(_FORMAT), names=np.array(self._names), dofs=np.array(self.dof_names),
-                         data=np.ascontiguousarray(self._data), stats_keys=np.array(list(self.stats)),
-                         stats_values=np.array([float(v) for v in self.stats.values()]),
+                         data=np.ascontiguousarray(self._data), stats_keys=np.array(list(numbers)),
+                         stats_values=np.array([float(v) for v in numbers.values()]),
+                         stats_text=np.array(json.dumps(texts)),
                          contact_names=np.array(list(self.contact_loss), dtype=str),
                          settle=np.array(json.dumps(self.settle)),
                          **{f"contact_loss_{i}": np.array(v, dtype=float).reshape(-1, 2)
@@ -142,6 +145,8 @@ class Result:
             stats: Dict[str, Any] = {}
             for k, v in zip(z["stats_keys"], z["stats_values"]):
                 stats[str(k)] = _STAT_TYPES.get(str(k), float)(v)
+            if "stats_text" in z:
+                stats.update(json.loads(str(z["stats_text"])))
             losses = {str(n): [tuple(x) for x in z[f"contact_loss_{i}"]] for i, n in enumerate(z["contact_names"])}
             settle = json.loads(str(z["settle"])) if "settle" in z else None
             return cls([str(n) for n in z["names"]], [str(d) for d in z["dofs"]], z["data"], stats, losses, settle)

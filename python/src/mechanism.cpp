@@ -621,17 +621,7 @@ void bind_mechanism(py::module_& m) {
                 else if (key == "valves_per_cylinder") p.valves_per_cylinder = v.cast<int>();
                 else if (key == "spring_elements") p.spring_elements = v.cast<int>();
                 else if (key == "firing_order") p.firing_order = v.cast<std::vector<int>>();
-                else {
-                    const presets::ValveTrainParameters::Field* field = nullptr;
-                    for (const auto& f : presets::ValveTrainParameters::fields())
-                        if (key == f.name) field = &f;
-                    if (!field) {
-                        std::string known = "cylinders, valves_per_cylinder, spring_elements, firing_order";
-                        for (const auto& f : presets::ValveTrainParameters::fields()) known += ", " + std::string(f.name);
-                        detail::fail("unknown valve-train parameter '", key, "'; known: ", known);
-                    }
-                    p.*(field->member) = v.cast<double>();
-                }
+                else p.ref(key) = v.cast<double>();
             }
             return AnyMechanism::build(presets::valve_train(p));
         },

@@ -530,15 +530,13 @@ MechanismBuilder read_valve_train(const Section& s, double rpm) {
                     p.firing_order.push_back(int(v));
                 }
             } else {
-                const presets::ValveTrainParameters::Field* field = nullptr;
-                for (const auto& f : presets::ValveTrainParameters::fields())
-                    if (key == f.name) field = &f;
-                if (!field) {
-                    std::string known = "cylinders, valves_per_cylinder, spring_elements, firing_order";
-                    for (const auto& f : presets::ValveTrainParameters::fields()) known += ", " + std::string(f.name);
-                    ps->fail(key, "unknown parameter; known: " + known);
+                const char* unit = nullptr;
+                try {
+                    unit = presets::ValveTrainParameters::unit_of(key);
+                } catch (const std::invalid_argument& e) {
+                    ps->fail(key, e.what());
                 }
-                p.*(field->member) = ps->quantity(key, field->unit);
+                p.ref(key) = ps->quantity(key, unit);
             }
         }
     }

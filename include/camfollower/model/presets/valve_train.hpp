@@ -81,6 +81,22 @@ struct ValveTrainParameters {
         return table;
     }
 
+    // The real-valued field `name`, or an error listing every parameter (the integers and
+    // firing_order included, which are set directly).
+    double& ref(const std::string& name) {
+        for (const Field& f : fields())
+            if (name == f.name) return this->*(f.member);
+        std::string known = "cylinders, valves_per_cylinder, spring_elements, firing_order";
+        for (const Field& f : fields()) known += std::string(", ") + f.name;
+        detail::fail("unknown valve-train parameter '", name, "'; known: ", known);
+    }
+    static const char* unit_of(const std::string& name) {
+        for (const Field& f : fields())
+            if (name == f.name) return f.unit;
+        (void)ValveTrainParameters().ref(name);  // throws, listing the parameters
+        return "";
+    }
+
     double camshaft_speed() const { return 0.5 * engine_speed_rpm * two_pi / 60.0; }  // rad/s
     int cams() const { return cylinders * valves_per_cylinder; }
 
