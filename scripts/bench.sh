@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-3-Clause
-# Benchmarks (not part of the tests): C++ throughput (Google Benchmark), the side-by-side comparison
-# with scipy and Exudyn at equal accuracy, and the scaling runs. Results go to ./bench-out.
+# Benchmarks (not part of the tests): C++ throughput (Google Benchmark), flexible camshafts with 1-64
+# cams on the dense and sparse backends, the side-by-side comparison with scipy and Exudyn at equal
+# accuracy, and the scaling runs. Results go to ./bench-out.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh test
@@ -11,5 +12,8 @@ cmake -S . -B build-bench -G Ninja -DCMAKE_BUILD_TYPE=Release -DCAMFOLLOWER_BUIL
       -DCAMFOLLOWER_BUILD_TESTS=OFF -DCAMFOLLOWER_BUILD_CLI=OFF >/dev/null
 cmake --build build-bench
 build-bench/bench/camfollower_bench --benchmark_out=bench-out/throughput.json --benchmark_out_format=json
+build-bench/bench/camfollower_bench_camshaft --benchmark_out=bench-out/camshaft.json --benchmark_out_format=json
+.venv/bin/python bench/camshaft_scaling.py bench-out/camshaft.json | tee bench-out/camshaft_scaling.txt
+.venv/bin/python bench/valve_train_accuracy.py | tee bench-out/valve_train_accuracy.txt
 .venv/bin/python bench/compare.py --out bench-out
 .venv/bin/python bench/scaling.py | tee bench-out/scaling.txt

@@ -27,7 +27,7 @@ def simulate(system, *, duration: Optional[float] = None, revolutions: Optional[
     ``record_last_revolutions`` on. ``gamma``/``beta`` default to 1/2, 1/4 (average acceleration) or,
     with ``hht_alpha`` < 0, to HHT's 1/2 - alpha and (1 - alpha)^2 / 4; beta < 1/4 is only
     conditionally stable and a step beyond its limit is refused. ``linear_solver``: "auto" (dense
-    below 150 DOFs, sparse above), "low_rank" (dense: Sherman-Morrison / Woodbury on the contact
+    below 100 DOFs, sparse above), "low_rank" (dense: Sherman-Morrison / Woodbury on the contact
     rank), "dense_lu", "sparse" (SuiteSparse: CHOLMOD when symmetric positive definite, else KLU) or
     "klu"; ``stats["backend"]`` says which ran.
 

@@ -140,7 +140,7 @@ py::dict builder_state(const MechanismBuilder& b) {
             const BeamSection& sec = sp.section;
             dofs.append(py::dict(py::arg("shaft") = sp.name, py::arg("length") = sp.length,
                                  py::arg("max_element_length") = sp.max_element_length, py::arg("stations") = sp.stations,
-                                 py::arg("axial") = sp.axial,
+                                 py::arg("axial") = sp.axial, py::arg("damping") = sp.damping,
                                  py::arg("section") = std::vector<double>{sec.youngs_modulus, sec.shear_modulus, sec.density, sec.area,
                                                                           sec.second_moment_y, sec.second_moment_z, sec.polar_moment,
                                                                           sec.shear_coefficient_y, sec.shear_coefficient_z}));
@@ -186,7 +186,8 @@ MechanismBuilder builder_from(const py::dict& t) {
             if (v.size() != 9) detail::fail("shaft section: 9 values expected");
             b.add_shaft({d["shaft"].cast<std::string>(), BeamSection{v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8]},
                          d["length"].cast<double>(), d["max_element_length"].cast<double>(),
-                         d["stations"].cast<std::vector<double>>(), d["axial"].cast<bool>()});
+                         d["stations"].cast<std::vector<double>>(), d["axial"].cast<bool>(),
+                         d.contains("damping") ? d["damping"].cast<double>() : 0.0});
             continue;
         }
         b.add_dof(d["name"].cast<std::string>(), d["mass"].cast<double>(), d["direction"].cast<Eigen::Vector3d>());
@@ -401,18 +402,19 @@ void bind_mechanism(py::module_& m) {
             "add_shaft",
             [](MechanismBuilder& b, const std::string& name, double length, double outer_diameter, double inner_diameter,
                const std::vector<double>& stations, double max_element_length, double youngs_modulus, double poisson_ratio,
-               double density, bool axial) {
+               double density, bool axial, double damping) {
                 b.add_shaft({name, BeamSection::hollow_circle(outer_diameter, inner_diameter, youngs_modulus, poisson_ratio, density),
-                             length, max_element_length, stations, axial});
+                             length, max_element_length, stations, axial, damping});
             },
             py::arg("name"), py::kw_only(), py::arg("length"), py::arg("outer_diameter"), py::arg("inner_diameter") = 0.0,
             py::arg("stations") = std::vector<double>{}, py::arg("max_element_length") = 0.0, py::arg("youngs_modulus") = 210e9,
-            py::arg("poisson_ratio") = 0.3, py::arg("density") = 7850.0, py::arg("axial") = false,
+            py::arg("poisson_ratio") = 0.3, py::arg("density") = 7850.0, py::arg("axial") = false, py::arg("damping") = 0.0,
             "A flexible shaft along x from 0 to `length` (m): Timoshenko beam elements (bending in two planes with\n"
             "shear and rotary inertia, torsion; axial if asked) of a solid or hollow circular steel section (SI\n"
             "units). Every station (m) where a cam, bearing, drive or mass will sit must be listed; no element is\n"
             "longer than max_element_length (0: one element between stations). Node DOFs are named\n"
-            "'<name>.<node>.<uy|uz|rx|ry|rz>' (shaft_dof()); the twist rx is relative to the rigid rotation.")
+            "'<name>.<node>.<uy|uz|rx|ry|rz>' (shaft_dof()); the twist rx is relative to the rigid rotation.\n"
+            "damping (s): material damping C = damping K of the shaft's elements (mode ratio damping omega / 2).")
         .def(
             "shaft_dof",
             [](const MechanismBuilder& b, const std::string& shaft, double at, const std::string& dof) {
@@ -430,9 +432,10 @@ void bind_mechanism(py::module_& m) {
              "The drive as an imposed speed through a compliance: a torsional spring-damper (N m/rad, N m s/rad)\n"
              "from the twist at station `at` to the rigid rotation omega t.")
         .def("add_motor", &MechanismBuilder::add_motor, py::arg("name"), py::arg("shaft"), py::arg("at") = 0.0, py::kw_only(),
-             py::arg("inertia"), py::arg("slip_slope"), py::arg("torque") = 0.0,
-             "The drive as a motor with a flywheel: inertia (kg m^2) on the twist at `at`, torque falling with\n"
-             "speed at slip_slope (N m s/rad) about the nominal speed, and the torque there (N m).")
+             py::arg("inertia"), py::arg("position_gain"), py::arg("velocity_gain") = 0.0, py::arg("torque") = 0.0,
+             "The drive as a speed-controlled motor with a flywheel at `at`: inertia (kg m^2) on the twist, the\n"
+             "controller's position gain (N m/rad, > 0) and velocity gain (N m s/rad) to the nominal rotation, and\n"
+             "a constant forward torque (N m, e.g. the cams' mean torque as feed-forward).")
         .def(
             "mount_cam",
             [](MechanismBuilder& b, const std::string& name, const MotionProgram& program, const py::object& follower,

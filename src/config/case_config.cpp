@@ -366,9 +366,10 @@ void read_parts(const Section& root, const CaseConfig& c, const Dimensions& dims
         spec.length = s.quantity("length", "m");
         spec.max_element_length = s.quantity("max_element_length", "m", 0.0);
         spec.axial = s.flag("axial", false);
+        spec.damping = s.quantity("damping", "s", 0.0);
         spec.stations = stations[spec.name];
         s.finish({"name", "outer_diameter", "inner_diameter", "youngs_modulus", "poisson_ratio", "density", "length",
-                  "max_element_length", "axial"});
+                  "max_element_length", "axial", "damping"});
         located(s, [&] { b.add_shaft(spec); });
     }
     for (const Section& s : root.tables("bearing")) {
@@ -389,10 +390,11 @@ void read_parts(const Section& root, const CaseConfig& c, const Dimensions& dims
     }
     for (const Section& s : root.tables("motor")) {
         const std::string name = s.text("name", "motor"), shaft = s.text("shaft");
-        const double x = s.quantity("at", "m", 0.0), inertia = s.quantity("inertia", "kg"), slope = s.quantity("slip_slope", "N s/m");
+        const double x = s.quantity("at", "m", 0.0), inertia = s.quantity("inertia", "kg");
+        const double kp = s.quantity("position_gain", "N/m"), kv = s.quantity("velocity_gain", "N s/m", 0.0);
         const double torque = s.quantity("torque", "N m", 0.0);
-        s.finish({"name", "shaft", "at", "inertia", "slip_slope", "torque"});
-        located(s, [&] { b.add_motor(name, shaft, x, inertia, slope, torque); });
+        s.finish({"name", "shaft", "at", "inertia", "position_gain", "velocity_gain", "torque"});
+        located(s, [&] { b.add_motor(name, shaft, x, inertia, kp, kv, torque); });
     }
     for (const Section& s : root.tables("spring")) {
         const std::string name = s.text("name"), a = dof_name(s, "a", b, false, ""), bb = dof_name(s, "b", b, true, ground_name);

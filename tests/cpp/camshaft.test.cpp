@@ -336,3 +336,20 @@ TEST_CASE("the valve-train preset: lowest modes by sparse shift-invert equal the
     // Every valve is held on its base circle or its flank by the spring's preload at the start.
     for (std::size_t i = 0; i < m.contacts().size(); ++i) CHECK(m.static_contact_force(0.0, m.initial_displacement(), i) > 150.0);
 }
+
+TEST_CASE("a motor drive: its torque twists the shaft by torque / position gain, and a motor needs that gain") {
+    MechanismBuilder b;
+    b.add_shaft({"s", shaft_section(), 0.4, 0.05, {0.2}, false});
+    b.add_bearing("front", "s", 0.0, 1e8);
+    b.add_bearing("rear", "s", 0.4, 1e8);
+    const double torque = 12.0, gain = 3e3;
+    b.add_motor("motor", "s", 0.0, 2e-3, gain, 5.0, torque);
+    const Mechanism<> m(b);
+    // No other torque on the shaft: it turns rigidly ahead of the nominal rotation by T / k_p.
+    for (const std::string& node : {"s.0.rx", "s.4.rx", "s.8.rx"})
+        CHECK(m.initial_displacement()[m.dof_index(node)] == Approx(torque / gain).epsilon(1e-9));
+    MechanismBuilder free;
+    free.add_shaft({"s", shaft_section(), 0.4, 0.05, {}, false});
+    CHECK_THROWS_WITH(free.add_motor("motor", "s", 0.0, 2e-3, 0.0, 5.0, 1.0),
+                      Catch::Contains("position_gain of motor 'motor' must be finite and > 0"));
+}

@@ -97,17 +97,20 @@ struct MechanismBuilder {
         add_spring(name, structure.shaft_dof_at(shaft, x, 3), ground_name, stiffness, damping);
     }
 
-    // The drive as a motor with a flywheel at station x: the flywheel's inertia (kg m^2) on the twist,
-    // the motor's torque falling with speed at slip_slope (N m s/rad) about the nominal speed, and its
-    // torque there (N m, which should balance the cams' mean torque).
-    void add_motor(const std::string& name, const std::string& shaft, double x, double inertia, double slip_slope,
-                   double torque) {
+    // The drive as a speed-controlled motor with a flywheel at station x: the flywheel's inertia
+    // (kg m^2) on the twist, the controller's position gain (N m/rad, > 0: it holds the shaft's angle
+    // to the nominal rotation, so a static equilibrium exists) and velocity gain (N m s/rad), and a
+    // constant torque (N m, forward: the cams' mean torque as feed-forward).
+    void add_motor(const std::string& name, const std::string& shaft, double x, double inertia, double position_gain,
+                   double velocity_gain, double torque) {
         const std::string twist = structure.shaft_dof_at(shaft, x, 3);
+        detail::require_positive(position_gain, ("position_gain of motor '" + name + "'").c_str(),
+                                 "(N m/rad; a motor without one leaves the shaft's angle free)");
+        detail::require_non_negative(velocity_gain, ("velocity_gain of motor '" + name + "'").c_str(), "(N m s/rad)");
+        detail::require_finite(torque, ("torque of motor '" + name + "'").c_str());
         add_mass(twist, inertia);
-        detail::require_positive(slip_slope, ("slip_slope of motor '" + name + "'").c_str(), "(N m s/rad)");
-        add_damper(name, twist, ground_name, slip_slope);
-        add_load(twist, -torque);  // drives the cam forward: the twist's load is the motor torque, and
-                                   // the contact's moment loads it back (see cam_torque)
+        add_spring(name, twist, ground_name, position_gain, velocity_gain);
+        if (torque != 0.0) add_load(twist, torque);
     }
 
     // A cam mounted at station x of a shaft: the contact's cam centre and twist become the node's u_y,

@@ -42,7 +42,7 @@ enum class Backend { automatic, dense, sparse };
 // The sparse backend's factorization: automatic is CHOLMOD when the Newton matrix is symmetric
 // positive definite, KLU otherwise; klu always uses KLU.
 enum class SparseFactorization { automatic, klu };
-inline constexpr int sparse_backend_threshold = 150;
+inline constexpr int sparse_backend_threshold = 100;  // DOFs; measured crossover: bench/camshaft.cpp
 
 struct NewmarkSettings {
     double time_step = 3e-6;            // s

@@ -208,6 +208,7 @@ public:
                         if (map[a] < 0 || map[b] < 0) continue;
                         if (k(a, b) != 0.0) K.emplace_back(map[a], map[b], k(a, b));
                         if (m(a, b) != 0.0) M.emplace_back(map[a], map[b], m(a, b));
+                        if (k(a, b) != 0.0 && s.spec.damping > 0.0) C.emplace_back(map[a], map[b], s.spec.damping * k(a, b));
                     }
             });
         for (const SpringSpec& s : springs_) {

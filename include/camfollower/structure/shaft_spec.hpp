@@ -27,6 +27,10 @@ struct ShaftSpec {
     double max_element_length = 0.0;  // m; 0: one element between neighbouring stations
     std::vector<double> stations;     // m, in [0, length]: positions that must be nodes
     bool axial = false;               // model the axial DOF u_x (stiff and usually irrelevant)
+    // Material damping, s: C = damping K of the shaft's own elements (stiffness-proportional), so a
+    // mode of the shaft at omega has the ratio damping omega / 2: light on the low modes, heavy on the
+    // high ones a time step does not resolve.
+    double damping = 0.0;
 
     void validate() const {
         const std::string who = "shaft '" + name + "'";
@@ -40,6 +44,8 @@ struct ShaftSpec {
         detail::require_positive(length, (who + " length").c_str(), "(m)");
         if (!(std::isfinite(max_element_length) && max_element_length >= 0.0))
             detail::fail(who, " max_element_length must be >= 0 (0: one element between stations), got ", max_element_length);
+        if (!(std::isfinite(damping) && damping >= 0.0))
+            detail::fail(who, " damping must be >= 0 s (stiffness-proportional), got ", damping);
         for (double x : stations)
             if (!(std::isfinite(x) && x >= 0.0 && x <= length))
                 detail::fail(who, ": station x = ", x, " m is outside the shaft [0, ", length, "] m");

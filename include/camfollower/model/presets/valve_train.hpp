@@ -36,18 +36,19 @@ struct ValveTrainParameters {
     double bearing_stiffness = 2e8, bearing_damping = 400.0;  // N/m, N s/m (radial, each bearing)
     double drive_stiffness = 6e3, drive_damping = 1.5;        // N m/rad, N m s/rad (chain and sprocket)
     double sprocket_inertia = 1.5e-3;                         // kg m^2
+    double shaft_damping = 5e-6;  // s, stiffness-proportional (ratio ~1 % at the first torsional mode)
 
     // Cams (all the same profile): roller tappets on a dwell-rise-return-dwell program.
     double base_radius = 0.018, roller_radius = 0.009, roller_width = 0.012;  // m
     double lift = 0.009;                                                      // m
-    double rise_angle = degrees_to_radians(62.0);                             // rad, rise = return
+    double rise_angle = degrees_to_radians(70.0);                             // rad, rise = return
     double cam_width = 0.016, cam_mass = 0.09, cam_inertia = 1.8e-5;          // m, kg, kg m^2
     double contact_damping_factor = 0.0;                                      // s/m (Hunt-Crossley)
 
     // Valve, tappet and retainer as one mass; the valve spring with its own mass.
     double valve_mass = 0.085;                                  // kg
     double valve_damping = 4.0;                                 // N s/m (guide and oil)
-    double spring_stiffness = 3.5e4, spring_preload = 230.0;    // N/m, N (valve closed)
+    double spring_stiffness = 4.5e4, spring_preload = 280.0;    // N/m, N (valve closed)
     double spring_mass = 0.045, spring_damping = 2.5;           // kg, N s/m
     int spring_elements = 6;
 
@@ -69,6 +70,7 @@ struct ValveTrainParameters {
             {"max_element_length", &P::max_element_length, "m"},     {"bearing_stiffness", &P::bearing_stiffness, "N/m"},
             {"bearing_damping", &P::bearing_damping, "N s/m"},       {"drive_stiffness", &P::drive_stiffness, "N/m"},
             {"drive_damping", &P::drive_damping, "N s/m"},           {"sprocket_inertia", &P::sprocket_inertia, "kg"},
+            {"shaft_damping", &P::shaft_damping, "s"},
             {"base_radius", &P::base_radius, "m"},                   {"roller_radius", &P::roller_radius, "m"},
             {"roller_width", &P::roller_width, "m"},                 {"lift", &P::lift, "m"},
             {"rise_angle", &P::rise_angle, "rad"},                   {"cam_width", &P::cam_width, "m"},
@@ -144,7 +146,7 @@ inline MechanismBuilder valve_train(const ValveTrainParameters& p = {}) {
     MechanismBuilder b;
     b.add_shaft({"camshaft",
                  BeamSection::hollow_circle(p.shaft_outer_diameter, p.shaft_inner_diameter, 210e9, 0.3, 7850.0), length,
-                 p.max_element_length, stations, false});
+                 p.max_element_length, stations, false, p.shaft_damping});
     for (int k = 0; k <= p.cylinders; ++k)
         b.add_bearing("bearing" + std::to_string(k), "camshaft", k * p.cylinder_pitch, p.bearing_stiffness, p.bearing_damping);
     b.add_drive("drive", "camshaft", 0.0, p.drive_stiffness, p.drive_damping);
