@@ -946,18 +946,20 @@ class MechanismBuilder:
         """
         A lumped mass (kg) or inertia (kg m^2) added to a DOF (e.g. a flywheel on a shaft's twist).
         """
-    def add_motor(self, name: str, shaft: str, at: typing.SupportsFloat | typing.SupportsIndex = 0.0, *, inertia: typing.SupportsFloat | typing.SupportsIndex, slip_slope: typing.SupportsFloat | typing.SupportsIndex, torque: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+    def add_motor(self, name: str, shaft: str, at: typing.SupportsFloat | typing.SupportsIndex = 0.0, *, inertia: typing.SupportsFloat | typing.SupportsIndex, position_gain: typing.SupportsFloat | typing.SupportsIndex, velocity_gain: typing.SupportsFloat | typing.SupportsIndex = 0.0, torque: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
         """
-        The drive as a motor with a flywheel: inertia (kg m^2) on the twist at `at`, torque falling with
-        speed at slip_slope (N m s/rad) about the nominal speed, and the torque there (N m).
+        The drive as a speed-controlled motor with a flywheel at `at`: inertia (kg m^2) on the twist, the
+        controller's position gain (N m/rad, > 0) and velocity gain (N m s/rad) to the nominal rotation, and
+        a constant forward torque (N m, e.g. the cams' mean torque as feed-forward).
         """
-    def add_shaft(self, name: str, *, length: typing.SupportsFloat | typing.SupportsIndex, outer_diameter: typing.SupportsFloat | typing.SupportsIndex, inner_diameter: typing.SupportsFloat | typing.SupportsIndex = 0.0, stations: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex] = [], max_element_length: typing.SupportsFloat | typing.SupportsIndex = 0.0, youngs_modulus: typing.SupportsFloat | typing.SupportsIndex = 210000000000.0, poisson_ratio: typing.SupportsFloat | typing.SupportsIndex = 0.3, density: typing.SupportsFloat | typing.SupportsIndex = 7850.0, axial: bool = False) -> None:
+    def add_shaft(self, name: str, *, length: typing.SupportsFloat | typing.SupportsIndex, outer_diameter: typing.SupportsFloat | typing.SupportsIndex, inner_diameter: typing.SupportsFloat | typing.SupportsIndex = 0.0, stations: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex] = [], max_element_length: typing.SupportsFloat | typing.SupportsIndex = 0.0, youngs_modulus: typing.SupportsFloat | typing.SupportsIndex = 210000000000.0, poisson_ratio: typing.SupportsFloat | typing.SupportsIndex = 0.3, density: typing.SupportsFloat | typing.SupportsIndex = 7850.0, axial: bool = False, damping: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
         """
         A flexible shaft along x from 0 to `length` (m): Timoshenko beam elements (bending in two planes with
         shear and rotary inertia, torsion; axial if asked) of a solid or hollow circular steel section (SI
         units). Every station (m) where a cam, bearing, drive or mass will sit must be listed; no element is
         longer than max_element_length (0: one element between stations). Node DOFs are named
         '<name>.<node>.<uy|uz|rx|ry|rz>' (shaft_dof()); the twist rx is relative to the rigid rotation.
+        damping (s): material damping C = damping K of the shaft's elements (mode ratio damping omega / 2).
         """
     def add_spring(self, name: str, a: str, b: str = 'ground', *, stiffness: typing.SupportsFloat | typing.SupportsIndex, damping: typing.SupportsFloat | typing.SupportsIndex = 0.0, preload: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
         """

@@ -135,9 +135,12 @@ def test_camshaft_study_command_writes_its_table_figures_and_summary(tmp_path):
     assert [s["camshaft_speed_rpm"] for s in summary["speeds"]] == pytest.approx([1000, 2500], rel=1e-12)
     assert {"summary.csv", "study.png", "traces_1000rpm.png", "traces_2500rpm.png"} <= set(summary["files"])
     slow, fast = (s["cams"]["cam1"] for s in summary["speeds"])
-    # Faster: larger inertia loads, so a smaller contact margin while lifting and a larger lift error.
-    assert fast["min_force_lifting_N"] < slow["min_force_lifting_N"]
+    # Faster: larger inertia loads (the valve's acceleration grows as the speed squared), so a larger
+    # peak contact force and a larger lift error; the force never drops below the spring's preload
+    # region at these speeds.
+    assert fast["max_force_N"] > slow["max_force_N"]
     assert fast["lift_error_mm"] > slow["lift_error_mm"]
+    assert fast["min_force_lifting_N"] > 100.0 and fast["contact_lost_s"] == 0.0
     assert 0 < slow["twist_peak_to_peak_deg"] < 1.0
     assert len((out / "summary.csv").read_text().splitlines()) == 1 + 2 * 2
 
