@@ -36,7 +36,7 @@ need() {  # need MODULE... : pip-install the given packages unless all modules i
   fi
 }
 need "numpy, matplotlib, pybind11, scikit_build_core" numpy matplotlib "pybind11>=2.12" "scikit-build-core>=0.10"
-[ "$mode" = study ] || need "scipy, pytest, sympy, ezdxf" scipy pytest sympy ezdxf
+[ "$mode" = study ] || need "scipy, pytest, sympy, ezdxf, hypothesis" scipy pytest sympy ezdxf hypothesis
 
 # Rebuild the package only when its sources changed.
 stamp=$(cat pyproject.toml CMakeLists.txt cmake/* $(find include python -type f \( -name '*.hpp' -o -name '*.cpp' -o -name '*.py' -o -name '*.txt' -o -name '*.pyi' \) | sort) | sha256sum | cut -c1-16)

@@ -52,5 +52,24 @@ inline void require_in_range(double value, double lo, double hi, const char* nam
         fail(name, " must be in [", lo, ", ", hi, "], got ", value);
 }
 
+// The sizes of machine parts the geometry is meant for: a length (radius, arm, diameter, shaft) from
+// 1 um to 1 km; far beyond, the curvature formulas lose every digit to cancellation.
+inline constexpr double min_part_length = 1e-6, max_part_length = 1e3;  // m
+// Forces and preloads of machine elements, N: beyond this a static solution overflows its digits.
+inline constexpr double max_force = 1e9;
+
+inline void require_length(double value, const char* name) {
+    if (!(std::isfinite(value) && value >= min_part_length && value <= max_part_length))
+        fail(name, " must be finite and > 0 (m), in [", min_part_length, ", ", max_part_length, "] m, got ", value);
+}
+inline void require_offset(double value, const char* name) {
+    if (!(std::isfinite(value) && std::abs(value) <= max_part_length))
+        fail(name, " must be in [", -max_part_length, ", ", max_part_length, "] m, got ", value);
+}
+inline void require_force(double value, const char* name) {
+    if (!(std::isfinite(value) && std::abs(value) <= max_force))
+        fail(name, " must be in [", -max_force, ", ", max_force, "] N, got ", value);
+}
+
 }  // namespace detail
 }  // namespace camfollower

@@ -45,10 +45,11 @@ public:
                     ArmTurn turn = ArmTurn::counter_clockwise)
         : base_radius_(base_radius), pivot_(pivot), face_offset_(face_offset), turn_(turn),
           sigma_(turn_sign(turn)) {
-        detail::require_positive(base_radius, "base_radius", "(m)");
-        if (!(std::isfinite(pivot.x()) && std::isfinite(pivot.y())))
-            detail::fail("pivot must be finite (m), got (", pivot.x(), ", ", pivot.y(), ")");
-        detail::require_finite(face_offset, "face_offset (m)");
+        detail::require_length(base_radius, "base_radius");
+        if (!(std::isfinite(pivot.x()) && std::isfinite(pivot.y()) && pivot.norm() <= detail::max_part_length))
+            detail::fail("pivot must be finite and within ", detail::max_part_length, " m of the cam centre, got (", pivot.x(),
+                         ", ", pivot.y(), ")");
+        detail::require_offset(face_offset, "face_offset");
         const double d = pivot.norm();
         if (!(d > base_radius))
             detail::fail("pivot must lie outside the base circle: |pivot| = ", d,

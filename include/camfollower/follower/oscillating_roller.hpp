@@ -38,11 +38,12 @@ public:
                       double arm_length, ArmTurn turn = ArmTurn::counter_clockwise)
         : base_radius_(base_radius), roller_radius_(roller_radius), pivot_(pivot),
           arm_length_(arm_length), turn_(turn), sigma_(turn_sign(turn)) {
-        detail::require_positive(base_radius, "base_radius", "(m)");
-        detail::require_positive(roller_radius, "roller_radius", "(m)");
-        detail::require_positive(arm_length, "arm_length", "(m)");
-        if (!(std::isfinite(pivot.x()) && std::isfinite(pivot.y())))
-            detail::fail("pivot must be finite (m), got (", pivot.x(), ", ", pivot.y(), ")");
+        detail::require_length(base_radius, "base_radius");
+        detail::require_length(roller_radius, "roller_radius");
+        detail::require_length(arm_length, "arm_length");
+        if (!(std::isfinite(pivot.x()) && std::isfinite(pivot.y()) && pivot.norm() <= detail::max_part_length))
+            detail::fail("pivot must be finite and within ", detail::max_part_length, " m of the cam centre, got (", pivot.x(),
+                         ", ", pivot.y(), ")");
         const double d = pivot.norm(), r = base_radius + roller_radius;
         if (!(d > base_radius))
             detail::fail("pivot must lie outside the base circle: |pivot| = ", d,

@@ -30,8 +30,8 @@ public:
     // must cut the base pitch circle).
     TranslatingRoller(double base_radius, double roller_radius, double offset)
         : base_radius_(base_radius), roller_radius_(roller_radius), offset_(offset) {
-        detail::require_positive(base_radius, "base_radius", "(m)");
-        detail::require_positive(roller_radius, "roller_radius", "(m)");
+        detail::require_length(base_radius, "base_radius");
+        detail::require_length(roller_radius, "roller_radius");
         const double rp = base_radius + roller_radius;
         if (!(std::isfinite(offset) && std::abs(offset) < rp))
             detail::fail("offset must satisfy |offset| < base_radius + roller_radius = ", rp,

@@ -396,7 +396,9 @@ public:
         detail::require_finite(theta, "theta");
         const Workspace w = workspace_at(theta);
         Vector q = Vector::Zero(n_), dq(n_);
-        if (solve_static(K_, load_, dq)) q = dq;
+        // The contact-free deflection as the start, unless the structure alone barely holds the
+        // loads (a displacement no machine has): then from zero.
+        if (solve_static(K_, load_, dq) && dq.cwiseAbs().maxCoeff() < 1e3) q = dq;
         const double scale = load_.cwiseAbs().maxCoeff() + 1.0;
         const double norm_K = K_.cwiseAbs().rowwise().sum().maxCoeff();
         Vector r(n_);

@@ -68,7 +68,9 @@ struct NewmarkSettings {
     }
 
     void validate() const {
-        detail::require_positive(time_step, "time_step", "(s)");
+        // Below a picosecond M / (beta dt^2) leaves the range of doubles for any mechanical mass.
+        if (!(std::isfinite(time_step) && time_step >= 1e-12))
+            detail::fail("time_step must be finite and > 0 (at least 1e-12 s), got ", time_step);
         detail::require_in_range(hht_alpha, -1.0 / 3.0, 0.0, "hht_alpha");
         detail::require_in_range(gamma, 0.5, 1.0, "gamma (below 1/2 the scheme adds negative damping)");
         if (!(std::isfinite(beta) && beta > 0.0 && beta <= 0.5)) detail::fail("beta must be in (0, 0.5], got ", beta);

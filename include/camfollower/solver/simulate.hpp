@@ -109,11 +109,35 @@ bool uses_sparse_backend(const System& system, const NewmarkSettings& settings) 
     }
 }
 
+namespace detail {
+template <class S, class = void>
+struct has_period : std::false_type {};
+template <class S>
+struct has_period<S, void_t<decltype(double(std::declval<const S&>().period()))>> : std::true_type {};
+}  // namespace detail
+
+// Refuses a time step the run cannot use: longer than the run itself, or (for a cam mechanism) longer
+// than a twelfth of a camshaft revolution, which cannot resolve the cam's motion.
+template <class System>
+void check_time_step(const System& system, const NewmarkSettings& settings, double duration) {
+    settings.validate();
+    detail::require_positive(duration, "duration", "(s)");
+    if (settings.time_step > duration)
+        detail::fail("time_step = ", settings.time_step, " s is longer than the duration ", duration, " s");
+    if constexpr (detail::has_period<System>::value) {
+        const double limit = system.period() / 12.0;
+        if (settings.time_step > limit)
+            detail::fail("time_step = ", settings.time_step, " s cannot resolve the cam's motion: it must be <= ", limit,
+                         " s (a twelfth of the camshaft period ", system.period(), " s)");
+    }
+}
+
 template <class System>
 RunResult<System> simulate(const System& system, const NewmarkSettings& settings, const RunOptions& options,
                            const std::optional<typename System::Vector>& q0 = std::nullopt,
                            const std::optional<typename System::Vector>& v0 = std::nullopt) {
     if (options.progress && options.progress_every < 1) detail::fail("progress_every must be >= 1");
+    check_time_step(system, settings, options.duration);
     if constexpr (detail::has_sparse_matrices<System>::value) {
         if (uses_sparse_backend(system, settings)) return detail::run<SparseNewmark<System>>(system, settings, options, q0, v0);
     } else {

@@ -34,7 +34,7 @@ struct BeamSection {
     }
 
     static BeamSection hollow_circle(double outer, double inner, double E, double nu, double rho) {
-        detail::require_positive(outer, "outer diameter", "(m)");
+        detail::require_length(outer, "outer diameter");
         detail::require_non_negative(inner, "inner diameter", "(m)");
         if (!(inner < outer)) detail::fail("inner diameter must be < outer diameter ", outer, " m, got ", inner);
         detail::require_positive(E, "youngs_modulus", "(Pa)");

@@ -78,7 +78,7 @@ public:
         check_element(name, a, b);
         detail::require_non_negative(stiffness, ("stiffness of '" + name + "'").c_str(), "(N/m)");
         detail::require_non_negative(damping, ("damping of '" + name + "'").c_str(), "(N s/m)");
-        detail::require_finite(preload, ("preload of '" + name + "'").c_str());
+        detail::require_force(preload, ("preload of '" + name + "'").c_str());
         springs_.push_back({name, a, b, stiffness, damping, preload});
     }
 
@@ -146,7 +146,7 @@ public:
 
     void add_load(const std::string& dof, double force) {
         if (dof == ground_name) detail::fail("a load acts on a DOF, not on '", ground_name, "'");
-        detail::require_finite(force, ("load on '" + dof + "'").c_str());
+        detail::require_force(force, ("load on '" + dof + "'").c_str());
         loads_.push_back({dof, force});
     }
 

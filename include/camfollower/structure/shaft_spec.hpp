@@ -41,7 +41,7 @@ struct ShaftSpec {
         } catch (const std::invalid_argument& e) {
             detail::fail(who, " section: ", e.what());
         }
-        detail::require_positive(length, (who + " length").c_str(), "(m)");
+        detail::require_length(length, (who + " length").c_str());
         if (!(std::isfinite(max_element_length) && max_element_length >= 0.0))
             detail::fail(who, " max_element_length must be >= 0 (0: one element between stations), got ", max_element_length);
         if (!(std::isfinite(damping) && damping >= 0.0))
@@ -49,7 +49,11 @@ struct ShaftSpec {
         for (double x : stations)
             if (!(std::isfinite(x) && x >= 0.0 && x <= length))
                 detail::fail(who, ": station x = ", x, " m is outside the shaft [0, ", length, "] m");
+        if (max_element_length > 0.0 && length / max_element_length + double(stations.size()) > max_elements)
+            detail::fail(who, " max_element_length = ", max_element_length, " m would make about ", length / max_element_length,
+                         " elements (limit ", max_elements, ")");
     }
+    static constexpr double max_elements = 1e5;
 
     // Node positions: 0, length and the stations (merged within 1 um), each interval split into equal
     // elements no longer than max_element_length.

@@ -1,0 +1,133 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""Property-based tests (hypothesis) over the Python API: motion programs, followers, mechanisms,
+flexible shafts and simulate, fed anything a user could pass (negative, zero, tiny, huge, NaN, inf).
+
+The oracle: the call either returns finite results or raises ValueError whose message names the
+argument or element at fault; never a crash, a hang, a silent NaN or another exception type.
+Profiles: the default ("ci") runs a few hundred examples per property; ``--hypothesis-profile=long``
+runs 10,000 per property (over 50,000 in all).
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+hypothesis = pytest.importorskip("hypothesis")
+from hypothesis import HealthCheck, given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+import camfollower as cf  # noqa: E402
+
+settings.register_profile("ci", max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+settings.register_profile("long", max_examples=10_000, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+settings.load_profile("ci")
+
+# Numbers a user might pass: ordinary magnitudes, extremes, and non-finite values.
+anything = st.one_of(
+    st.floats(allow_nan=True, allow_infinity=True),
+    st.floats(min_value=-1.0, max_value=1.0),
+    st.sampled_from([0.0, -0.0, 1e-300, -1e-300, 1e300, 5e-324, 1e-9, 1e9]),
+)
+length = st.one_of(st.floats(min_value=1e-4, max_value=0.2), anything)
+LAWS = ["cycloidal", "simple_harmonic", "polynomial_345", "polynomial_4567", "modified_sine", "modified_trapezoid",
+        "constant_acceleration"]
+
+
+def raises_naming(call, *names):
+    """Run call(); a ValueError (bad input) or RuntimeError (a model that cannot be solved) must name
+    one of `names` (the argument or element at fault)."""
+    try:
+        return call()
+    except (ValueError, RuntimeError) as e:
+        text = str(e)
+        assert text and any(n in text for n in names), f"error does not name {names}: {text}"
+        return None
+
+
+def finite(x):
+    return np.all(np.isfinite(np.asarray(x, dtype=float)))
+
+
+@given(law=st.sampled_from(LAWS), rise=anything, lift=anything, theta=st.lists(anything, min_size=1, max_size=8))
+def test_motion_program_is_finite_or_refused(law, rise, lift, theta):
+    """Dwell, rise over `rise` rad, dwell, return: refused or finite at any finite angle."""
+
+    def build():
+        a = rise
+        return cf.MotionProgram([cf.Segment(cf.MotionLaw.dwell(), 0.0, 1.0, 0.0, 0.0),
+                                 cf.Segment(getattr(cf.MotionLaw, law)(), 1.0, 1.0 + a, 0.0, lift),
+                                 cf.Segment(cf.MotionLaw.dwell(), 1.0 + a, 4.0, lift, lift),
+                                 cf.Segment(getattr(cf.MotionLaw, law)(), 4.0, 2 * math.pi, lift, 0.0)])
+
+    program = raises_naming(build, "theta", "segment", "rise", "lift", "h_", "span", "angle", "finite")
+    if program is None:
+        return
+    angles = np.array([t for t in theta if math.isfinite(t)])
+    if angles.size:
+        values = program.evaluate(angles)
+        for key in ("h", "dh", "d2h", "d3h"):
+            assert finite(values[key]), key
+    bad = [t for t in theta if not math.isfinite(t)]
+    if bad:
+        raises_naming(lambda: program.evaluate(np.array(bad)), "theta")
+
+
+@given(base=length, roller=length, offset=st.one_of(st.floats(min_value=-0.05, max_value=0.05), anything),
+       lift=st.one_of(st.floats(min_value=1e-4, max_value=0.05), anything))
+def test_translating_roller_geometry_is_checked_or_refused(base, roller, offset, lift):
+    follower = raises_naming(lambda: cf.TranslatingRoller(base, roller, offset), "base_radius", "roller_radius", "offset")
+    program = raises_naming(lambda: cf.MotionProgram.paper_default(lift), "rise", "lift", "total_rise", "h")
+    if follower is None or program is None:
+        return
+    ok = raises_naming(lambda: follower.check(program) or True, "theta", "undercut", "pressure angle", "cusp", "radius")
+    if ok:
+        theta, alpha = follower.max_pressure_angle(program)
+        assert math.isfinite(alpha) and abs(alpha) < math.pi / 2
+        theta, radius = follower.min_surface_radius(program)
+        assert math.isfinite(radius) and radius > 0
+
+
+@given(mass=anything, stiffness=anything, damping=anything, preload=anything)
+def test_mechanism_parts_are_validated_by_name(mass, stiffness, damping, preload):
+    b = cf.MechanismBuilder()
+    if raises_naming(lambda: b.add_dof("tappet", mass, [0, 1, 0]) or True, "tappet") is None:
+        return
+    if raises_naming(lambda: b.add_spring("spring", "tappet", stiffness=stiffness, damping=damping, preload=preload) or True,
+                     "spring") is None:
+        return
+    b.add_contact("cam", cf.MotionProgram.paper_default(), cf.TranslatingRoller(0.03, 0.008), follower_dof="tappet",
+                  stiffness=2e8)
+    m = raises_naming(b.build, "static equilibrium", "spring", "tappet", "contact")
+    if m is not None:
+        assert finite(m.initial_state)
+
+
+@given(length_=anything, outer=length, inner=st.one_of(st.just(0.0), length), element=anything,
+       stations=st.lists(anything, max_size=4))
+def test_shaft_description_is_validated_by_name(length_, outer, inner, element, stations):
+    b = cf.MechanismBuilder()
+    done = raises_naming(lambda: b.add_shaft("s", length=length_, outer_diameter=outer, inner_diameter=inner,
+                                             max_element_length=element, stations=stations) or True,
+                         "shaft 's'", "diameter", "youngs_modulus", "density")
+    if done:
+        names = b.dof_names
+        assert names and all(n.startswith("s.") for n in names)
+        assert len(names) < 5 * 10**6
+
+
+PRESET = cf.presets.paper()
+
+
+@given(time_step=anything, duration=anything)
+def test_simulate_runs_or_refuses_its_step_and_duration(time_step, duration):
+    def run():
+        # Bounded work: at most 1,000 steps are accepted for the check.
+        if (math.isfinite(time_step) and math.isfinite(duration) and time_step > 0 and duration > 0
+                and duration / time_step > 1000):
+            return None
+        return cf.simulate(PRESET, duration=duration, time_step=time_step, decimation=1)
+
+    result = raises_naming(run, "time_step", "duration", "steps", "stability")
+    if result is not None:
+        assert finite(result.q) and finite(result["cam.force"])
