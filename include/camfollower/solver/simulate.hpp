@@ -13,6 +13,7 @@
 #include "camfollower/solver/newmark.hpp"
 #include "camfollower/solver/observers.hpp"
 #include "camfollower/solver/settle.hpp"
+#include "camfollower/solver/shooting.hpp"
 #include "camfollower/solver/sparse_newton.hpp"
 
 namespace camfollower {
@@ -144,6 +145,38 @@ RunResult<System> simulate(const System& system, const NewmarkSettings& settings
         (void)uses_sparse_backend(system, settings);  // refuses backend = sparse
     }
     return detail::run<Newmark<System>>(system, settings, options, q0, v0);
+}
+
+namespace detail {
+template <class Stepper, class System>
+PeriodicOrbit shoot_with(const System& system, const NewmarkSettings& settings, const ShootingOptions& options,
+                         const Eigen::VectorXd& q0, const Eigen::VectorXd& v0, const std::function<bool()>& keep_going) {
+    Stepper stepper(system, settings);
+    return shoot(stepper, q0, v0, options, [&] { return !keep_going || keep_going(); });
+}
+}  // namespace detail
+
+// The periodic steady state by shooting (solver/shooting.hpp) from (q0, v0) at options.start_time
+// (default: the system's initial state), on the backend simulate() would use. options.period
+// defaults to the system's period(). Check orbit.converged (or call require_converged).
+template <class System>
+PeriodicOrbit periodic_orbit(const System& system, const NewmarkSettings& settings, ShootingOptions options,
+                             const std::optional<typename System::Vector>& q0 = std::nullopt,
+                             const std::optional<typename System::Vector>& v0 = std::nullopt,
+                             const std::function<bool()>& keep_going = {}) {
+    if constexpr (detail::has_period<System>::value) {
+        if (options.period == 0.0) options.period = system.period();
+    }
+    check_time_step(system, settings, options.period);
+    const Eigen::VectorXd q = q0 ? Eigen::VectorXd(*q0) : Eigen::VectorXd(initial_displacement(system));
+    const Eigen::VectorXd v = v0 ? Eigen::VectorXd(*v0) : Eigen::VectorXd(initial_velocity(system));
+    if constexpr (detail::has_sparse_matrices<System>::value) {
+        if (uses_sparse_backend(system, settings))
+            return detail::shoot_with<SparseNewmark<System>>(system, settings, options, q, v, keep_going);
+    } else {
+        (void)uses_sparse_backend(system, settings);
+    }
+    return detail::shoot_with<Newmark<System>>(system, settings, options, q, v, keep_going);
 }
 
 }  // namespace camfollower
