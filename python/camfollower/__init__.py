@@ -40,6 +40,7 @@ from . import export, motion, presets
 from .config import Config, config_from_dict, load_config
 from .results import Result
 from .simulation import simulate
+from .periodic import PeriodicOrbit, periodic_steady_state
 
 __all__ = [
     "ArmTurn",
@@ -60,6 +61,7 @@ __all__ = [
     "OscillatingRoller",
     "Parameters",
     "PeakCoefficients",
+    "PeriodicOrbit",
     "ProfileError",
     "Result",
     "Segment",
@@ -69,6 +71,7 @@ __all__ = [
     "export",
     "load_config",
     "motion",
+    "periodic_steady_state",
     "presets",
     "simulate",
 ]

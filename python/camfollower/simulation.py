@@ -19,7 +19,7 @@ def simulate(system, *, duration: Optional[float] = None, revolutions: Optional[
              progress: Optional[Callable[[int, int], Optional[bool]]] = None,
              progress_interval: float = 0.2, settle: bool = False, settle_tolerance: float = 1e-4,
              settle_dofs: Optional[Sequence[str]] = None, settle_min_revolutions: int = 2,
-             settle_max_revolutions: int = 200) -> Result:
+             settle_max_revolutions: int = 200, initial_state=None) -> Result:
     """Integrate ``system`` from its initial state (static equilibrium, at rest) and return a Result.
 
     Give ``duration`` (s) or ``revolutions`` (of the camshaft, for systems with a ``period``). One row
@@ -45,6 +45,9 @@ def simulate(system, *, duration: Optional[float] = None, revolutions: Optional[
     response never became periodic: chaos, chatter or an undamped mode). Watched: ``settle_dofs`` (names),
     by default each contact's follower DOF (every DOF for systems without contacts). The time step must
     divide the period.
+
+    ``initial_state``: ``(q, v)`` arrays (one entry per DOF, SI) to start from at t = 0 instead of the
+    system's static equilibrium at rest, e.g. a :class:`camfollower.periodic.PeriodicOrbit` (its state).
 
     Raises ValueError for bad input and RuntimeError when Newton fails after ``max_halvings``.
     """
@@ -81,11 +84,32 @@ def simulate(system, *, duration: Optional[float] = None, revolutions: Optional[
         settle_args = dict(settle_period=float(period), settle_dofs=[names.index(d) for d in settle_dofs],
                            settle_tolerance=settle_tolerance, settle_min_revolutions=settle_min_revolutions,
                            settle_max_revolutions=settle_max_revolutions)
+    q0 = v0 = None
+    if initial_state is not None:
+        if hasattr(initial_state, "q") and hasattr(initial_state, "v"):
+            initial_state = (initial_state.q, initial_state.v)
+        try:
+            q0, v0 = initial_state
+        except (TypeError, ValueError):
+            raise ValueError("initial_state must be a pair (q, v) of arrays or a PeriodicOrbit") from None
+        q0, v0 = _vector("initial_state q", q0), _vector("initial_state v", v0)
     raw = _core._run(system, float(duration), time_step, decimation, gamma, beta, hht_alpha, linear_solver,
                      residual_tolerance, increment_tolerance, max_iterations, max_halvings, start,
-                     max_output_bytes, progress, progress_interval, **settle_args)
+                     max_output_bytes, progress, progress_interval, **settle_args, q0=q0, v0=v0)
     stats = dict(raw["stats"])
     report = stats.pop("settle", None)
     if report is not None:
         report["dofs"] = list(settle_dofs)
     return Result(raw["names"], raw["dofs"], raw["data"], stats, raw["contact_loss"], report)
+
+
+def _vector(name: str, x):
+    import numpy as np
+
+    try:
+        a = np.asarray(x, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be an array of numbers") from None
+    if a.ndim != 1:
+        raise ValueError(f"{name} must be one-dimensional (one entry per DOF), got shape {a.shape}")
+    return a

@@ -638,6 +638,9 @@ void bind_mechanism(py::module_& m) {
     bind_run<AnyMechanism>(m, [](const AnyMechanism& a, auto&&... args) {
         return a.visit([&](const auto& mech) { return run_system(mech, args...); });
     });
+    bind_shoot<AnyMechanism>(m, [](const AnyMechanism& a, auto&&... args) {
+        return a.visit([&](const auto& mech) { return shoot_system(mech, args...); });
+    });
 }
 
 }  // namespace camfollower::python

@@ -8,6 +8,8 @@
 #include <optional>
 #include <string>
 
+#include <pybind11/complex.h>
+#include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
@@ -52,12 +54,27 @@ py::dict losses_of(const Mechanism<N>& m, const State<Mechanism<N>>& s) {
     return d;
 }
 
+// An initial q or v from Python, checked for size and finiteness.
+template <class System>
+std::optional<typename System::Vector> initial_vector(const System& system, const std::optional<Eigen::VectorXd>& x,
+                                                      const char* name) {
+    if (!x) return std::nullopt;
+    if (x->size() != system.size()) detail::fail(name, " must have ", system.size(), " entries (one per DOF), got ", x->size());
+    if (!x->allFinite()) detail::fail(name, " must be finite");
+    return typename System::Vector(*x);
+}
+
 // The raw output handed to camfollower.results.Result: channel names, DOF names, a channels x rows
 // view on the C++ buffer (kept alive by the view's base), statistics.
 template <class System>
 py::dict run_system(const System& system, double duration, const NewmarkSettings& settings, std::size_t decimation,
                     double record_from, double max_output_bytes, const py::object& progress,
-                    double progress_interval, const SettleOptions& settle) {
+                    double progress_interval, const SettleOptions& settle,
+                    const std::optional<Eigen::VectorXd>& q0 = std::nullopt,
+                    const std::optional<Eigen::VectorXd>& v0 = std::nullopt) {
+    using Vector = typename System::Vector;
+    const std::optional<Vector> q_start = initial_vector<System>(system, q0, "initial q");
+    const std::optional<Vector> v_start = initial_vector<System>(system, v0, "initial v");
     RunOptions options;
     options.settle = settle;
     options.duration = duration;
@@ -90,7 +107,7 @@ py::dict run_system(const System& system, double duration, const NewmarkSettings
     auto result = std::make_shared<RunResult<System>>();
     {
         py::gil_scoped_release release;
-        *result = simulate(system, settings, options);
+        *result = simulate(system, settings, options, q_start, v_start);
     }
     if (python_error) throw std::move(*python_error);
     const Recording& rec = result->recording;
@@ -146,7 +163,8 @@ void bind_run(py::module_& m, Run run) {
               int max_iterations, int max_halvings, double record_from, double max_output_bytes,
               const py::object& progress, double progress_interval, std::optional<double> settle_period,
               const std::vector<int>& settle_dofs, double settle_tolerance, int settle_min_revolutions,
-              int settle_max_revolutions) {
+              int settle_max_revolutions, const std::optional<Eigen::VectorXd>& q0,
+              const std::optional<Eigen::VectorXd>& v0) {
             const NewmarkSettings s = settings_from(time_step, gamma, beta, hht_alpha, linear_solver, residual_tolerance,
                                                     increment_tolerance, max_iterations, max_halvings);
             SettleOptions settle;
@@ -158,15 +176,91 @@ void bind_run(py::module_& m, Run run) {
                 settle.min_revolutions = settle_min_revolutions;
                 settle.max_revolutions = settle_max_revolutions;
             }
-            return run(system, duration, s, decimation, record_from, max_output_bytes, progress, progress_interval, settle);
+            return run(system, duration, s, decimation, record_from, max_output_bytes, progress, progress_interval, settle, q0, v0);
         },
         py::arg("system"), py::arg("duration"), py::arg("time_step"), py::arg("decimation"), py::arg("gamma"),
         py::arg("beta"), py::arg("hht_alpha"), py::arg("linear_solver"), py::arg("residual_tolerance"),
         py::arg("increment_tolerance"), py::arg("max_iterations"), py::arg("max_halvings"), py::arg("record_from"),
         py::arg("max_output_bytes"), py::arg("progress"), py::arg("progress_interval"), py::arg("settle_period") = py::none(),
         py::arg("settle_dofs") = std::vector<int>{}, py::arg("settle_tolerance") = 1e-4,
-        py::arg("settle_min_revolutions") = 2, py::arg("settle_max_revolutions") = 200,
-        "Internal: camfollower.simulate() calls this and wraps the output in a Result.");
+        py::arg("settle_min_revolutions") = 2, py::arg("settle_max_revolutions") = 200, py::arg("q0") = py::none(),
+        py::arg("v0") = py::none(), "Internal: camfollower.simulate() calls this and wraps the output in a Result.");
+}
+
+// Shooting for the periodic steady state (solver/shooting.hpp), GIL released; Ctrl-C cancels (checked
+// every revolution). Returns the orbit as a dict for camfollower.periodic.
+template <class System>
+py::dict shoot_system(const System& system, const NewmarkSettings& settings, const ShootingOptions& options,
+                      const std::optional<Eigen::VectorXd>& q0, const std::optional<Eigen::VectorXd>& v0) {
+    using Vector = typename System::Vector;
+    const std::optional<Vector> q_start = initial_vector<System>(system, q0, "initial q");
+    const std::optional<Vector> v_start = initial_vector<System>(system, v0, "initial v");
+    std::optional<py::error_already_set> python_error;
+    auto keep_going = [&] {
+        py::gil_scoped_acquire acquire;
+        if (PyErr_CheckSignals() == 0) return true;
+        python_error.emplace();
+        return false;
+    };
+    PeriodicOrbit o;
+    {
+        py::gil_scoped_release release;
+        o = periodic_orbit(system, settings, options, q_start, v_start, keep_going);
+    }
+    if (python_error) throw std::move(*python_error);
+    py::dict d;
+    d["converged"] = o.converged;
+    d["cancelled"] = o.cancelled;
+    d["iterations"] = o.iterations;
+    d["monodromies"] = o.monodromies;
+    d["mismatch"] = o.mismatch;
+    d["history"] = o.history;
+    d["q"] = o.q;
+    d["v"] = o.v;
+    d["q_scale"] = o.q_scale;
+    d["v_scale"] = o.v_scale;
+    d["monodromy"] = o.monodromy;
+    d["monodromy_at_orbit"] = o.monodromy_at_orbit;
+    d["multipliers"] = Eigen::VectorXcd(o.multipliers);
+    d["revolutions"] = o.revolutions;
+    d["steps"] = o.stats.steps;
+    d["newton_iterations"] = o.stats.newton_iterations;
+    d["halvings"] = o.stats.halvings;
+    d["period"] = options.period;
+    d["start_time"] = options.start_time;
+    d["tolerance"] = options.tolerance;
+    return d;
+}
+
+template <class System, class Shoot>
+void bind_shoot(py::module_& m, Shoot shoot_fn) {
+    m.def(
+        "_shoot",
+        [shoot_fn](const System& system, double time_step, std::optional<double> gamma, std::optional<double> beta,
+                   double hht_alpha, const std::string& linear_solver, double residual_tolerance,
+                   double increment_tolerance, int max_iterations, int max_halvings, std::optional<double> period,
+                   double start_time, double tolerance, int shooting_max_iterations, int warmup_revolutions,
+                   double perturbation, bool multipliers, const std::optional<Eigen::MatrixXd>& monodromy,
+                   const std::optional<Eigen::VectorXd>& q0, const std::optional<Eigen::VectorXd>& v0) {
+            const NewmarkSettings s = settings_from(time_step, gamma, beta, hht_alpha, linear_solver, residual_tolerance,
+                                                    increment_tolerance, max_iterations, max_halvings);
+            ShootingOptions o;
+            if (period) o.period = *period;
+            o.start_time = start_time;
+            o.tolerance = tolerance;
+            o.max_iterations = shooting_max_iterations;
+            o.warmup_revolutions = warmup_revolutions;
+            o.perturbation = perturbation;
+            o.multipliers = multipliers;
+            if (monodromy) o.monodromy = *monodromy;
+            return shoot_fn(system, s, o, q0, v0);
+        },
+        py::arg("system"), py::arg("time_step"), py::arg("gamma"), py::arg("beta"), py::arg("hht_alpha"),
+        py::arg("linear_solver"), py::arg("residual_tolerance"), py::arg("increment_tolerance"), py::arg("max_iterations"),
+        py::arg("max_halvings"), py::arg("period"), py::arg("start_time"), py::arg("tolerance"),
+        py::arg("shooting_max_iterations"), py::arg("warmup_revolutions"), py::arg("perturbation"), py::arg("multipliers"),
+        py::arg("monodromy"), py::arg("q0"), py::arg("v0"),
+        "Internal: camfollower.periodic_steady_state() calls this and wraps the output in a PeriodicOrbit.");
 }
 
 }  // namespace camfollower::python

@@ -9,6 +9,7 @@ void bind_solver(py::module_& m) {
     bind_run<CamFollowerModel>(m, [](const CamFollowerModel& system, auto&&... args) {
         return run_system(system, args...);
     });
+    bind_shoot<CamFollowerModel>(m, [](const CamFollowerModel& system, auto&&... args) { return shoot_system(system, args...); });
 }
 
 }  // namespace camfollower::python

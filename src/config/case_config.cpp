@@ -696,8 +696,13 @@ CaseConfig build_case(const toml::table& table, const std::string& origin, const
     }
     if (const std::optional<Section> s = root.table("solver")) c.solver = read_solver(*s);
     if (const std::optional<Section> s = root.table("output")) c.output = read_output(*s);
+    // [sweep] and [montecarlo] describe studies run by the Python package (python -m camfollower sweep |
+    // montecarlo), which reads and checks them; they do not change the case.
+    (void)root.table("sweep");
+    (void)root.table("montecarlo");
     root.finish({"camshaft", "program", "preset", "dof", "spring", "damper", "load", "contact", "clearance", "guide",
-                 "damping", "gravity", "solver", "output", "shaft", "bearing", "drive", "motor", "spring_chain"});
+                 "damping", "gravity", "solver", "output", "shaft", "bearing", "drive", "motor", "spring_chain",
+                 "sweep", "montecarlo"});
     // The description must build (DOF references, contact geometry): fail now, located at the file.
     try {
         if (c.mechanism.structure.size() == presets::paper_dofs) (void)Mechanism<presets::paper_dofs>(c.mechanism);

@@ -1,0 +1,176 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""The periodic steady state of a cam mechanism, found directly (shooting) instead of by waiting.
+
+A cam turning at constant speed forces the mechanism periodically; after the start-up transient has
+died out the response repeats every revolution. :func:`periodic_steady_state` finds that response by
+Newton's method on the state at the start of a revolution (docs/studies.md): it costs a fixed number
+of revolutions (``2 n`` per monodromy matrix for ``n`` DOFs, plus one per iteration) however lightly
+damped the mechanism is, where the transient route needs as many revolutions as its slowest mode takes
+to decay. The monodromy matrix's eigenvalues (Floquet multipliers) say whether the orbit is stable and
+how it would lose stability: through -1 (period doubling), +1 (a fold: the jump) or as a complex pair.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, Dict, Optional, Tuple
+
+import numpy as np
+
+from . import _core
+from .results import Result
+from .simulation import simulate
+
+# Newmark keyword arguments that define the discrete scheme (the orbit belongs to them).
+_SCHEME_KEYS = ("time_step", "gamma", "beta", "hht_alpha", "linear_solver", "residual_tolerance",
+                "increment_tolerance", "max_iterations", "max_halvings")
+
+
+@dataclass(frozen=True)
+class PeriodicOrbit:
+    """The periodic steady state at the start of a revolution (t = 0, cam angle = its phase).
+
+    ``q``, ``v``: the state (SI units per DOF) from which one revolution returns to itself within
+    ``mismatch`` (displacements relative to the largest |q| on the revolution, velocities to the
+    largest |v|). ``multipliers``: Floquet multipliers (complex, largest magnitude first);
+    ``monodromy``: d(q, v)(T)/d(q, v)(0), ``2n x 2n``. ``revolutions``: what finding it cost, in
+    revolutions simulated. ``method``: "shooting", or "transient" when the shooting failed and the
+    transient route was asked for as the fallback. ``scheme``: the solver settings the orbit belongs to
+    (pass the orbit to :meth:`record` to get its time histories).
+    """
+
+    q: np.ndarray
+    v: np.ndarray
+    period: float
+    converged: bool
+    mismatch: float
+    iterations: int
+    monodromies: int
+    revolutions: float
+    multipliers: np.ndarray
+    monodromy: np.ndarray
+    monodromy_at_orbit: bool
+    history: Tuple[float, ...]
+    dof_names: Tuple[str, ...]
+    method: str = "shooting"
+    scheme: Dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def spectral_radius(self) -> float:
+        """Largest |multiplier|: < 1 for a stable orbit (nan when no monodromy was built)."""
+        return float(abs(self.multipliers[0])) if len(self.multipliers) else math.nan
+
+    @property
+    def stable(self) -> bool:
+        return self.spectral_radius < 1.0
+
+    def instability(self, margin: float = 1e-3) -> str:
+        """How the orbit is (or is about to be) losing stability, from the multipliers within ``margin``
+        of the unit circle or outside it: "stable", "period doubling" (a real multiplier at -1),
+        "fold" (real, at +1: a jump) or "quasi-periodic" (a complex pair: chatter-like modulation)."""
+        mu = self.multipliers[np.abs(self.multipliers) >= 1.0 - margin] if len(self.multipliers) else []
+        if len(mu) == 0:
+            return "stable"
+        m = mu[0]
+        if abs(m.imag) <= 1e-6 * abs(m):
+            return "period doubling" if m.real < 0 else "fold"
+        return "quasi-periodic"
+
+    def record(self, system, *, revolutions: float = 1.0, decimation: int = 1, **overrides) -> Result:
+        """Simulate ``revolutions`` from the orbit with the scheme it was found with (so the recorded
+        revolution is the orbit itself) and return the Result."""
+        kwargs = {**self.scheme, **overrides}
+        return simulate(system, revolutions=revolutions, decimation=decimation, initial_state=(self.q, self.v), **kwargs)
+
+    def summary(self) -> Dict[str, Any]:
+        """JSON-ready facts of the orbit."""
+        return {"method": self.method, "converged": self.converged, "mismatch": self.mismatch,
+                "iterations": self.iterations, "monodromies": self.monodromies, "revolutions": self.revolutions,
+                "spectral_radius": self.spectral_radius, "instability": self.instability(),
+                "multipliers": [[float(m.real), float(m.imag)] for m in self.multipliers]}
+
+
+def periodic_steady_state(system, *, time_step: float = 3e-6, tolerance: float = 1e-9,
+                          max_shooting_iterations: int = 30, warmup_revolutions: int = 1,
+                          perturbation: float = 1e-6, multipliers: bool = True,
+                          guess: Optional[PeriodicOrbit] = None, fallback: Optional[str] = None,
+                          transient_tolerance: float = 1e-6, transient_max_revolutions: int = 200,
+                          **scheme) -> PeriodicOrbit:
+    """The periodic steady state of ``system`` (a Mechanism or CamFollowerModel: anything with a
+    ``period``) by shooting on one revolution.
+
+    ``time_step`` must divide the period (e.g. ``system.period / 4096``); the orbit is the fixed point
+    of the Newmark scheme with these settings (``scheme``: ``gamma``, ``beta``, ``hht_alpha``,
+    ``linear_solver``, ``residual_tolerance``, ... as for :func:`camfollower.simulate`), i.e. the state
+    a long transient run converges to. ``tolerance``: the relative mismatch after one revolution.
+    ``warmup_revolutions`` of transient first, from the system's initial state (static equilibrium)
+    or from ``guess`` (a nearby orbit, e.g. the nominal case of a tolerance study: its state and
+    monodromy start the iterations, which then usually need no monodromy of their own).
+    ``multipliers``: build the monodromy at the converged orbit if the last one was built elsewhere
+    (Floquet multipliers of the orbit itself; 2n revolutions), else keep the last one's.
+
+    Raises RuntimeError with the mismatch history when the shooting does not converge (a response
+    that is not periodic: contact loss with chatter, period doubling), unless ``fallback="transient"``:
+    then the transient route (``simulate(settle=True)`` to ``transient_tolerance``) answers and the
+    orbit says ``method="transient"`` (``converged`` False if it never settled either).
+    """
+    period = getattr(system, "period", None)
+    if period is None:
+        raise ValueError(f"periodic_steady_state needs a periodic system (with a camshaft period), got {type(system).__name__}")
+    if fallback not in (None, "transient"):
+        raise ValueError(f"fallback must be None or 'transient', got {fallback!r}")
+    unknown = set(scheme) - set(_SCHEME_KEYS)
+    if unknown:
+        raise TypeError(f"periodic_steady_state() got unexpected keyword argument(s) {sorted(unknown)}; "
+                        f"solver settings: {list(_SCHEME_KEYS)}")
+    settings = {"time_step": float(time_step), "gamma": None, "beta": None, "hht_alpha": 0.0, "linear_solver": "auto",
+                "residual_tolerance": 1e-10, "increment_tolerance": 1e-10, "max_iterations": 25, "max_halvings": 6}
+    settings.update(scheme)
+    q0 = v0 = monodromy = None
+    if guess is not None:
+        if not isinstance(guess, PeriodicOrbit):
+            raise TypeError(f"guess must be a PeriodicOrbit, got {type(guess).__name__}")
+        n = len(system.dof_names)
+        if len(guess.q) != n:
+            raise ValueError(f"guess has {len(guess.q)} DOFs, the system {n}")
+        q0, v0 = guess.q, guess.v
+        monodromy = guess.monodromy if guess.monodromy.size else None
+    raw = _core._shoot(system, settings["time_step"], settings["gamma"], settings["beta"], settings["hht_alpha"],
+                       settings["linear_solver"], settings["residual_tolerance"], settings["increment_tolerance"],
+                       settings["max_iterations"], settings["max_halvings"], None, 0.0, tolerance,
+                       max_shooting_iterations, warmup_revolutions, perturbation, multipliers, monodromy, q0, v0)
+    names = tuple(system.dof_names)
+    kept = {k: v for k, v in settings.items() if v is not None}
+    orbit = PeriodicOrbit(
+        q=np.asarray(raw["q"]), v=np.asarray(raw["v"]), period=float(period), converged=bool(raw["converged"]),
+        mismatch=float(raw["mismatch"]), iterations=int(raw["iterations"]), monodromies=int(raw["monodromies"]),
+        revolutions=float(raw["revolutions"]), multipliers=np.asarray(raw["multipliers"], dtype=complex),
+        monodromy=np.asarray(raw["monodromy"]), monodromy_at_orbit=bool(raw["monodromy_at_orbit"]),
+        history=tuple(float(h) for h in raw["history"]), dof_names=names, scheme=kept)
+    if orbit.converged:
+        return orbit
+    if fallback == "transient":
+        return _transient(system, kept, orbit, transient_tolerance, transient_max_revolutions)
+    history = ", ".join(f"{h:.3g}" for h in orbit.history)
+    raise RuntimeError(
+        f"shooting did not converge to the periodic steady state in {orbit.iterations} iterations "
+        f"({orbit.revolutions:g} revolutions): mismatch {orbit.mismatch:.3g} > tolerance {tolerance:g}; history "
+        f"[{history}]. The response may not be periodic (contact loss with chatter, period doubling: spectral "
+        f"radius {orbit.spectral_radius:.4g}); pass fallback='transient' to use the transient route instead")
+
+
+def _transient(system, scheme: Dict[str, Any], failed: PeriodicOrbit, tolerance: float, max_revolutions: int) -> PeriodicOrbit:
+    r = simulate(system, revolutions=1, record_last_revolutions=1, settle=True, settle_tolerance=tolerance,
+                 settle_max_revolutions=max_revolutions, settle_dofs=list(system.dof_names), **scheme)
+    settle = r.settle or {}
+    q, v = np.array(r.q[-1]), np.array(r.v[-1])
+    return PeriodicOrbit(q=q, v=v, period=failed.period, converged=bool(settle.get("settled", False)),
+                         mismatch=float(settle.get("change", math.nan)), iterations=0, monodromies=0,
+                         revolutions=failed.revolutions + float(settle.get("revolutions", 0)) + 1.0,
+                         multipliers=np.zeros(0, dtype=complex), monodromy=np.zeros((0, 0)), monodromy_at_orbit=False,
+                         history=tuple(settle.get("history", ())), dof_names=failed.dof_names, method="transient",
+                         scheme=scheme)
+
+
+__all__ = ["PeriodicOrbit", "periodic_steady_state"]
