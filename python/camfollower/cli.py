@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: BSD-3-Clause
-"""Command line of the Python package: ``python -m camfollower figures CONFIG -o DIR`` and
-``python -m camfollower camshaft CONFIG --engine-rpm 2000 4000 6000 -o DIR``.
+"""Command line of the Python package: ``python -m camfollower figures CONFIG -o DIR``,
+``python -m camfollower camshaft CONFIG --engine-rpm 2000 4000 6000 -o DIR``,
+``python -m camfollower sweep CONFIG -o DIR`` and ``python -m camfollower montecarlo CONFIG -o DIR``.
 
 Reads a config (docs/config.md), simulates it, and writes into DIR: the recorded channels
 (``run.csv``), per contact its SVAJ diagram, the cam profile, pressure angle and
@@ -135,6 +136,121 @@ def camshaft(config: str, out: str, rpm=None, engine_rpm=None, revolutions: floa
     return summary
 
 
+def _csv(rows, columns) -> bytes:
+    import csv
+
+    buffer = io.StringIO()
+    w = csv.DictWriter(buffer, fieldnames=columns, extrasaction="ignore", lineterminator="\n")
+    w.writeheader()
+    for r in rows:
+        w.writerow({k: (f"{v:.10g}" if isinstance(v, float) else v) for k, v in r.items() if k in columns})
+    return buffer.getvalue().encode()
+
+
+def _folder(out: str) -> Path:
+    folder = Path(out)
+    if folder.exists() and not folder.is_dir():
+        raise ValueError(f"--out: '{folder}' exists and is not a directory")
+    folder.mkdir(parents=True, exist_ok=True)
+    return folder
+
+
+def _executor(args):
+    if args.scheduler and args.workers:
+        raise ValueError("give --workers (a local process pool) or --scheduler (a Dask scheduler), not both")
+    if args.scheduler:
+        return args.scheduler
+    return "serial" if args.workers == 1 else None
+
+
+def sweep(config: str, out: str, *, rpm=None, jump=None, executor=None, workers=None, progress=True) -> dict:
+    """The config's mechanism over a speed range (camfollower.speed): sweep.csv (one row per speed),
+    spectrum.csv (contact-force shaft orders per speed), margin.png, waterfall.png, summary.json last."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from . import speed as sp
+    from .studies import sweep_settings
+
+    case = load_config(config)
+    st = sweep_settings(case.data.get("sweep", {}), rpm=rpm, jump=jump, path=case.path)
+    m = case.mechanism
+    result = sp.speed_sweep(m, st["rpm"], contact=st["contact"], steps_per_revolution=st["steps_per_revolution"],
+                            executor=executor, workers=workers, progress=progress)
+    jump_result = None
+    if st["jump"] is not None:
+        jump_result = sp.jump_speed(m, tuple(st["jump"]), contact=st["contact"],
+                                    steps_per_revolution=st["steps_per_revolution"])
+    folder = _folder(out)
+    columns = ["rpm", "method", "converged", "revolutions", "min_force_N", "min_force_angle_deg", "max_force_N",
+               "contact_lost", "lost_fraction", "first_loss_angle_deg", "max_abs_acceleration",
+               "rigid_max_abs_acceleration", "dwell_residual", "dwell_residual_at_deg", "spectral_radius",
+               "instability", "error"]
+    _write(folder / "sweep.csv", _csv(result["rows"], columns))
+    spec_rows = [{"rpm": r["rpm"], **{f"order_{k}": float(result["spectrum"][k - 1, j]) for k in result["orders"]}}
+                 for j, r in enumerate(result["rows"])]
+    _write(folder / "spectrum.csv", _csv(spec_rows, ["rpm"] + [f"order_{k}" for k in result["orders"]]))
+    _save(sp.plot_margin(result["rows"], jump_result), folder / "margin.png")
+    _save(sp.plot_waterfall(result), folder / "waterfall.png")
+    summary = {"config": str(case.path), "contact": st["contact"] or m.contact_names[0],
+               "steps_per_revolution": st["steps_per_revolution"],
+               "speeds": [{k: r.get(k) for k in columns if k in r} for r in result["rows"]],
+               "natural_frequencies_hz": result["natural_hz"],
+               "resonances": [{"order": k, "mode_hz": f, "rpm": r} for k, f, r in result["resonances"]],
+               "files": ["sweep.csv", "spectrum.csv", "margin.png", "waterfall.png", "summary.json"]}
+    if jump_result is not None:
+        summary["jump"] = {"rpm": jump_result.rpm, "angle_deg": jump_result.angle_deg, "bracket": list(jump_result.bracket),
+                           "min_force_below_N": jump_result.min_force_below_N,
+                           "evaluations": len(jump_result.evaluations)}
+    _write(folder / "summary.json", (json.dumps(summary, indent=2, default=str) + "\n").encode())
+    return summary
+
+
+def montecarlo(config: str, out: str, *, cases=None, seed=None, executor=None, workers=None, progress=True) -> dict:
+    """A Monte-Carlo tolerance study of the config's mechanism (camfollower.tolerance) with the
+    tolerances of its [montecarlo] table: cases.csv (and cases.parquet with pyarrow), histogram.png,
+    summary.json last (statistics, sensitivities, failed cases)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from . import tolerance as tol
+    from .studies import montecarlo_settings
+
+    case = load_config(config)
+    st = montecarlo_settings(case.data.get("montecarlo"), cases=cases, seed=seed, path=case.path)
+    data = {k: v for k, v in case.data.items() if k not in ("sweep", "montecarlo")}
+    build = tol.ConfigCase(data, case.path.parent if case.path else ".")
+    result = tol.monte_carlo(build, st["tolerances"], cases=st["cases"], seed=st["seed"], contact=st["contact"],
+                             steps_per_revolution=st["steps_per_revolution"], executor=executor, workers=workers,
+                             progress=progress)
+    folder = _folder(out)
+    columns = ["case", "seed"] + result.parameters + list(result.metrics) + ["ok", "error"]
+    _write(folder / "cases.csv", _csv(result.rows, columns))
+    files = ["cases.csv"]
+    try:
+        result.to_parquet(folder / "cases.parquet")
+        files.append("cases.parquet")
+    except ImportError:
+        pass
+    summary = {"config": str(case.path), **result.summary(), "parameters": result.parameters}
+    ok = [r for r in result.rows if r["ok"]]
+    if len(ok) >= len(result.parameters) + 2:
+        summary["sensitivities"] = {m: result.sensitivities(m) for m in ("min_force_N", "max_abs_acceleration", "dwell_residual")}
+        _save(result.plot("min_force_N"), folder / "histogram.png")
+        files.append("histogram.png")
+    summary["failed_cases"] = [{k: r[k] for k in ["case", "seed"] + result.parameters + ["error"]} for r in result.failed()]
+    summary["files"] = files + ["summary.json"]
+    _write(folder / "summary.json", (json.dumps(summary, indent=2, default=str) + "\n").encode())
+    return summary
+
+
+def _add_executor_options(p) -> None:
+    p.add_argument("--workers", type=int, help="local worker processes (default: one per CPU; 1 runs in this process)")
+    p.add_argument("--scheduler", help="a Dask scheduler address, tcp://host:8786 (or dask:N for a local cluster "
+                                       "of N processes); needs the 'dask' extra")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(prog="python -m camfollower", description=__doc__.split("\n\n")[0])
     sub = parser.add_subparsers(dest="command", required=True)
@@ -147,15 +263,57 @@ def main(argv=None) -> int:
     c.add_argument("--engine-rpm", type=float, nargs="+", help="engine speeds (the camshaft turns at half)")
     c.add_argument("--revolutions", type=float, default=2.0, help="camshaft revolutions per speed; the last is recorded")
     c.add_argument("-o", "--out", default="out", help="output folder (default: ./out)")
+    s = sub.add_parser("sweep", help="periodic steady state over a speed range: margin curve, waterfall, jump speed")
+    s.add_argument("config", help="config file (docs/config.md; optional [sweep] table, docs/studies.md)")
+    s.add_argument("--rpm", type=float, nargs="+", help="camshaft speeds (default: the config's [sweep])")
+    s.add_argument("--jump", type=float, nargs=2, metavar=("LO", "HI"), help="find the jump speed between LO and HI rpm")
+    _add_executor_options(s)
+    s.add_argument("-o", "--out", default="out", help="output folder (default: ./out)")
+    mc = sub.add_parser("montecarlo", help="Monte-Carlo tolerance study from the config's [montecarlo] table")
+    mc.add_argument("config", help="config file with a [montecarlo] table (docs/studies.md)")
+    mc.add_argument("--cases", type=int, help="number of cases (default: the config's)")
+    mc.add_argument("--seed", type=int, help="study seed (default: the config's)")
+    _add_executor_options(mc)
+    mc.add_argument("-o", "--out", default="out", help="output folder (default: ./out)")
     args = parser.parse_args(argv)
     try:
         if args.command == "camshaft":
             study = camshaft(args.config, args.out, args.rpm, args.engine_rpm, args.revolutions)
+        elif args.command == "sweep":
+            result = sweep(args.config, args.out, rpm=args.rpm, jump=args.jump, executor=_executor(args),
+                           workers=args.workers, progress=not args.no_progress)
+        elif args.command == "montecarlo":
+            result = montecarlo(args.config, args.out, cases=args.cases, seed=args.seed, executor=_executor(args),
+                                workers=args.workers, progress=not args.no_progress)
         else:
             summary = figures(args.config, args.out)
-    except (ValueError, RuntimeError, OSError) as e:
+    except (ValueError, RuntimeError, OSError, ImportError) as e:
         print(f"camfollower: error: {e}", file=sys.stderr)
         return 1
+    except KeyboardInterrupt:
+        print("camfollower: cancelled", file=sys.stderr)
+        return 130
+    if args.command == "sweep":
+        for r in result["speeds"]:
+            print(f"{r['rpm']:g} rpm: min contact force {r.get('min_force_N', float('nan')):.2f} N at "
+                  f"{r.get('min_force_angle_deg', float('nan')):.1f} deg, contact {'LOST' if r.get('contact_lost') else 'kept'} "
+                  f"({r.get('method')})")
+        if "jump" in result:
+            j = result["jump"]
+            print(f"jump speed {j['rpm']:.1f} rpm (bracket {j['bracket'][0]:.1f}-{j['bracket'][1]:.1f}): the follower "
+                  f"leaves the cam at {j['angle_deg']:.1f} deg")
+        print(f"{len(result['files'])} files -> {args.out}")
+        return 0
+    if args.command == "montecarlo":
+        f = result["metrics"].get("min_force_N", {})
+        print(f"{result['cases']} cases, {result['failed']} failed, {result['contact_lost']} lost contact; min contact "
+              f"force {f.get('mean', float('nan')):.2f} +- {f.get('std', float('nan')):.2f} N "
+              f"(5 % {f.get('p5', float('nan')):.2f} N, nominal {f.get('nominal', float('nan')):.2f} N)")
+        for s_ in result.get("sensitivities", {}).get("min_force_N", [])[:3]:
+            print(f"  {s_['parameter']}: correlation {s_['correlation']:+.2f}, standardized coefficient "
+                  f"{s_['standardized_coefficient']:+.2f}")
+        print(f"{len(result['files'])} files -> {args.out}")
+        return 0
     if args.command == "camshaft":
         for s in study["speeds"]:
             cams = s["cams"].values()

@@ -33,7 +33,7 @@ class PeriodicOrbit:
 
     ``q``, ``v``: the state (SI units per DOF) from which one revolution returns to itself within
     ``mismatch`` (displacements relative to the largest |q| on the revolution, velocities to the
-    largest |v|). ``multipliers``: Floquet multipliers (complex, largest magnitude first);
+    largest |v|: ``q_scale``, ``v_scale``). ``multipliers``: Floquet multipliers (complex, largest magnitude first);
     ``monodromy``: d(q, v)(T)/d(q, v)(0), ``2n x 2n``. ``revolutions``: what finding it cost, in
     revolutions simulated. ``method``: "shooting", or "transient" when the shooting failed and the
     transient route was asked for as the fallback. ``scheme``: the solver settings the orbit belongs to
@@ -53,6 +53,8 @@ class PeriodicOrbit:
     monodromy_at_orbit: bool
     history: Tuple[float, ...]
     dof_names: Tuple[str, ...]
+    q_scale: float = math.nan
+    v_scale: float = math.nan
     method: str = "shooting"
     scheme: Dict[str, Any] = field(default_factory=dict)
 
@@ -147,7 +149,8 @@ def periodic_steady_state(system, *, time_step: float = 3e-6, tolerance: float =
         mismatch=float(raw["mismatch"]), iterations=int(raw["iterations"]), monodromies=int(raw["monodromies"]),
         revolutions=float(raw["revolutions"]), multipliers=np.asarray(raw["multipliers"], dtype=complex),
         monodromy=np.asarray(raw["monodromy"]), monodromy_at_orbit=bool(raw["monodromy_at_orbit"]),
-        history=tuple(float(h) for h in raw["history"]), dof_names=names, scheme=kept)
+        history=tuple(float(h) for h in raw["history"]), dof_names=names, q_scale=float(raw["q_scale"]),
+        v_scale=float(raw["v_scale"]), scheme=kept)
     if orbit.converged:
         return orbit
     if fallback == "transient":
@@ -169,7 +172,8 @@ def _transient(system, scheme: Dict[str, Any], failed: PeriodicOrbit, tolerance:
                          mismatch=float(settle.get("change", math.nan)), iterations=0, monodromies=0,
                          revolutions=failed.revolutions + float(settle.get("revolutions", 0)) + 1.0,
                          multipliers=np.zeros(0, dtype=complex), monodromy=np.zeros((0, 0)), monodromy_at_orbit=False,
-                         history=tuple(settle.get("history", ())), dof_names=failed.dof_names, method="transient",
+                         history=tuple(settle.get("history", ())), dof_names=failed.dof_names,
+                         q_scale=failed.q_scale, v_scale=failed.v_scale, method="transient",
                          scheme=scheme)
 
 

@@ -214,20 +214,22 @@ PeriodicOrbit shoot(Stepper& stepper, const Eigen::VectorXd& q0, const Eigen::Ve
         Eigen::VectorXd dz = lu.solve(-r);
         const bool was_fresh = J_fresh;
         // Backtrack (halve the update) while a fresh Newton step makes the mismatch grow.
-        double next = 0;
+        double next = 0, qs2 = 0, vs2 = 0;
         for (int halving = 0;; ++halving) {
             zp = z + dz;
-            double qs2 = 0, vs2 = 0;
             phi(zp, fp, orbit.stats, qs2, vs2);
             next = detail::scaled_mismatch(fp - zp, n, qs2, vs2);
-            if (!(next > mis) || !was_fresh || halving == 4 || !std::isfinite(mis)) {
-                qs = qs2, vs = vs2;
-                break;
-            }
+            if (!(next > mis) || !was_fresh || halving == 4 || !std::isfinite(mis)) break;
             dz *= 0.5;
         }
-        z = zp, fz = fp, r = fz - z, J_fresh = false;
         ++orbit.iterations;
+        // A chord step (monodromy from elsewhere) that does not reduce the mismatch is rejected: the
+        // monodromy is rebuilt here and the next step is Newton's.
+        if (!was_fresh && !(next < mis)) {
+            if (!build(z, fz)) return finish();
+            continue;
+        }
+        z = zp, fz = fp, r = fz - z, J_fresh = false, qs = qs2, vs = vs2;
         const double ratio = next / mis;
         mis = next;
         orbit.history.push_back(mis);

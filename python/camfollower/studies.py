@@ -1,0 +1,129 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""The [sweep] and [montecarlo] tables of a config file (docs/studies.md), read and checked.
+
+    [sweep]
+    rpm = [500, 750, 1000]            # or rpm_from / rpm_to / count (evenly spaced)
+    jump = [1000, 2000]               # optional: find the jump speed in this bracket (rpm)
+    steps_per_revolution = 4096       # optional
+    contact = "cam"                   # optional: the contact to measure (default: the first)
+
+    [montecarlo]
+    cases = 200
+    seed = 1
+    [[montecarlo.tolerance]]
+    parameter = "preset.parameters.contact_stiffness"   # key path of a numeric value in this file
+    distribution = "normal"                             # normal | uniform | truncated_normal
+    std = 0.05
+    relative = true
+
+Unknown keys and bad values are refused, naming the file and the key.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Dict, Optional
+
+from .response import STUDY_STEPS_PER_REVOLUTION
+from .tolerance import DISTRIBUTIONS, distribution
+
+
+def _where(path, key: str) -> str:
+    return f"{path}: {key}" if path else key
+
+
+def _unknown(table: Dict[str, Any], known, path, prefix: str) -> None:
+    extra = [k for k in table if k not in known]
+    if extra:
+        raise ValueError(f"{_where(path, prefix + '.' + extra[0])}: unknown key; known here: {', '.join(known)}")
+
+
+def _int(table, key, default, lo, hi, path, prefix):
+    v = table.get(key, default)
+    if isinstance(v, bool) or not isinstance(v, int) or not lo <= v <= hi:
+        raise ValueError(f"{_where(path, prefix + '.' + key)}: must be an integer in [{lo}, {hi}], got {v!r}")
+    return v
+
+
+def _speed(v, key, path) -> float:
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or not (math.isfinite(v) and 0 < v <= 1e6):
+        raise ValueError(f"{_where(path, key)}: must be a camshaft speed in (0, 1e6] rpm, got {v!r}")
+    return float(v)
+
+
+def sweep_settings(table: Dict[str, Any], *, rpm=None, jump=None, path=None) -> Dict[str, Any]:
+    """Speeds, optional jump bracket, steps per revolution and contact from a [sweep] table, with
+    command-line overrides (``rpm``, ``jump``)."""
+    if not isinstance(table, dict):
+        raise ValueError(f"{_where(path, 'sweep')}: must be a table")
+    _unknown(table, ("rpm", "rpm_from", "rpm_to", "count", "jump", "steps_per_revolution", "contact"), path, "sweep")
+    if rpm:
+        speeds = [_speed(float(r), "--rpm", None) for r in rpm]
+    elif "rpm" in table:
+        if "rpm_from" in table or "rpm_to" in table:
+            raise ValueError(f"{_where(path, 'sweep.rpm')}: give rpm (a list) or rpm_from/rpm_to/count, not both")
+        if not isinstance(table["rpm"], list) or not table["rpm"]:
+            raise ValueError(f"{_where(path, 'sweep.rpm')}: must be a non-empty list of speeds (rpm)")
+        speeds = [_speed(r, f"sweep.rpm[{i}]", path) for i, r in enumerate(table["rpm"])]
+    elif "rpm_from" in table or "rpm_to" in table:
+        lo, hi = _speed(table.get("rpm_from"), "sweep.rpm_from", path), _speed(table.get("rpm_to"), "sweep.rpm_to", path)
+        if not lo < hi:
+            raise ValueError(f"{_where(path, 'sweep.rpm_to')}: must be above rpm_from ({lo:g}), got {hi:g}")
+        n = _int(table, "count", 20, 2, 10000, path, "sweep")
+        speeds = [lo + (hi - lo) * i / (n - 1) for i in range(n)]
+    else:
+        raise ValueError(f"{_where(path, 'sweep')}: give the speeds: rpm = [...] or rpm_from, rpm_to, count (or --rpm)")
+    bracket = jump if jump else table.get("jump")
+    if bracket is not None:
+        if not isinstance(bracket, (list, tuple)) or len(bracket) != 2:
+            raise ValueError(f"{_where(path, 'sweep.jump')}: must be two speeds [lo, hi] in rpm, got {bracket!r}")
+        bracket = [_speed(b, "sweep.jump", path) for b in bracket]
+    contact = table.get("contact")
+    if contact is not None and not isinstance(contact, str):
+        raise ValueError(f"{_where(path, 'sweep.contact')}: must be a contact's name")
+    return {"rpm": speeds, "jump": bracket, "contact": contact,
+            "steps_per_revolution": _int(table, "steps_per_revolution", STUDY_STEPS_PER_REVOLUTION, 64, 1 << 22, path, "sweep")}
+
+
+def montecarlo_settings(table: Optional[Dict[str, Any]], *, cases=None, seed=None, path=None) -> Dict[str, Any]:
+    """Cases, seed, steps per revolution, contact and the tolerances {key path: distribution} from a
+    [montecarlo] table, with command-line overrides."""
+    if table is None:
+        raise ValueError(f"{_where(path, 'montecarlo')}: the config has no [montecarlo] table with its tolerances "
+                         "(docs/studies.md)")
+    if not isinstance(table, dict):
+        raise ValueError(f"{_where(path, 'montecarlo')}: must be a table")
+    _unknown(table, ("cases", "seed", "steps_per_revolution", "contact", "tolerance"), path, "montecarlo")
+    blocks = table.get("tolerance")
+    if not isinstance(blocks, list) or not blocks:
+        raise ValueError(f"{_where(path, 'montecarlo.tolerance')}: give at least one [[montecarlo.tolerance]] block")
+    tolerances = {}
+    for i, b in enumerate(blocks):
+        key = f"montecarlo.tolerance[{i}]"
+        if not isinstance(b, dict):
+            raise ValueError(f"{_where(path, key)}: must be a table")
+        name = b.get("parameter")
+        if not isinstance(name, str) or not name:
+            raise ValueError(f"{_where(path, key + '.parameter')}: must name a numeric value of this file by its key path")
+        if name in tolerances:
+            raise ValueError(f"{_where(path, key + '.parameter')}: {name!r} has two tolerances")
+        kind = b.get("distribution")
+        if kind not in DISTRIBUTIONS:
+            raise ValueError(f"{_where(path, key + '.distribution')}: must be one of {list(DISTRIBUTIONS)}, got {kind!r}")
+        try:
+            tolerances[name] = distribution({k: v for k, v in b.items() if k != "parameter"})
+        except ValueError as e:
+            raise ValueError(f"{_where(path, key)}: {e}") from None
+    if cases is None:
+        cases = _int(table, "cases", 100, 1, 10_000_000, path, "montecarlo")
+    if seed is None:
+        seed = _int(table, "seed", 0, 0, 2 ** 63 - 1, path, "montecarlo")
+    contact = table.get("contact")
+    if contact is not None and not isinstance(contact, str):
+        raise ValueError(f"{_where(path, 'montecarlo.contact')}: must be a contact's name")
+    return {"tolerances": tolerances, "cases": cases, "seed": seed, "contact": contact,
+            "steps_per_revolution": _int(table, "steps_per_revolution", STUDY_STEPS_PER_REVOLUTION, 64, 1 << 22, path,
+                                         "montecarlo")}
+
+
+__all__ = ["montecarlo_settings", "sweep_settings"]
