@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: BSD-3-Clause
 # Benchmarks (not part of the tests): C++ throughput (Google Benchmark), flexible camshafts with 1-64
 # cams on the dense and sparse backends, the side-by-side comparison with scipy and Exudyn at equal
-# accuracy, and the scaling runs. Results go to ./bench-out.
+# accuracy, the scaling runs and the Monte-Carlo study on a Dask LocalCluster. Results go to ./bench-out.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh test
@@ -17,3 +17,4 @@ build-bench/bench/camfollower_bench_camshaft --benchmark_out=bench-out/camshaft.
 .venv/bin/python bench/valve_train_accuracy.py | tee bench-out/valve_train_accuracy.txt
 .venv/bin/python bench/compare.py --out bench-out
 .venv/bin/python bench/scaling.py | tee bench-out/scaling.txt
+.venv/bin/python bench/montecarlo.py | tee bench-out/montecarlo.txt

@@ -290,3 +290,18 @@ def test_command_line_sweep_and_montecarlo(tmp_path):
     r = subprocess.run([sys.executable, "-m", "camfollower", "montecarlo", str(bad), "-o", str(tmp_path / "x")],
                        capture_output=True, text=True, env=env, timeout=120)
     assert r.returncode == 1 and "montecarlo.samples: unknown key" in r.stderr
+
+
+def test_cancellation_keeps_what_finished():
+    import threading
+
+    stop = threading.Event()
+
+    def case(x):
+        if x == 1:
+            stop.set()  # e.g. a GUI's cancel button, pressed while case 1 runs
+        return x
+
+    out = executors.run_cases(case, range(5), executor="serial", cancel=stop, progress=False)
+    assert [o.ok for o in out] == [True, True, False, False, False]
+    assert out[4].error == "cancelled"

@@ -6,9 +6,11 @@
 // instead of simulating revolutions until the transient has died out (solver/settle.hpp). The
 // monodromy matrix dPhi/dz is built by forward differences (one revolution per state component, 2n
 // in all); it is reused while the iterations converge quickly (chord iterations: one revolution each)
-// and rebuilt when they do not. Its eigenvalues are the Floquet multipliers of the orbit: all inside
-// the unit circle for a stable orbit; one leaving through -1 flags period doubling, through +1 a fold
-// (the onset of a jump), a complex pair a quasi-periodic response (the start of chatter).
+// and rebuilt when they do not; four Newton steps in a row that do not halve the best mismatch end
+// the search (not periodic, or a tolerance below the rounding floor). Its eigenvalues are the
+// Floquet multipliers of the orbit: all inside the unit circle for a stable orbit; one leaving
+// through -1 flags period doubling, through +1 a fold (the onset of a jump), a complex pair a
+// quasi-periodic response (the start of chatter).
 //
 // The orbit found is the fixed point of the discrete scheme with this time step: the state a long
 // transient run with the same settings converges to, without waiting for lightly damped modes.
@@ -208,6 +210,9 @@ PeriodicOrbit shoot(Stepper& stepper, const Eigen::VectorXd& q0, const Eigen::Ve
     double mis = detail::scaled_mismatch(r, n, qs, vs);
     orbit.history.push_back(mis);
     if (J.size()) lu.compute(J - Eigen::MatrixXd::Identity(m, m));
+    double best = mis;
+    int stalls = 0;
+    constexpr int max_stalls = 4;
     while (!(mis <= options.tolerance) && orbit.iterations < options.max_iterations) {
         if (stop()) return finish();
         if (J.size() == 0 && !build(z, fz)) return finish();
@@ -234,6 +239,11 @@ PeriodicOrbit shoot(Stepper& stepper, const Eigen::VectorXd& q0, const Eigen::Ve
         mis = next;
         orbit.history.push_back(mis);
         if (mis <= options.tolerance) break;
+        // Newton steps that keep failing to improve on the best iterate: the response is not periodic
+        // (or the tolerance is below the rounding floor): stop rather than spend 2n revolutions a time.
+        if (was_fresh) stalls = mis < 0.5 * best ? 0 : stalls + 1;
+        if (stalls >= max_stalls) break;
+        best = std::min(best, mis);
         // Chord iterations that do not at least quarter the mismatch: rebuild the monodromy here.
         if (!(ratio <= 0.25) && !build(z, fz)) return finish();
     }
