@@ -37,19 +37,22 @@ def study(cases, executor):
     return r, time.perf_counter() - t0
 
 
-def shooting_vs_transient(m, accuracy=1e-8):
+def shooting_vs_transient(m, accuracy=1e-6):
     """Wall time of the shooting route and of the transient route (revolutions from rest until the
-    state at the revolution's start is within `accuracy` of the orbit, relative)."""
+    state at the revolution's start stays within `accuracy` of the orbit, relative to the largest
+    |q| and |v| on it). The transient of the lightly damped paper mechanism wanders about the orbit at
+    ~2e-8 (rounding keeps exciting its 3 %-per-revolution mode), hence 1e-6."""
     dt = m.period / STEPS
     t0 = time.perf_counter()
-    o = cf.periodic_steady_state(m, time_step=dt, tolerance=1e-11, multipliers=False)
+    o = cf.periodic_steady_state(m, time_step=dt, multipliers=False)  # tolerance 1e-9
     t_shoot = time.perf_counter() - t0
-    ref = cf.periodic_steady_state(m, time_step=dt, tolerance=1e-12, residual_tolerance=1e-13)
+    ref = cf.periodic_steady_state(m, time_step=dt, tolerance=1e-11)
     t0 = time.perf_counter()
     r = cf.simulate(m, revolutions=3000, time_step=dt, decimation=STEPS)
     t_all = time.perf_counter() - t0
     q, v = np.asarray(r.q), np.asarray(r.v)
-    err = np.maximum(np.abs(q - ref.q).max(axis=1) / np.abs(q).max(), np.abs(v - ref.v).max(axis=1) / np.abs(v).max())
+    # relative to the largest |q| (the lift) and |v| over the revolution, as the shooting measures it
+    err = np.maximum(np.abs(q - ref.q).max(axis=1) / ref.q_scale, np.abs(v - ref.v).max(axis=1) / ref.v_scale)
     inside = np.flatnonzero(err > accuracy)
     revs = int(inside[-1] + 1) if inside.size else 0
     t_transient = t_all * revs / 3000
@@ -83,7 +86,7 @@ def main() -> None:
     print(f"revolutions per case: median {np.median(revs):.0f}, mean {revs.mean():.1f}, max {revs.max():.0f}")
     for name, m in (("paper", cf.presets.paper()), ("paper_damped", cf.presets.paper_damped())):
         c = shooting_vs_transient(m)
-        print(f"{name}: to 1e-8 of the orbit, shooting {c['shooting_s'] * 1e3:.1f} ms ({c['shooting_revolutions']:.0f} "
+        print(f"{name}: to 1e-6 of the orbit, shooting {c['shooting_s'] * 1e3:.1f} ms ({c['shooting_revolutions']:.0f} "
               f"revolutions), transient {c['transient_s'] * 1e3:.1f} ms ({c['transient_revolutions']} revolutions): "
               f"transient / shooting = {c['ratio']:.2f} (spectral radius {c['spectral_radius']:.4f})")
 
