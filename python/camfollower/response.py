@@ -54,7 +54,8 @@ def steady_response(system, *, contact: Optional[str] = None, steps_per_revoluti
     ``first_loss_angle_deg``; ``max_abs_acceleration`` of the follower DOF and the rigid follower's
     ``rigid_max_abs_acceleration`` (m/s^2 or rad/s^2); ``dwell_residual`` (the largest peak-to-peak
     follower displacement over a dwell: the residual vibration, m or rad) with ``dwell_residual_at_deg``
-    (the dwell's start); ``harmonics``: contact-force amplitude (N) of shaft orders 1..``harmonics``
+    (the dwell's start) and per dwell (``dwells``: start, end, peak-to-peak displacement and largest
+    |acceleration|); ``harmonics``: contact-force amplitude (N) of shaft orders 1..``harmonics``
     (a list). ``keep_orbit`` adds the PeriodicOrbit as ``orbit``.
     """
     if not (isinstance(steps_per_revolution, int) and 64 <= steps_per_revolution <= 1 << 22):
@@ -85,15 +86,16 @@ def steady_response(system, *, contact: Optional[str] = None, steps_per_revoluti
         "rigid_max_abs_acceleration": float(system.omega ** 2 * np.abs(
             np.asarray(c["program"].evaluate(np.linspace(0, 2 * math.pi, 4097))["d2h"])).max()),
     }
-    worst, worst_at = 0.0, math.nan
+    dwells = []
     for seg in _dwells(c["program"]):
         inside = (theta >= seg.theta_start) & (theta < seg.theta_end)
         if inside.sum() > 1:
-            pp = float(np.ptp(q[inside]))
-            if pp > worst:
-                worst, worst_at = pp, math.degrees(seg.theta_start)
-    row["dwell_residual"] = worst
-    row["dwell_residual_at_deg"] = worst_at
+            dwells.append({"start_deg": math.degrees(seg.theta_start), "end_deg": math.degrees(seg.theta_end),
+                           "peak_to_peak": float(np.ptp(q[inside])), "max_abs_acceleration": float(np.abs(a[inside]).max())})
+    worst = max(dwells, key=lambda d: d["peak_to_peak"], default=None)
+    row["dwell_residual"] = worst["peak_to_peak"] if worst else 0.0
+    row["dwell_residual_at_deg"] = worst["start_deg"] if worst else math.nan
+    row["dwells"] = dwells
     spectrum = np.abs(np.fft.rfft(force)) * 2.0 / force.size
     row["harmonics"] = [float(x) for x in spectrum[1:harmonics + 1]]
     if keep_orbit:

@@ -208,11 +208,11 @@ def speed_sweep(system, speeds: Sequence[float], **options) -> Dict[str, Any]:
             "resonances": resonances}
 
 
-def plot_waterfall(sweep: Dict[str, Any], *, orders_marked: int = 8, ax=None):
+def plot_waterfall(sweep: Dict[str, Any], *, labels: int = 12, ax=None):
     """Campbell-style waterfall of a :func:`speed_sweep`: contact-force harmonic amplitude (colour, dB
-    re 1 N) at frequency k x rpm / 60 against camshaft speed, the natural frequencies as horizontal
-    lines and the shaft-order lines k x rpm / 60 for the first ``orders_marked`` orders; circles where
-    an order crosses a mode (a resonance). Returns the figure."""
+    re 1 N) at frequency k x rpm / 60 against camshaft speed, the natural frequencies as dashed lines,
+    and circled where a shaft order k crosses a mode (a resonance: k x rpm / 60 = f), with that
+    order's line and label (at most ``labels`` of them). Returns the figure."""
     import matplotlib.pyplot as plt
 
     rows = sweep["rows"]
@@ -228,19 +228,19 @@ def plot_waterfall(sweep: Dict[str, Any], *, orders_marked: int = 8, ax=None):
         sc = ax.scatter(R.ravel(), F.ravel(), c=amp.ravel(), s=8, cmap="viridis", vmin=np.nanmax(amp) - 80)
         fig.colorbar(sc, ax=ax, label="contact force harmonic (dB re 1 N)")
         fmax = float(np.nanmax(F))
-        for k in range(1, min(orders_marked, len(orders)) + 1):
-            ax.plot(rpm, k * rpm / 60.0, color="0.6", lw=0.6)
-            ax.annotate(f"{k}x", (rpm[-1], k * rpm[-1] / 60.0), fontsize=7, color="0.4")
         for f in sweep["natural_hz"]:
             if f <= fmax:
                 ax.axhline(f, color="tab:red", lw=0.8, ls="--")
-        for k, f, r in sweep["resonances"]:
-            if k <= orders_marked:
-                ax.plot(r, f, "o", mfc="none", mec="tab:red")
+        line = np.array([rpm.min(), rpm.max()])
+        for i, (k, f, r) in enumerate(sweep["resonances"]):
+            ax.plot(r, f, "o", mfc="none", mec="tab:red", ms=9)
+            if i < labels:
+                ax.plot(line, k * line / 60.0, color="0.5", lw=0.5)
+                ax.annotate(f"{k}x", (r, f), xytext=(3, 4), textcoords="offset points", fontsize=7, color="tab:red")
         ax.set_ylim(0, fmax)
     ax.set_xlabel("camshaft speed (rpm)")
     ax.set_ylabel("frequency (Hz)")
-    ax.set_title("Contact force spectrum of the periodic response (shaft orders)")
+    ax.set_title("Contact force shaft orders of the periodic response; resonances circled")
     return fig
 
 

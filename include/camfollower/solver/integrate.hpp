@@ -36,8 +36,12 @@ IntegrationReport integrate(Stepper& stepper, typename Stepper::StateType& state
         report.cancelled = true;
         return report;
     }
+    // Time as t0 + n dt, not summed step by step: a sum drifts by ~n ulps (3e-8 s after 4 million
+    // steps at t = 80 s), a phase error that keeps exciting lightly damped modes of long runs.
+    const double t0 = state.t;
     for (std::uint64_t n = 1; n <= report.planned_steps; ++n) {
         stepper.step(state, report.stats);
+        state.t = t0 + double(n) * stepper.time_step();
         if (!observer(state, n)) {
             report.cancelled = true;
             break;

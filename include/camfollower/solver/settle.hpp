@@ -63,10 +63,12 @@ SettleReport settle(Stepper& stepper, typename Stepper::StateType& state, const 
     std::vector<double> previous(steps * width), current(steps * width);
     SettleReport report;
     report.requested = true;
+    const double t0 = state.t;  // time as t0 + k dt (integrate.hpp)
     for (int rev = 1; rev <= options.max_revolutions; ++rev) {
         double largest = 0.0, change = 0.0;
         for (std::uint64_t i = 0; i < steps; ++i) {
             stepper.step(state, stats);
+            state.t = t0 + double((std::uint64_t(rev) - 1) * steps + i + 1) * stepper.time_step();
             for (std::size_t j = 0; j < width; ++j) {
                 const double a = state.a[dofs[j]];
                 double& slot = current[i * width + j];

@@ -113,6 +113,7 @@ public:
         q_max = s.q.cwiseAbs().maxCoeff(), v_max = s.v.cwiseAbs().maxCoeff();
         for (std::uint64_t i = 0; i < steps_; ++i) {
             stepper_.step(s, stats);
+            s.t = t0_ + double(i + 1) * stepper_.time_step();  // as integrate() does
             q_max = std::max(q_max, s.q.cwiseAbs().maxCoeff());
             v_max = std::max(v_max, s.v.cwiseAbs().maxCoeff());
         }
