@@ -7,7 +7,7 @@ Each toleranced parameter gets a distribution of its deviation from the nominal 
 to the nominal). Case ``i`` of a study with seed ``s`` draws its values from
 ``numpy.random.default_rng([s, i])``: any case can be rerun alone, and a study's cases do not depend on
 how many there are or on which executor ran them. Every case is solved for its periodic steady state
-by shooting from its own static equilibrium (about 17 revolutions per case for the paper's mechanism;
+by shooting from its own static equilibrium (about 18 revolutions per case for the paper's mechanism;
 starting from the nominal orbit does not save revolutions: a few micrometres of eccentricity move the
 orbit by more than the contact deflection).
 

