@@ -5,7 +5,7 @@
 # scripts/bench.sh (`setup.sh test`: everything). Safe to run again: it skips what is done.
 #   Debian packages: compilers, CMake, Ninja, Eigen 3.4, SuiteSparse, toml++, CLI11, Catch2 v2, Google Benchmark.
 #   PyPI (into .venv): numpy, matplotlib, pybind11, scikit-build-core; for tests also scipy, pytest, sympy, ezdxf,
-#   hypothesis and the studies' extras (pandas, pyarrow, tqdm, dask[distributed]).
+#   hypothesis, the studies' extras (pandas, pyarrow, tqdm, dask[distributed]) and Sphinx with MyST (the docs site).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 mode=${1:-test}
@@ -39,6 +39,7 @@ need() {  # need MODULE... : pip-install the given packages unless all modules i
 need "numpy, matplotlib, pybind11, scikit_build_core" numpy matplotlib "pybind11>=2.12" "scikit-build-core>=0.10"
 [ "$mode" = study ] || need "scipy, pytest, sympy, ezdxf, hypothesis" scipy pytest sympy ezdxf hypothesis
 [ "$mode" = study ] || need "pandas, pyarrow, tqdm, distributed" pandas pyarrow tqdm "dask[distributed]"
+[ "$mode" = study ] || need "sphinx, myst_parser" sphinx myst-parser
 
 # Rebuild the package only when its sources changed.
 stamp=$(cat pyproject.toml CMakeLists.txt cmake/* $(find include python -type f \( -name '*.hpp' -o -name '*.cpp' -o -name '*.py' -o -name '*.txt' -o -name '*.pyi' \) | sort) | sha256sum | cut -c1-16)

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace camfollower {
 
@@ -69,6 +70,37 @@ inline void require_offset(double value, const char* name) {
 inline void require_force(double value, const char* name) {
     if (!(std::isfinite(value) && std::abs(value) <= max_force))
         fail(name, " must be in [", -max_force, ", ", max_force, "] N, got ", value);
+}
+
+// User text as messages echo it: control characters as '?', at most `max` bytes ("..." beyond), so
+// an error never carries terminal escapes or megabytes of input.
+inline std::string printable(std::string_view s, std::size_t max = 60) {
+    std::string out;
+    for (char c : s.substr(0, max)) out += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? '?' : c;
+    return s.size() > max ? out + "..." : out;
+}
+
+// Names of parts (DOFs, elements, contacts, shafts): what outputs, channels and messages are keyed by.
+inline constexpr std::size_t max_name_length = 200;
+inline void require_name(const std::string& name, const char* what) {
+    bool control = false;
+    for (char c : name) control = control || static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+    if (name.empty() || name.size() > max_name_length || control)
+        fail(what, " name must be 1 to ", max_name_length, " printable characters (no control characters), got '",
+             printable(name), "' (", name.size(), " bytes)");
+}
+
+// "a, b, c, ... (N in all)": at most `max` entries of a list of names, each printable.
+template <class Names>
+std::string name_list(const Names& names, std::size_t max = 20) {
+    std::string out;
+    std::size_t n = 0;
+    for (const auto& name : names) {
+        if (n < max) out += (n ? ", " : "") + printable(name);
+        ++n;
+    }
+    if (n > max) out += detail::concat(", ... (", n, " in all)");
+    return n ? out : std::string("none");
 }
 
 }  // namespace detail

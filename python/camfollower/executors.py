@@ -10,6 +10,7 @@ other cases' results are kept. A progress bar (tqdm, optional) counts finished c
 ones with the others marked cancelled).
 
 ``executor`` is one of
+
 - ``None`` or ``"processes"``: a process pool of ``workers`` processes (default: the CPU count);
 - ``"serial"``: in this process, one case after the other (debugging, tiny studies);
 - a ``concurrent.futures.Executor`` (used as is, not shut down);

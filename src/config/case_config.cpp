@@ -322,9 +322,10 @@ std::string dof_name(const Section& s, std::string_view key, const MechanismBuil
     }
     for (const DofSpec& d : b.structure.dofs())
         if (d.name == name) return name;
-    std::string known;
-    for (const DofSpec& d : b.structure.dofs()) known += (known.empty() ? "" : ", ") + d.name;
-    s.fail(key, "unknown DOF '" + name + "'; the [[dof]] blocks define: " + known + (ground_ok ? " (or \"ground\")" : ""));
+    std::vector<std::string> known;
+    for (const DofSpec& d : b.structure.dofs()) known.push_back(d.name);
+    s.fail(key, "unknown DOF '" + detail::printable(name) + "'; the mechanism defines: " + detail::name_list(known) +
+                    (ground_ok ? " (or \"ground\")" : ""));
 }
 
 
@@ -656,12 +657,12 @@ OutputConfig read_output(const Section& s) {
 }  // namespace
 
 const MotionProgram& CaseConfig::program(const std::string& name) const {
-    std::string known;
+    std::vector<std::string> known;
     for (const auto& [n, p] : programs) {
         if (n == name) return p;
-        known += (known.empty() ? "" : ", ") + n;
+        known.push_back(n);
     }
-    detail::fail("unknown program '", name, "'; the [program.<name>] tables define: ", known.empty() ? "none" : known);
+    detail::fail("unknown program '", detail::printable(name), "'; the [program.<name>] tables define: ", detail::name_list(known));
 }
 
 CaseConfig build_case(const toml::table& table, const std::string& origin, const std::string& base_dir) {

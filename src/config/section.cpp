@@ -13,11 +13,7 @@ namespace camfollower::config {
 namespace {
 
 // Echo at most a short, printable excerpt of user text in messages.
-std::string excerpt(std::string_view s) {
-    std::string out;
-    for (char c : s.substr(0, 60)) out += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? '?' : c;
-    return s.size() > 60 ? out + "..." : out;
-}
+std::string excerpt(std::string_view s) { return detail::printable(s); }
 
 std::string trim(std::string_view s) {
     const auto b = s.find_first_not_of(" \t");
@@ -37,7 +33,8 @@ std::vector<std::string> Section::keys() const {
 }
 
 std::string Section::key_path(std::string_view key) const {
-    return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
+    // Keys are user text too (a quoted TOML key may hold anything): echoed printable and short.
+    return path_.empty() ? detail::printable(key) : path_ + "." + detail::printable(key);
 }
 
 std::string Section::location(const toml::node* node) const {

@@ -19,10 +19,6 @@ from hypothesis import strategies as st  # noqa: E402
 
 import camfollower as cf  # noqa: E402
 
-settings.register_profile("ci", max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-settings.register_profile("long", max_examples=10_000, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-settings.load_profile("ci")
-
 # Numbers a user might pass: ordinary magnitudes, extremes, and non-finite values.
 anything = st.one_of(
     st.floats(allow_nan=True, allow_infinity=True),

@@ -35,7 +35,7 @@ struct ClearanceSpec {
 
     void validate() const {
         const std::string who = "clearance '" + name + "'";
-        if (name.empty()) detail::fail("clearance name must be non-empty");
+        detail::require_name(name, "clearance");
         if (gap.empty()) detail::fail(who, ": the gap coordinate needs at least one (DOF, coefficient) term");
         for (std::size_t i = 0; i < gap.size(); ++i) {
             const auto& [dof, c] = gap[i];

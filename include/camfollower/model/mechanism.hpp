@@ -58,7 +58,7 @@ struct MechanismBuilder {
     void set_modal_damping(const std::vector<double>& ratios) { structure.set_modal_damping(ratios); }
 
     void add_contact(const ContactPairSpec& c) {
-        if (c.name.empty()) detail::fail("contact name must be non-empty");
+        detail::require_name(c.name, "contact");
         for (const ContactPairSpec& other : contacts)
             if (other.name == c.name) detail::fail("contact '", c.name, "' is defined twice");
         contacts.push_back(c);
@@ -413,10 +413,13 @@ public:
             // contact just touching, where the law has no stiffness: take the step as if every
             // contact were closed (the active-set guess), with the law's stiffness at 1 um, and every
             // free clearance seated on the wall its load pushes it to.
-            if (!solve_static(Kt, r, dq)) {
+            // A step no machine makes (> 1 km) means the tangent barely holds: an open contact with
+            // a spring far too soft for its preload; treat it as singular.
+            const auto plausible = [&] { return dq.allFinite() && dq.cwiseAbs().maxCoeff() < 1e3; };
+            if (!solve_static(Kt, r, dq) || !plausible()) {
                 Kt += closed_contact_stiffness(w);
                 close_free_clearances(q, r, Kt);
-                if (!solve_static(Kt, r, dq))
+                if (!solve_static(Kt, r, dq) || !plausible())
                     detail::fail("static equilibrium at theta = ", radians_to_degrees(theta),
                                  " deg: the structure with its active contacts is not held in place (a DOF with no "
                                  "spring to ground and no contact, e.g. a follower without a return spring or load, "

@@ -62,7 +62,8 @@ struct ShaftEntry {
 class NetworkSpec {
 public:
     void add_dof(const std::string& name, double mass, const Eigen::Vector3d& direction = Eigen::Vector3d::Zero()) {
-        if (name.empty() || name == ground_name) detail::fail("DOF name must be non-empty and not '", ground_name, "'");
+        detail::require_name(name, "DOF");
+        if (name == ground_name) detail::fail("DOF name must not be '", ground_name, "' (the fixed frame)");
         for (const DofSpec& d : dofs_)
             if (d.name == name) detail::fail("DOF '", name, "' is defined twice");
         detail::require_positive(mass, ("mass of DOF '" + name + "'").c_str(), "(kg or kg m^2)");
@@ -265,7 +266,7 @@ private:
     }
 
     void check_element(const std::string& name, const std::string& a, const std::string& b) const {
-        if (name.empty()) detail::fail("element name must be non-empty");
+        detail::require_name(name, "element");
         for (const SpringSpec& s : springs_)
             if (s.name == name) detail::fail("element '", name, "' is defined twice");
         if (a == b) detail::fail("element '", name, "' connects DOF '", a, "' to itself");

@@ -34,7 +34,8 @@ struct ShaftSpec {
 
     void validate() const {
         const std::string who = "shaft '" + name + "'";
-        if (name.empty() || name.find('.') != std::string::npos)
+        detail::require_name(name, "shaft");
+        if (name.find('.') != std::string::npos)
             detail::fail("shaft name must be non-empty and without '.', got '", name, "'");
         try {
             section.validate();

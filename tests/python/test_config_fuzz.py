@@ -1,0 +1,122 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""A config fuzzer: every example config, mutated line by line (values replaced by hostile ones, lines
+dropped or repeated, the text cut short, control characters and invalid UTF-8 inserted), read by the
+Python package and by the command line. Oracle: the case builds, or the reader refuses it with a
+ValueError (exit code 1 on the command line) whose message names the file, is short and carries no
+raw control characters; never a crash, a hang or another exception. Profiles as in
+test_properties.py ("ci" by default; ``--hypothesis-profile=long`` for many more)."""
+
+import os
+import re
+import shutil
+import subprocess
+from pathlib import Path
+
+import pytest
+
+hypothesis = pytest.importorskip("hypothesis")
+from hypothesis import HealthCheck, given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+import camfollower as cf  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[2]
+EXAMPLES = sorted((ROOT / "examples").glob("*.toml"))
+CLI = ROOT / "build" / "src" / "camfollower"
+
+HOSTILE = ["-1", "0", "1e300", "-1e300", "1e-320", "nan", "inf", "-inf", "2.5", "9223372036854775807",
+           "-9223372036854775808", "true", "[]", "{}", "[1, 2]", '"x"', '""', '"nan"', '"1e999 mm"', '"10 parsec"',
+           '"-3 mm"', '"1e308 rpm"', '"0 deg"', '"\\u0007\\u001b[2J"', '"' + "a" * 5000 + '"', "xnonex", '"none"',
+           '"ground"', "1979-05-27"]
+ASSIGNMENT = re.compile(r"^(\s*[A-Za-z_][\w.\"-]*\s*=\s*)(.*)$")
+
+
+def mutate(text: str, op: int, line_pick: int, token: int, cut: float) -> bytes:
+    lines = text.splitlines()
+    assignments = [i for i, l in enumerate(lines) if ASSIGNMENT.match(l)]
+    i = assignments[line_pick % len(assignments)] if assignments else 0
+    if op == 0:  # a value replaced by a hostile one
+        lines[i] = ASSIGNMENT.sub(lambda m: m.group(1) + HOSTILE[token % len(HOSTILE)], lines[i])
+    elif op == 1:  # a line dropped
+        del lines[i]
+    elif op == 2:  # a key repeated (last must not silently win)
+        lines.insert(i + 1, lines[i])
+    elif op == 3:  # the text cut short
+        return "\n".join(lines)[: int(cut * len(text))].encode()
+    elif op == 4:  # a control character or invalid UTF-8 in a line
+        raw = "\n".join(lines).encode()
+        k = int(cut * len(raw))
+        return raw[:k] + [b"\x00", b"\x07", b"\xff\xfe", b"\x1b[31m"][token % 4] + raw[k:]
+    elif op == 5:  # a table header repeated
+        headers = [j for j, l in enumerate(lines) if l.startswith("[") and not l.startswith("[[")]
+        if headers:
+            lines.append(lines[headers[line_pick % len(headers)]])
+    return ("\n".join(lines) + "\n").encode()
+
+
+def check_message(message: str, path: Path) -> None:
+    assert str(path) in message or path.name in message, message
+    assert len(message) < 2000, f"message of {len(message)} characters"
+    assert not re.search(r"[\x00-\x08\x0b-\x1f\x7f]", message), repr(message)
+
+
+mutation = st.tuples(st.sampled_from(EXAMPLES), st.integers(0, 5), st.integers(0, 500), st.integers(0, 100),
+                     st.floats(0.0, 1.0))
+
+
+@settings(deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
+@given(mutation)
+def test_mutated_configs_build_or_are_refused_naming_the_file(tmp_path, m):
+    example, op, line_pick, token, cut = m
+    for data in (example.parent / "data").glob("*") if (example.parent / "data").is_dir() else []:
+        (tmp_path / "data").mkdir(exist_ok=True)
+        shutil.copy(data, tmp_path / "data" / data.name)
+    path = tmp_path / example.name
+    path.write_bytes(mutate(example.read_text(), op, line_pick, token, cut))
+    try:
+        case = cf.load_config(path)
+    except ValueError as e:
+        check_message(str(e), path)
+        return
+    assert case.mechanism.size >= 1
+
+
+@pytest.mark.skipif(not CLI.exists(), reason="the command line is built by scripts/test.sh (ctest)")
+@settings(deadline=None, max_examples=60, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(mutation)
+def test_the_command_line_never_crashes_on_mutated_configs(tmp_path, m):
+    example, op, line_pick, token, cut = m
+    if (example.parent / "data").is_dir():
+        shutil.copytree(example.parent / "data", tmp_path / "data", dirs_exist_ok=True)
+    path = tmp_path / example.name
+    path.write_bytes(mutate(example.read_text(), op, line_pick, token, cut))
+    r = subprocess.run([str(CLI), "kinematics", str(path)], capture_output=True, timeout=60,
+                       env={**os.environ, "LC_ALL": "C"})
+    assert r.returncode in (0, 1), (r.returncode, r.stderr[-2000:])
+    if r.returncode == 1:
+        check_message(r.stderr.decode("utf-8", "replace").strip(), path)
+
+
+def test_names_with_control_characters_or_megabytes_are_refused():
+    """Found by the fuzzer: a DOF named "\\a\\x1b[2J" was accepted and every later message listing the
+    DOFs wrote the terminal escape; names are now 1-200 printable characters, and lists in messages
+    are cut at 20 entries."""
+    b = cf.MechanismBuilder()
+    for bad in ("\x07\x1b[2J", "", "x" * 201):
+        with pytest.raises(ValueError, match=r"DOF name must be 1 to 200 printable characters"):
+            b.add_dof(bad, 1.0, (0, 1, 0))
+    b.add_dof("ok", 1.0, (0, 1, 0))
+    with pytest.raises(ValueError, match=r"element name must be 1 to 200 printable"):
+        b.add_spring("s\n", "ok", "ground", stiffness=1.0)
+
+
+def test_unknown_names_in_a_config_list_at_most_twenty_known_ones(tmp_path):
+    text = (ROOT / "examples" / "camshaft.toml").read_text().replace('a = "valve1"', 'a = "valve9"', 1)
+    assert 'a = "valve9"' in text
+    path = tmp_path / "c.toml"
+    path.write_text(text)
+    with pytest.raises(ValueError) as e:
+        cf.load_config(path)
+    message = str(e.value)
+    assert "unknown DOF 'valve9'" in message and "in all)" in message
+    assert message.count(",") <= 21 and len(message) < 1000
