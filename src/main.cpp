@@ -92,7 +92,7 @@ int run(const std::string& config, std::string output) {
     const cf::config::CaseConfig c = cf::config::load_case(config);
     if (output.empty()) output = c.output.file;
     if (output.empty()) cf::detail::fail(config, ": no output file: set [output] file or give -o FILE");
-    cf::cli::refuse_overwriting(output, config);
+    cf::detail::require_output_target(output, "output", {config});
     with_mechanism(c.mechanism, [&](const auto& m) {
         const double period = m.period();
         cf::NewmarkSettings settings = c.solver.newmark;
@@ -139,7 +139,7 @@ int run(const std::string& config, std::string output) {
 int export_cam(const std::string& config, const std::string& output, std::string contact, const std::string& unit_name,
                double cutter_radius, std::size_t points) {
     const cf::config::CaseConfig c = cf::config::load_case(config);
-    cf::cli::refuse_overwriting(output, config);
+    cf::detail::require_output_target(output, "output", {config});
     const cf::LengthUnit unit = cf::length_unit_from_name(unit_name);
     if (contact.empty() && !c.mechanism.contacts.empty()) contact = c.mechanism.contacts.front().name;
     std::string known;

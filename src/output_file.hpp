@@ -3,8 +3,6 @@
 // config it came from.
 #pragma once
 
-#include <sys/stat.h>
-
 #include <cstdio>
 #include <string>
 
@@ -13,16 +11,8 @@
 
 namespace camfollower::cli {
 
-// Refuse an output path that is the config file itself (same file, by device and inode).
-inline void refuse_overwriting(const std::string& output, const std::string& config) {
-    struct stat a {}, b {};
-    if (::stat(output.c_str(), &a) == 0 && ::stat(config.c_str(), &b) == 0 && a.st_dev == b.st_dev && a.st_ino == b.st_ino)
-        detail::fail("output: '", output, "' is the config file itself; choose another output file");
-}
-
 // Header: the channel names with their units; rows: one per recorded step.
 inline void write_recording_csv(const std::string& path, const Recording& r, const std::string& config) {
-    refuse_overwriting(path, config);
     std::string text;
     text.reserve(r.rows * r.names.size() * 20 + 256);
     for (std::size_t c = 0; c < r.names.size(); ++c) text += (c ? "," : "") + r.names[c];
@@ -35,7 +25,7 @@ inline void write_recording_csv(const std::string& path, const Recording& r, con
         }
         text += '\n';
     }
-    detail::write_file_atomically(path, text, "output");
+    detail::write_file_atomically(path, text, "output", {config});
 }
 
 }  // namespace camfollower::cli

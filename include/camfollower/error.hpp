@@ -7,10 +7,13 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <string_view>
+
+#include "camfollower/constants.hpp"
 
 namespace camfollower {
 
@@ -58,6 +61,32 @@ inline void require_in_range(double value, double lo, double hi, const char* nam
 inline constexpr double min_part_length = 1e-6, max_part_length = 1e3;  // m
 // Forces and preloads of machine elements, N: beyond this a static solution overflows its digits.
 inline constexpr double max_force = 1e9;
+
+// Camshaft speeds, rad/s: 1e5 rad/s is about 955,000 rpm, far beyond any machine; beyond, the cam
+// angle omega t overflows its digits within a run.
+inline constexpr double max_camshaft_speed = 1e5;
+inline void require_camshaft_speed(double omega, const char* name) {
+    if (!(std::isfinite(omega) && omega > 0.0 && omega <= max_camshaft_speed))
+        fail(name, " must be in (0, ", max_camshaft_speed, "] rad/s, got ", omega, " rad/s");
+}
+inline void require_camshaft_speed_rpm(double rpm, const char* name) {
+    const double max_rpm = max_camshaft_speed * 30.0 / pi;
+    if (!(std::isfinite(rpm) && rpm > 0.0 && rpm <= max_rpm))
+        fail(name, " must be in (0, ", max_rpm, "] rpm, got ", rpm);
+}
+
+// Points of a sampled curve or outline (profiles, exports, plots): 10 million is 0.13 arc seconds
+// apart over a revolution, far finer than any machine; beyond, a typo becomes a memory exhaustion.
+inline constexpr long long max_points = 10'000'000;
+inline void require_point_count(long long points, long long minimum, const char* name) {
+    if (points < minimum || points > max_points)
+        fail(name, " must be an integer in [", minimum, ", ", max_points, "], got ", points);
+}
+inline void require_point_count(std::size_t points, long long minimum, const char* name) {
+    if (points > static_cast<std::size_t>(max_points))
+        fail(name, " must be an integer in [", minimum, ", ", max_points, "], got ", points);
+    require_point_count(static_cast<long long>(points), minimum, name);
+}
 
 inline void require_length(double value, const char* name) {
     if (!(std::isfinite(value) && value >= min_part_length && value <= max_part_length))

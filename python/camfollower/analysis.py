@@ -8,6 +8,7 @@ All inputs and outputs are NumPy arrays in SI units. A result is the dict return
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass
 
 import numpy as np
@@ -24,10 +25,50 @@ __all__ = [
 ]
 
 
+def _series(values, name: str, min_size: int = 1) -> np.ndarray:
+    """A 1-D array of finite floats of at least `min_size` samples, or ValueError naming it."""
+    try:
+        x = np.asarray(values, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a 1-D array of numbers, got {type(values).__name__}") from None
+    if x.ndim != 1 or x.size < min_size:
+        raise ValueError(f"{name} must be a 1-D array of at least {min_size} samples, got shape {x.shape}")
+    if not np.all(np.isfinite(x)):
+        raise ValueError(f"{name} must be finite (it holds NaN or inf)")
+    return x
+
+
+def _real(value, name: str, unit: str, *, positive: bool = False, infinite: bool = False) -> float:
+    """A real number (not a bool or str), finite unless `infinite`, > 0 if `positive`."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise ValueError(f"{name} must be a number ({unit}), got {type(value).__name__}")
+    x = float(value)
+    if math.isnan(x) or (not infinite and math.isinf(x)) or (positive and not x > 0):
+        raise ValueError(f"{name} must be {'finite and ' if not infinite else ''}{'> 0 ' if positive else ''}"
+                         f"({unit}), got {value!r}")
+    return x
+
+
+def _count(value, name: str, minimum: int) -> int:
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < minimum:
+        raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
+    return int(value)
+
+
 @dataclass(frozen=True)
 class Spectrum:
-    frequency: np.ndarray  # Hz
+    frequency: np.ndarray  # Hz, equally spaced, increasing
     amplitude: np.ndarray  # single-sided amplitude, same unit as the signal
+
+    def __post_init__(self):
+        f = _series(self.frequency, "frequency", 2)
+        a = _series(self.amplitude, "amplitude", 2)
+        if f.shape != a.shape:
+            raise ValueError(f"frequency and amplitude must have the same length, got {f.size} and {a.size}")
+        if not np.all(np.diff(f) > 0):
+            raise ValueError("frequency must be increasing")
+        object.__setattr__(self, "frequency", f)
+        object.__setattr__(self, "amplitude", a)
 
     @property
     def resolution(self) -> float:
@@ -35,13 +76,19 @@ class Spectrum:
 
     def at(self, f: float) -> float:
         """Amplitude of the bin nearest to f (Hz); ValueError outside the spectrum's range."""
+        f = _real(f, "f", "Hz")
         lo, hi = self.frequency[0], self.frequency[-1]
         if not (lo - 0.5 * self.resolution <= f <= hi + 0.5 * self.resolution):
             raise ValueError(f"frequency {f} Hz is outside this spectrum's range [{lo}, {hi}] Hz")
         return float(self.amplitude[int(round((f - lo) / self.resolution))])
 
     def band(self, lo: float, hi: float) -> "Spectrum":
+        """The bins in [lo, hi] Hz (at least two)."""
+        lo, hi = _real(lo, "lo", "Hz", infinite=True), _real(hi, "hi", "Hz", infinite=True)
         keep = (self.frequency >= lo) & (self.frequency <= hi)
+        if np.count_nonzero(keep) < 2:
+            raise ValueError(f"the band [{lo}, {hi}] Hz holds fewer than two bins of this spectrum "
+                             f"({self.frequency[0]} to {self.frequency[-1]} Hz)")
         return Spectrum(self.frequency[keep], self.amplitude[keep])
 
 
@@ -52,13 +99,8 @@ def spectrum(signal, sample_rate: float, window: str = "hann", detrend: bool = T
     sample_rate / len(signal) divides the shaft frequency and its harmonics fall on bins.
     window: "hann" (amplitude-corrected) or "rect".
     """
-    x = np.asarray(signal, dtype=float)
-    if x.ndim != 1 or x.size < 8:
-        raise ValueError(f"signal must be a 1-D array of at least 8 samples, got shape {x.shape}")
-    if not np.all(np.isfinite(x)):
-        raise ValueError("signal must be finite")
-    if not (math.isfinite(sample_rate) and sample_rate > 0):
-        raise ValueError(f"sample_rate must be finite and > 0 (Hz), got {sample_rate}")
+    x = _series(signal, "signal", 8)
+    sample_rate = _real(sample_rate, "sample_rate", "Hz", positive=True)
     if detrend:
         x = x - x.mean()
     if window == "hann":
@@ -77,9 +119,15 @@ def spectrum(signal, sample_rate: float, window: str = "hann", detrend: bool = T
 
 def last_revolutions(result: dict, period: float, revolutions: int) -> slice:
     """Slice of the rows covering the last `revolutions` whole revolutions of a result."""
-    t = np.asarray(result["t"])
+    t = _series(result["t"], "result['t']", 2)
+    period = _real(period, "period", "s", positive=True)
+    revolutions = _count(revolutions, "revolutions", 1)
     dt = float(t[1] - t[0])
+    if not dt > 0:
+        raise ValueError(f"result['t'] must increase, got t[0] = {t[0]} s, t[1] = {t[1]} s")
     per_rev = period / dt
+    if per_rev > t.size:
+        raise ValueError(f"one period ({period} s) is longer than the whole result ({t.size} rows of {dt} s)")
     if abs(per_rev - round(per_rev)) > 1e-6 * per_rev:
         raise ValueError(
             f"the sampling interval {dt} s does not divide the period {period} s: "
@@ -92,6 +140,8 @@ def last_revolutions(result: dict, period: float, revolutions: int) -> slice:
 
 def find_peaks(spec: Spectrum, count: int = 5, lo: float = 0.0, hi: float = math.inf) -> list[tuple[float, float]]:
     """The `count` largest local maxima (frequency, amplitude) in [lo, hi] Hz, largest first."""
+    count = _count(count, "count", 1)
+    lo, hi = _real(lo, "lo", "Hz", infinite=True), _real(hi, "hi", "Hz", infinite=True)
     a = spec.amplitude
     idx = np.flatnonzero((a[1:-1] > a[:-2]) & (a[1:-1] >= a[2:])) + 1
     idx = idx[(spec.frequency[idx] >= lo) & (spec.frequency[idx] <= hi)]
@@ -102,8 +152,9 @@ def find_peaks(spec: Spectrum, count: int = 5, lo: float = 0.0, hi: float = math
 def sidebands(spec: Spectrum, carrier: float, spacing: float, orders: int = 3) -> dict:
     """Amplitudes at carrier + k * spacing for k = -orders..orders and the modulation ratio
     (root-sum-square of the sidebands over the carrier)."""
-    if spacing <= 0 or orders < 1:
-        raise ValueError("spacing must be > 0 (Hz) and orders >= 1")
+    carrier = _real(carrier, "carrier", "Hz")
+    spacing = _real(spacing, "spacing", "Hz", positive=True)
+    orders = _count(orders, "orders", 1)
     levels = {k: spec.at(carrier + k * spacing) for k in range(-orders, orders + 1)}
     side = math.sqrt(sum(v * v for k, v in levels.items() if k != 0))
     return {"carrier_hz": carrier, "spacing_hz": spacing, "levels": levels,
@@ -112,30 +163,52 @@ def sidebands(spec: Spectrum, carrier: float, spacing: float, orders: int = 3) -
 
 def theoretical_follower_acceleration(model, theta) -> np.ndarray:
     """Rigid-follower acceleration omega^2 d2h/dtheta2 at cam angles theta (constant speed)."""
+    _require_model(model)
+    theta = np.asarray(theta, dtype=float)
+    if not np.all(np.isfinite(theta)):
+        raise ValueError("theta must be finite (rad)")
     return model.omega**2 * np.asarray(model.cam.program.evaluate(np.asarray(theta))["d2h"])
 
 
+def _require_model(model) -> None:
+    if not (hasattr(model, "omega") and hasattr(model, "cam")):
+        raise ValueError(f"model must be a CamFollowerModel (with .omega and .cam), got {type(model).__name__}")
+
+
 def phase_statistics(model, theta, signal) -> list[dict]:
-    """Peak |x| and RMS of a signal over each segment of the motion program (dwell, rise, ...)."""
-    theta = np.mod(np.asarray(theta), 2 * math.pi)
-    x = np.asarray(signal)
+    """Peak |x| and RMS of a signal over each segment of the motion program (dwell, rise, ...), with
+    the number of samples in it. ``model``: a CamFollowerModel or the MotionProgram itself. A segment
+    the samples do not reach is refused (ValueError), not reported as NaN: sample a whole revolution."""
+    if hasattr(model, "segments"):
+        program = model
+    else:
+        _require_model(model)
+        program = model.cam.program
+    theta = np.mod(_series(theta, "theta"), 2 * math.pi)
+    x = _series(signal, "signal")
+    if x.shape != theta.shape:
+        raise ValueError(f"theta and signal must have the same length, got {theta.size} and {x.size}")
     stats = []
-    for seg in model.cam.program.segments:
+    for seg in program.segments:
         inside = (theta >= seg.theta_start) & (theta < seg.theta_end)
         kind = "dwell" if seg.h_end == seg.h_start else ("rise" if seg.h_end > seg.h_start else "return")
         name = f"{kind} {math.degrees(seg.theta_start):.0f}-{math.degrees(seg.theta_end):.0f} deg"
         if not inside.any():
-            stats.append({"phase": name, "peak": math.nan, "rms": math.nan})
-            continue
-        stats.append({"phase": name, "peak": float(np.max(np.abs(x[inside]))),
-                      "rms": float(np.sqrt(np.mean(x[inside] ** 2)))})
+            raise ValueError(f"no sample of theta falls in the {name} phase: give at least one revolution")
+        stats.append({"phase": name, "samples": int(np.count_nonzero(inside)),
+                      "peak": float(np.max(np.abs(x[inside]))), "rms": float(np.sqrt(np.mean(x[inside] ** 2)))})
     return stats
 
 
 def contact_loss_intervals(t, in_contact) -> list[tuple[float, float]]:
-    """[start, end) times where in_contact is False, from sampled flags."""
-    t = np.asarray(t)
-    lost = ~np.asarray(in_contact, dtype=bool)
+    """[start, end) times where in_contact is False, from sampled flags (none for no samples)."""
+    t = _series(t, "t", 0)
+    flags = np.asarray(in_contact)
+    if flags.shape != t.shape:
+        raise ValueError(f"t and in_contact must have the same length, got {t.size} and {flags.size}")
+    if t.size == 0:
+        return []
+    lost = ~flags.astype(bool)
     edges = np.diff(lost.astype(np.int8))
     starts = list(np.flatnonzero(edges == 1) + 1)
     ends = list(np.flatnonzero(edges == -1) + 1)
@@ -152,6 +225,7 @@ def clearance_statistics(result, name: str, period: float) -> dict:
     to the other between two rows), wall changes (arrivals on the other wall than the last one), and
     the peak and mean seat force (N). Counted from the recorded rows of ``<name>.side`` and
     ``<name>.force``: record every step (decimation 1) or short impacts may be missed."""
+    period = _real(period, "period", "s", positive=True)
     side = np.asarray(result[f"{name}.side"], dtype=float)
     force = np.asarray(result[f"{name}.force"], dtype=float)
     t = np.asarray(result["t"], dtype=float)

@@ -21,22 +21,17 @@ from pathlib import Path
 
 import numpy as np
 
-from . import _core
+from . import _files
 from .config import load_config
 
 
-def _write(path: Path, content: bytes) -> None:
-    """The library's one atomic writer: a temporary in the same folder, then a rename."""
-    _core.write_file_atomically(str(path), content)
+def _write(config: str, path: Path, content: bytes) -> None:
+    """The package's one atomic writer (camfollower._files), never over the config file."""
+    _files.write_bytes(path, content, protect=[config])
 
 
-def _save(fig, path: Path) -> None:
-    import matplotlib.pyplot as plt
-
-    buffer = io.BytesIO()
-    fig.savefig(buffer, dpi=110, format="png")
-    plt.close(fig)
-    _write(path, buffer.getvalue())
+def _save(config: str, fig, path: Path) -> None:
+    _files.save_figure(fig, path, protect=[config])
 
 
 def figures(config: str, out: str) -> dict:
@@ -47,10 +42,7 @@ def figures(config: str, out: str) -> dict:
     from . import plot
 
     case = load_config(config)
-    folder = Path(out)
-    if folder.exists() and not folder.is_dir():
-        raise ValueError(f"--out: '{folder}' exists and is not a directory")
-    folder.mkdir(parents=True, exist_ok=True)
+    folder = _files.output_folder(out)
     m = case.mechanism
     rpm = m.camshaft_speed_rpm
     result = case.run()
@@ -58,7 +50,7 @@ def figures(config: str, out: str) -> dict:
     data = np.column_stack([np.asarray(result[n]) for n in names])
     table = io.StringIO()
     np.savetxt(table, data, delimiter=",", header=",".join(names), comments="", fmt="%.12g")
-    _write(folder / "run.csv", table.getvalue().encode())
+    _write(config, folder / "run.csv", table.getvalue().encode())
     written = ["run.csv"]
     contacts = case.builder.__getstate__()["contacts"]
     summary = {"config": str(case.path), "camshaft_speed_rpm": rpm, "rows": result.rows,
@@ -71,13 +63,13 @@ def figures(config: str, out: str) -> dict:
                           (plot.pressure_angle_and_curvature(follower, program), f"pressure_angle_curvature_{name}.png"),
                           (plot.acceleration(result, program, omega, dof), f"acceleration_{name}.png"),
                           (plot.contact_force(result, name), f"contact_force_{name}.png")):
-            _save(fig, folder / file)
+            _save(config, fig, folder / file)
             written.append(file)
         force = np.asarray(result[f"{name}.force"])
         sample_rate = 1.0 / (result.time_step * result.decimation)
         fmax = min(0.5 * sample_rate, 20000.0)
         naturals = list(m.modal_analysis(0.0)["frequencies_hz"])
-        _save(plot.spectrum(force - force.mean(), sample_rate, fmax=fmax, natural_frequencies=naturals),
+        _save(config, plot.spectrum(force - force.mean(), sample_rate, fmax=fmax, natural_frequencies=naturals),
               folder / f"spectrum_{name}.png")
         written.append(f"spectrum_{name}.png")
         lost = sum(b - a for a, b in result.contact_loss.get(name, []))
@@ -92,7 +84,7 @@ def figures(config: str, out: str) -> dict:
         }
     summary["files"] = written + ["summary.json"]
     text = json.dumps(summary, indent=2) + "\n"
-    _write(folder / "summary.json", text.encode())
+    _write(config, folder / "summary.json", text.encode())
     return summary
 
 
@@ -105,14 +97,11 @@ def camshaft(config: str, out: str, rpm=None, engine_rpm=None, revolutions: floa
     from .camshaft import camshaft_study, plot_study, plot_traces
 
     case = load_config(config)
-    folder = Path(out)
-    if folder.exists() and not folder.is_dir():
-        raise ValueError(f"--out: '{folder}' exists and is not a directory")
     if rpm and engine_rpm:
         raise ValueError("give --rpm (camshaft) or --engine-rpm (twice the camshaft's), not both")
     speeds = list(rpm) if rpm else [0.5 * e for e in engine_rpm] if engine_rpm else None
+    folder = _files.output_folder(out)
     summaries, results = camshaft_study(case, speeds, revolutions=revolutions)
-    folder.mkdir(parents=True, exist_ok=True)
     written = []
     rows = ["camshaft_rpm,cam,lift_error_mm,max_force_N,min_force_lifting_N,contact_lost_s,twist_peak_to_peak_deg,"
             "surge_peak_to_peak_mm,surge_main_frequency_Hz"]
@@ -122,17 +111,17 @@ def camshaft(config: str, out: str, rpm=None, engine_rpm=None, revolutions: floa
                 f"{c.get(k, float('nan')):.6g}" for k in ("lift_error_mm", "max_force_N", "min_force_lifting_N",
                                                            "contact_lost_s", "twist_peak_to_peak_deg",
                                                            "surge_peak_to_peak_mm", "surge_main_frequency_Hz")]))
-    _write(folder / "summary.csv", ("\n".join(rows) + "\n").encode())
+    _write(config, folder / "summary.csv", ("\n".join(rows) + "\n").encode())
     written.append("summary.csv")
-    _save(plot_study(summaries, engine=bool(engine_rpm)), folder / "study.png")
+    _save(config, plot_study(summaries, engine=bool(engine_rpm)), folder / "study.png")
     written.append("study.png")
     for s, r in zip(summaries, results):
         m = case.mechanism.with_camshaft_speed_rpm(s["camshaft_speed_rpm"])
         file = f"traces_{s['camshaft_speed_rpm']:g}rpm.png"
-        _save(plot_traces(m, r), folder / file)
+        _save(config, plot_traces(m, r), folder / file)
         written.append(file)
     summary = {"config": str(case.path), "speeds": summaries, "files": written + ["summary.json"]}
-    _write(folder / "summary.json", (json.dumps(summary, indent=2) + "\n").encode())
+    _write(config, folder / "summary.json", (json.dumps(summary, indent=2) + "\n").encode())
     return summary
 
 
@@ -145,14 +134,6 @@ def _csv(rows, columns) -> bytes:
     for r in rows:
         w.writerow({k: (f"{v:.10g}" if isinstance(v, float) else v) for k, v in r.items() if k in columns})
     return buffer.getvalue().encode()
-
-
-def _folder(out: str) -> Path:
-    folder = Path(out)
-    if folder.exists() and not folder.is_dir():
-        raise ValueError(f"--out: '{folder}' exists and is not a directory")
-    folder.mkdir(parents=True, exist_ok=True)
-    return folder
 
 
 def _executor(args):
@@ -174,6 +155,7 @@ def sweep(config: str, out: str, *, rpm=None, jump=None, executor=None, workers=
 
     case = load_config(config)
     st = sweep_settings(case.data.get("sweep", {}), rpm=rpm, jump=jump, path=case.path)
+    folder = _files.output_folder(out)
     m = case.mechanism
     result = sp.speed_sweep(m, st["rpm"], contact=st["contact"], steps_per_revolution=st["steps_per_revolution"],
                             executor=executor, workers=workers, progress=progress)
@@ -181,17 +163,16 @@ def sweep(config: str, out: str, *, rpm=None, jump=None, executor=None, workers=
     if st["jump"] is not None:
         jump_result = sp.jump_speed(m, tuple(st["jump"]), contact=st["contact"],
                                     steps_per_revolution=st["steps_per_revolution"])
-    folder = _folder(out)
     columns = ["rpm", "method", "converged", "revolutions", "min_force_N", "min_force_angle_deg", "max_force_N",
                "contact_lost", "lost_fraction", "first_loss_angle_deg", "max_abs_acceleration",
                "rigid_max_abs_acceleration", "dwell_residual", "dwell_residual_at_deg", "spectral_radius",
                "instability", "error"]
-    _write(folder / "sweep.csv", _csv(result["rows"], columns))
+    _write(config, folder / "sweep.csv", _csv(result["rows"], columns))
     spec_rows = [{"rpm": r["rpm"], **{f"order_{k}": float(result["spectrum"][k - 1, j]) for k in result["orders"]}}
                  for j, r in enumerate(result["rows"])]
-    _write(folder / "spectrum.csv", _csv(spec_rows, ["rpm"] + [f"order_{k}" for k in result["orders"]]))
-    _save(sp.plot_margin(result["rows"], jump_result), folder / "margin.png")
-    _save(sp.plot_waterfall(result), folder / "waterfall.png")
+    _write(config, folder / "spectrum.csv", _csv(spec_rows, ["rpm"] + [f"order_{k}" for k in result["orders"]]))
+    _save(config, sp.plot_margin(result["rows"], jump_result), folder / "margin.png")
+    _save(config, sp.plot_waterfall(result), folder / "waterfall.png")
     summary = {"config": str(case.path), "contact": st["contact"] or m.contact_names[0],
                "steps_per_revolution": st["steps_per_revolution"],
                "speeds": [{k: r.get(k) for k in columns if k in r} for r in result["rows"]],
@@ -202,7 +183,7 @@ def sweep(config: str, out: str, *, rpm=None, jump=None, executor=None, workers=
         summary["jump"] = {"rpm": jump_result.rpm, "angle_deg": jump_result.angle_deg, "bracket": list(jump_result.bracket),
                            "min_force_below_N": jump_result.min_force_below_N,
                            "evaluations": len(jump_result.evaluations)}
-    _write(folder / "summary.json", (json.dumps(summary, indent=2, default=str) + "\n").encode())
+    _write(config, folder / "summary.json", (json.dumps(summary, indent=2, default=str) + "\n").encode())
     return summary
 
 
@@ -220,15 +201,15 @@ def montecarlo(config: str, out: str, *, cases=None, seed=None, executor=None, w
     st = montecarlo_settings(case.data.get("montecarlo"), cases=cases, seed=seed, path=case.path)
     data = {k: v for k, v in case.data.items() if k not in ("sweep", "montecarlo")}
     build = tol.ConfigCase(data, case.path.parent if case.path else ".")
+    folder = _files.output_folder(out)
     result = tol.monte_carlo(build, st["tolerances"], cases=st["cases"], seed=st["seed"], contact=st["contact"],
                              steps_per_revolution=st["steps_per_revolution"], executor=executor, workers=workers,
                              progress=progress)
-    folder = _folder(out)
     columns = ["case", "seed"] + result.parameters + list(result.metrics) + ["ok", "error"]
-    _write(folder / "cases.csv", _csv(result.rows, columns))
+    _write(config, folder / "cases.csv", _csv(result.rows, columns))
     files = ["cases.csv"]
     try:
-        result.to_parquet(folder / "cases.parquet")
+        result.to_parquet(folder / "cases.parquet", protect=[config])
         files.append("cases.parquet")
     except ImportError:
         pass
@@ -236,11 +217,11 @@ def montecarlo(config: str, out: str, *, cases=None, seed=None, executor=None, w
     ok = [r for r in result.rows if r["ok"]]
     if len(ok) >= len(result.parameters) + 2:
         summary["sensitivities"] = {m: result.sensitivities(m) for m in ("min_force_N", "max_abs_acceleration", "dwell_residual")}
-        _save(result.plot("min_force_N"), folder / "histogram.png")
+        _save(config, result.plot("min_force_N"), folder / "histogram.png")
         files.append("histogram.png")
     summary["failed_cases"] = [{k: r[k] for k in ["case", "seed"] + result.parameters + ["error"]} for r in result.failed()]
     summary["files"] = files + ["summary.json"]
-    _write(folder / "summary.json", (json.dumps(summary, indent=2, default=str) + "\n").encode())
+    _write(config, folder / "summary.json", (json.dumps(summary, indent=2, default=str) + "\n").encode())
     return summary
 
 

@@ -31,7 +31,7 @@ from typing import Optional
 
 import numpy as np
 
-from . import _core
+from . import _core, _files
 
 # $INSUNITS codes of the DXF format for the library's length units (the factors live in the core).
 _DXF_INSUNITS = {"m": 6, "mm": 4, "um": 13, "inch": 1}
@@ -42,8 +42,8 @@ REFERENCE_LAYER = "REFERENCE"
 
 
 def _check(points, cutter_radius, unit):
-    if isinstance(points, bool) or not isinstance(points, numbers.Integral) or points < 3:
-        raise ValueError(f"points must be an integer >= 3, got {points!r}")
+    if isinstance(points, bool) or not isinstance(points, numbers.Integral) or not 3 <= points <= _core.MAX_POINTS:
+        raise ValueError(f"points must be an integer in [3, {_core.MAX_POINTS}], got {points!r}")
     if cutter_radius is not None:
         if isinstance(cutter_radius, bool) or not isinstance(cutter_radius, numbers.Real) or not (
                 math.isfinite(cutter_radius) and cutter_radius >= 0):
@@ -98,6 +98,7 @@ def write_dxf(path, follower, program, *, points: int = 3600, cutter_radius: Opt
     Written atomically, like the CSV."""
     points, cutter_radius = _check(points, cutter_radius, unit)
     target = os.fspath(path)
+    _files.check_target(target)  # before the drawing is built
     outline = _core.cam_outline(follower, program, points, cutter_radius, unit)
     ezdxf = _ezdxf()
 
@@ -149,7 +150,7 @@ def write_dxf(path, follower, program, *, points: int = 3600, cutter_radius: Opt
 
     stream = io.StringIO()
     doc.write(stream)
-    _core.write_file_atomically(target, doc.encode(stream.getvalue()))
+    _files.write_bytes(target, doc.encode(stream.getvalue()))
 
 
 __all__ = ["profile_points", "write_csv", "write_dxf", "SURFACE_LAYER", "CUTTER_LAYER", "REFERENCE_LAYER"]

@@ -21,10 +21,12 @@ conditions), ``MotionProgram.continuity`` / ``require_continuity``. See docs/mot
 from __future__ import annotations
 
 import math
+import numbers
 from typing import Callable, Optional, Sequence
 
 import numpy as np
 
+from . import _core
 from ._core import MotionProgram, Segment
 
 __all__ = ["from_callable", "smoothness"]
@@ -78,6 +80,8 @@ def from_callable(
             f"theta_end must be > theta_start (both finite, rad), got theta_start = {theta_start}, "
             f"theta_end = {theta_end}"
         )
+    if isinstance(points, bool) or not isinstance(points, numbers.Integral) or not 2 <= points <= _core.MAX_POINTS:
+        raise ValueError(f"points must be an integer in [2, {_core.MAX_POINTS}], got {points!r}")
     points = int(points)
     if periodic:
         if abs(theta_end - theta_start - TWO_PI) > 1e-9:

@@ -20,6 +20,7 @@ from typing import Optional, Sequence
 
 import numpy as np
 
+from . import _core
 from . import analysis as _an
 
 
@@ -32,8 +33,8 @@ def _pyplot():
 
 
 def _theta(points: int) -> np.ndarray:
-    if not (isinstance(points, int) and points >= 8):
-        raise ValueError(f"points must be an integer >= 8, got {points!r}")
+    if not (isinstance(points, int) and not isinstance(points, bool) and 8 <= points <= _core.MAX_POINTS):
+        raise ValueError(f"points must be an integer in [8, {_core.MAX_POINTS}], got {points!r}")
     return np.linspace(0.0, 2 * math.pi, points)
 
 

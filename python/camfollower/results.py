@@ -3,13 +3,15 @@
 
 from __future__ import annotations
 
+import io
 import json
 import os
-import tempfile
 from pathlib import Path
 from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
+
+from . import _files
 
 _FORMAT = "camfollower.Result/1"
 _STAT_TYPES = {"steps": int, "newton_iterations": int, "max_iterations_in_a_step": int, "halvings": int,
@@ -111,30 +113,23 @@ class Result:
 
     # --- files ---
     def save(self, path: os.PathLike | str) -> Path:
-        """Write an NPZ file atomically (a temporary file in the same folder, then renamed)."""
+        """Write an NPZ file atomically (camfollower._files: a temporary in the same folder, then renamed)."""
         path = Path(path)
         if path.suffix != ".npz":
             raise ValueError(f"path must end in .npz, got {str(path)!r}")
-        if path.exists() and not path.is_file():
-            raise ValueError(f"path {str(path)!r} exists and is not a regular file")
+        _files.check_target(path)  # refused before the archive is built
         numbers = {k: v for k, v in self.stats.items() if not isinstance(v, str)}
         texts = {k: v for k, v in self.stats.items() if isinstance(v, str)}  # e.g. "backend"
-        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent or ".")
-        try:
-            with os.fdopen(fd, "wb") as f:
-                np.savez(f, format=np.array(_FORMAT), names=np.array(self._names), dofs=np.array(self.dof_names),
-                         data=np.ascontiguousarray(self._data), stats_keys=np.array(list(numbers)),
-                         stats_values=np.array([float(v) for v in numbers.values()]),
-                         stats_text=np.array(json.dumps(texts)),
-                         contact_names=np.array(list(self.contact_loss), dtype=str),
-                         settle=np.array(json.dumps(self.settle)),
-                         **{f"contact_loss_{i}": np.array(v, dtype=float).reshape(-1, 2)
-                            for i, v in enumerate(self.contact_loss.values())})
-            os.replace(tmp, path)
-        except BaseException:
-            if os.path.exists(tmp):
-                os.unlink(tmp)
-            raise
+        buffer = io.BytesIO()
+        np.savez(buffer, format=np.array(_FORMAT), names=np.array(self._names), dofs=np.array(self.dof_names),
+                 data=np.ascontiguousarray(self._data), stats_keys=np.array(list(numbers)),
+                 stats_values=np.array([float(v) for v in numbers.values()]),
+                 stats_text=np.array(json.dumps(texts)),
+                 contact_names=np.array(list(self.contact_loss), dtype=str),
+                 settle=np.array(json.dumps(self.settle)),
+                 **{f"contact_loss_{i}": np.array(v, dtype=float).reshape(-1, 2)
+                    for i, v in enumerate(self.contact_loss.values())})
+        _files.write_bytes(path, buffer.getvalue())
         return path
 
     @classmethod

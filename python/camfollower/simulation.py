@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import math
+import numbers
 from typing import Callable, Optional, Sequence
 
 from . import _core
@@ -51,6 +52,23 @@ def simulate(system, *, duration: Optional[float] = None, revolutions: Optional[
 
     Raises ValueError for bad input and RuntimeError when Newton fails after ``max_halvings``.
     """
+    # Numbers and counts checked here by name (pybind11 would say "incompatible function arguments").
+    for name, value in (("time_step", time_step), ("hht_alpha", hht_alpha), ("residual_tolerance", residual_tolerance),
+                        ("increment_tolerance", increment_tolerance), ("max_output_bytes", max_output_bytes),
+                        ("progress_interval", progress_interval), ("settle_tolerance", settle_tolerance),
+                        ("duration", duration), ("revolutions", revolutions), ("record_from", record_from),
+                        ("record_last_revolutions", record_last_revolutions), ("gamma", gamma), ("beta", beta)):
+        if value is not None and (isinstance(value, bool) or not isinstance(value, numbers.Real)):
+            raise TypeError(f"{name} must be a number, got {type(value).__name__}")
+    for name, value in (("decimation", decimation), ("max_iterations", max_iterations), ("max_halvings", max_halvings),
+                        ("settle_min_revolutions", settle_min_revolutions),
+                        ("settle_max_revolutions", settle_max_revolutions)):
+        if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+            raise TypeError(f"{name} must be an integer, got {type(value).__name__} {value!r}")
+        if not 0 <= value <= 2**53:
+            raise ValueError(f"{name} must be in [0, 2^53], got {value}")
+    if not isinstance(linear_solver, str):
+        raise TypeError(f"linear_solver must be a str, got {type(linear_solver).__name__}")
     if (duration is None) == (revolutions is None):
         raise ValueError("give exactly one of duration (s) or revolutions")
     if revolutions is not None or record_last_revolutions is not None:

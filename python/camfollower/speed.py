@@ -12,11 +12,13 @@ from __future__ import annotations
 
 import functools
 import math
+import numbers
 from dataclasses import dataclass, field
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
+from . import _core
 from .executors import run_cases
 from .response import STUDY_STEPS_PER_REVOLUTION, steady_response
 
@@ -25,13 +27,22 @@ def _at_speed(system, rpm: float, options: Dict[str, Any]) -> Dict[str, Any]:
     return steady_response(system.with_camshaft_speed_rpm(float(rpm)), **options)
 
 
-def _check_speeds(speeds) -> List[float]:
-    out = [float(s) for s in speeds]
+_MAX_RPM = _core.MAX_CAMSHAFT_SPEED * 30.0 / math.pi  # the model's own limit, stated in the core
+
+
+def _check_speeds(speeds, name: str = "speeds") -> List[float]:
+    if isinstance(speeds, (str, bytes)) or not hasattr(speeds, "__iter__"):
+        raise ValueError(f"{name} must be a sequence of camshaft speeds (rpm), got {type(speeds).__name__}")
+    out = []
+    for s in speeds:
+        if isinstance(s, bool) or not isinstance(s, numbers.Real):
+            raise ValueError(f"{name} must hold numbers (rpm), got {type(s).__name__}")
+        out.append(float(s))
     if not out:
-        raise ValueError("speeds: give at least one camshaft speed (rpm)")
-    bad = [s for s in out if not (math.isfinite(s) and 0.0 < s <= 1e6)]
+        raise ValueError(f"{name}: give at least one camshaft speed (rpm)")
+    bad = [s for s in out if not (math.isfinite(s) and 0.0 < s <= _MAX_RPM)]
     if bad:
-        raise ValueError(f"speeds must be finite camshaft speeds in (0, 1e6] rpm, got {bad[:3]}")
+        raise ValueError(f"{name} must be finite camshaft speeds in (0, {_MAX_RPM:.6g}] rpm, got {bad[:3]}")
     return out
 
 
@@ -78,7 +89,8 @@ def jump_speed(system, bracket: Tuple[float, float], *, contact: Optional[str] =
     ``hi`` (else ValueError saying what each end showed). Bisection stops when the bracket is
     narrower than ``tolerance`` relative; the answer is the bracket's upper end (the lowest speed
     seen to lose contact)."""
-    lo, hi = _check_speeds(bracket) if len(bracket) == 2 else (None, None)
+    speeds = _check_speeds(bracket, "bracket")
+    lo, hi = speeds if len(speeds) == 2 else (None, None)
     if lo is None or not lo < hi:
         raise ValueError(f"bracket must be two increasing speeds (lo, hi) in rpm, got {bracket!r}")
     if not (0.0 < tolerance < 0.5):
@@ -215,6 +227,10 @@ def plot_waterfall(sweep: Dict[str, Any], *, labels: int = 12, ax=None):
     order's line and label (at most ``labels`` of them). Returns the figure."""
     import matplotlib.pyplot as plt
 
+    missing = [k for k in ("rows", "spectrum", "orders", "natural_hz", "resonances")
+               if not isinstance(sweep, dict) or k not in sweep]
+    if missing:
+        raise ValueError(f"sweep must be a speed_sweep() result; missing {missing}")
     rows = sweep["rows"]
     rpm = np.array([r["rpm"] for r in rows])
     spec = np.asarray(sweep["spectrum"])

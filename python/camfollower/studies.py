@@ -22,14 +22,55 @@ Unknown keys and bad values are refused, naming the file and the key.
 from __future__ import annotations
 
 import math
+import re
 from typing import Any, Dict, Optional
 
 from .response import STUDY_STEPS_PER_REVOLUTION
+from .speed import _MAX_RPM
 from .tolerance import DISTRIBUTIONS, distribution
 
 
+def _shown(value, limit: int = 60) -> str:
+    """A value or key as messages echo it: repr (control characters escaped), at most `limit`
+    characters, so an error never carries megabytes of input or a terminal escape."""
+    text = value if isinstance(value, str) and value.isprintable() else repr(value)
+    text = "".join(c if c.isprintable() else "?" for c in text)
+    return text if len(text) <= limit else text[:limit] + f"... ({len(text)} characters)"
+
+
+def _line(path, key: str) -> Optional[int]:
+    """The line of `key` ("sweep.rpm[0]", "montecarlo.tolerance[1].std") in the file, found by its
+    table header and `name =` (tomllib keeps no positions); None when not found."""
+    try:
+        lines = open(path, encoding="utf-8", errors="replace").read(1 << 20).splitlines()
+    except (OSError, TypeError):
+        return None
+    parts = [re.match(r"([^\[]*)(?:\[(\d+)\])?", p).groups() for p in key.split(".")]
+    *table, (leaf, _) = parts
+    header = ".".join(name for name, _ in table)
+    index = int(table[-1][1]) if table and table[-1][1] is not None else 0
+    start, seen = None, -1
+    for i, line in enumerate(lines):
+        stripped = line.strip()
+        if re.fullmatch(r"\[\[?\s*" + re.escape(header) + r"\s*\]\]?\s*(#.*)?", stripped):
+            seen += 1
+            if seen == index:
+                start = i
+        elif start is not None and stripped.startswith("["):
+            break
+        elif start is not None and re.match(re.escape(leaf) + r"\s*=", stripped):
+            return i + 1
+    if start is not None:
+        return start + 1
+    return None
+
+
 def _where(path, key: str) -> str:
-    return f"{path}: {key}" if path else key
+    """file:line: key (or key alone without a file)."""
+    if not path:
+        return _shown(key, 200)
+    line = _line(path, key)
+    return f"{path}:{line}: {_shown(key, 200)}" if line else f"{path}: {_shown(key, 200)}"
 
 
 def _unknown(table: Dict[str, Any], known, path, prefix: str) -> None:
@@ -41,13 +82,13 @@ def _unknown(table: Dict[str, Any], known, path, prefix: str) -> None:
 def _int(table, key, default, lo, hi, path, prefix):
     v = table.get(key, default)
     if isinstance(v, bool) or not isinstance(v, int) or not lo <= v <= hi:
-        raise ValueError(f"{_where(path, prefix + '.' + key)}: must be an integer in [{lo}, {hi}], got {v!r}")
+        raise ValueError(f"{_where(path, prefix + '.' + key)}: must be an integer in [{lo}, {hi}], got {_shown(v)}")
     return v
 
 
 def _speed(v, key, path) -> float:
-    if isinstance(v, bool) or not isinstance(v, (int, float)) or not (math.isfinite(v) and 0 < v <= 1e6):
-        raise ValueError(f"{_where(path, key)}: must be a camshaft speed in (0, 1e6] rpm, got {v!r}")
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or not (math.isfinite(v) and 0 < v <= _MAX_RPM):
+        raise ValueError(f"{_where(path, key)}: must be a camshaft speed in (0, {_MAX_RPM:.6g}] rpm, got {_shown(v)}")
     return float(v)
 
 
@@ -60,7 +101,7 @@ def sweep_settings(table: Dict[str, Any], *, rpm=None, jump=None, path=None) -> 
     if rpm:
         speeds = [_speed(float(r), "--rpm", None) for r in rpm]
     elif "rpm" in table:
-        if "rpm_from" in table or "rpm_to" in table:
+        if "rpm_from" in table or "rpm_to" in table or "count" in table:
             raise ValueError(f"{_where(path, 'sweep.rpm')}: give rpm (a list) or rpm_from/rpm_to/count, not both")
         if not isinstance(table["rpm"], list) or not table["rpm"]:
             raise ValueError(f"{_where(path, 'sweep.rpm')}: must be a non-empty list of speeds (rpm)")
@@ -76,7 +117,7 @@ def sweep_settings(table: Dict[str, Any], *, rpm=None, jump=None, path=None) -> 
     bracket = jump if jump else table.get("jump")
     if bracket is not None:
         if not isinstance(bracket, (list, tuple)) or len(bracket) != 2:
-            raise ValueError(f"{_where(path, 'sweep.jump')}: must be two speeds [lo, hi] in rpm, got {bracket!r}")
+            raise ValueError(f"{_where(path, 'sweep.jump')}: must be two speeds [lo, hi] in rpm, got {_shown(bracket)}")
         bracket = [_speed(b, "sweep.jump", path) for b in bracket]
     contact = table.get("contact")
     if contact is not None and not isinstance(contact, str):
@@ -106,14 +147,14 @@ def montecarlo_settings(table: Optional[Dict[str, Any]], *, cases=None, seed=Non
         if not isinstance(name, str) or not name:
             raise ValueError(f"{_where(path, key + '.parameter')}: must name a numeric value of this file by its key path")
         if name in tolerances:
-            raise ValueError(f"{_where(path, key + '.parameter')}: {name!r} has two tolerances")
+            raise ValueError(f"{_where(path, key + '.parameter')}: {_shown(name)} has two tolerances")
         kind = b.get("distribution")
         if kind not in DISTRIBUTIONS:
-            raise ValueError(f"{_where(path, key + '.distribution')}: must be one of {list(DISTRIBUTIONS)}, got {kind!r}")
+            raise ValueError(f"{_where(path, key + '.distribution')}: must be one of {list(DISTRIBUTIONS)}, got {_shown(kind)}")
         try:
             tolerances[name] = distribution({k: v for k, v in b.items() if k != "parameter"})
         except ValueError as e:
-            raise ValueError(f"{_where(path, key)}: {e}") from None
+            raise ValueError(f"{_where(path, key)}: {_shown(str(e), 400)}") from None
     if cases is None:
         cases = _int(table, "cases", 100, 1, 10_000_000, path, "montecarlo")
     if seed is None:

@@ -22,12 +22,11 @@ cam surface ``cam_surface.csv`` and ``summary.json`` (written last: its presence
 from __future__ import annotations
 
 import argparse
+import io
 import json
 import math
 import os
-import shutil
 import sys
-import tempfile
 import time
 import warnings
 from dataclasses import dataclass, replace
@@ -36,6 +35,7 @@ from pathlib import Path
 import numpy as np
 
 from . import CamEccentricity, CamFollowerModel, Defects, DiskCam, MotionProgram, Parameters, presets, simulate
+from . import _files
 from . import analysis as an
 
 FOLLOWERS = {"offset": 0.010, "inline": 0.0}  # follower axis offset e, m
@@ -158,22 +158,9 @@ def run_case(cfg: StudyConfig, follower: str, formulation: str, defect: str, p: 
         clearance=guide, stats=dict(r.stats))
 
 
-def phase_statistics(program: MotionProgram, theta, signal) -> list[dict]:
-    """Peak |x| and RMS of a signal over each segment of the program (dwell, rise, return)."""
-    theta = np.mod(np.asarray(theta), 2 * math.pi)
-    x = np.asarray(signal)
-    out = []
-    for seg in program.segments:
-        inside = (theta >= seg.theta_start) & (theta < seg.theta_end)
-        kind = "dwell" if seg.h_end == seg.h_start else ("rise" if seg.h_end > seg.h_start else "return")
-        out.append({"phase": f"{kind} {math.degrees(seg.theta_start):.0f}-{math.degrees(seg.theta_end):.0f} deg",
-                    "peak": float(np.max(np.abs(x[inside]))), "rms": float(np.sqrt(np.mean(x[inside] ** 2)))})
-    return out
-
-
 def deviation_figures(case: CaseResult) -> dict:
     """Dwell peak and rise / return RMS of the follower acceleration's deviation from omega^2 h''."""
-    st = phase_statistics(case.program, case.theta, case.follower_acc - case.theory_acc)
+    st = an.phase_statistics(case.program, case.theta, case.follower_acc - case.theory_acc)
     return {"dwell_peak": max(s["peak"] for s in st if s["phase"].startswith("dwell")),
             "rise_rms": max(s["rms"] for s in st if s["phase"].startswith("rise")),
             "return_rms": max(s["rms"] for s in st if s["phase"].startswith("return"))}
@@ -185,7 +172,7 @@ def summarize(case: CaseResult, carrier: float) -> dict:
         "settle": {k: case.settle[k] for k in ("settled", "revolutions", "change", "change_absolute", "tolerance")},
         "newton_iterations_per_step": case.stats["mean_iterations"],
         "peak_follower_acceleration_m_s2": float(np.max(np.abs(case.follower_acc))),
-        "follower_acceleration_minus_theory_m_s2": phase_statistics(case.program, case.theta,
+        "follower_acceleration_minus_theory_m_s2": an.phase_statistics(case.program, case.theta,
                                                                      case.follower_acc - case.theory_acc),
         "dwell_deviation_peak_m_s2": dev["dwell_peak"],
         "rise_deviation_rms_m_s2": dev["rise_rms"],
@@ -275,7 +262,9 @@ class Progress:
 
 
 def write_csv(path: Path, header: list[str], columns) -> None:
-    np.savetxt(path, np.column_stack(columns), delimiter=",", header=",".join(header), comments="", fmt="%.9g")
+    table = io.StringIO()
+    np.savetxt(table, np.column_stack(columns), delimiter=",", header=",".join(header), comments="", fmt="%.9g")
+    _files.write_text(path, table.getvalue())
 
 
 def plot_kinematics(cam: DiskCam, rpm: float, path: Path) -> None:
@@ -302,8 +291,7 @@ def plot_kinematics(cam: DiskCam, rpm: float, path: Path) -> None:
     cfplot.profile(follower, cam.program, ax=fig.add_subplot(grid[:, 2]))
     fig.suptitle(f"Paper cam kinematics at {rpm:g} rpm (modified trapezoid, e = {1e3 * cam.offset:g} mm)")
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    _files.save_figure(fig, path)
 
 
 def kinematics_summary(cam: DiskCam, rpm: float) -> dict:
@@ -348,8 +336,7 @@ def make_figures(cases: dict, carrier: float, modal: dict, bands: list, cfg: Stu
 
     def save(fig, name):
         fig.tight_layout()
-        fig.savefig(folder / f"{name}.png", dpi=110)
-        plt.close(fig)
+        _files.save_figure(fig, folder / f"{name}.png")
         progress.step(name)
 
     def time_panels(name, title, ylabel, panels, signal):
@@ -458,7 +445,7 @@ def make_figures(cases: dict, carrier: float, modal: dict, bands: list, cfg: Stu
     ax.axhline(cfg.settle_tolerance, color="k", lw=0.6)
     ax.set_xlabel("revolution"), ax.set_ylabel("max |Δÿ4| / max |ÿ4| vs the previous revolution")
     ax.set_title("Settling to the periodic response (black: tolerance)"), ax.legend(fontsize=6, ncol=2), ax.grid(alpha=0.3)
-    (data / "fig18_settling.csv").write_text("case,revolution,change\n" + "".join(f"{k},{i},{v:.9g}\n" for k, i, v in rows))
+    _files.write_text(data / "fig18_settling.csv", "case,revolution,change\n" + "".join(f"{k},{i},{v:.9g}\n" for k, i, v in rows))
     save(fig, "fig18_settling")
 
     fig, ax = plt.subplots(figsize=(9, 4.5))
@@ -471,7 +458,7 @@ def make_figures(cases: dict, carrier: float, modal: dict, bands: list, cfg: Stu
     ax.set_title("Rise vs return vibration over what the paper does not give (offset, physical, healthy)")
     ax.legend(fontsize=8), ax.grid(alpha=0.3)
     keys = list(bands[0])
-    (data / "fig19_sensitivity.csv").write_text(",".join(keys) + "\n" + "".join(
+    _files.write_text(data / "fig19_sensitivity.csv", ",".join(keys) + "\n" + "".join(
         ",".join(f"{b[k]:.9g}" if isinstance(b[k], float) else str(b[k]) for k in keys) + "\n" for b in bands))
     save(fig, "fig19_sensitivity")
 
@@ -481,6 +468,9 @@ FIGURES = 14  # make_figures' progress steps
 def run_study(cfg: StudyConfig, out: Path, figures: bool = True) -> dict:
     """Run every case and the sensitivity bands, write figures, data and summary.json into `out`."""
     cfg.validate()
+    # Every file goes atomically into place (camfollower._files); summary.json, removed now and
+    # written last, marks a complete run.
+    out = _files.output_folder(out)
     bands_count = len(cfg.camshaft_masses) * len(cfg.contact_exponents)
     progress = Progress(len(FOLLOWERS) * len(FORMULATIONS) * len(DEFECTS) + bands_count + 1 + (FIGURES if figures else 0))
     cases = run_cases(cfg, progress)
@@ -515,23 +505,11 @@ def run_study(cfg: StudyConfig, out: Path, figures: bool = True) -> dict:
                 c["shaft_acceleration_sidebands"]["levels"], lines)
     progress.step("analysed")
 
-    # Stage everything, then move into place; summary.json last marks a complete run.
-    out.mkdir(parents=True, exist_ok=True)
-    stage = Path(tempfile.mkdtemp(prefix=".camfollower-study-", dir=out))
-    try:
-        if figures:
-            plot_kinematics(cam, cfg.rpm, stage / "kinematics.png")
-            make_figures(cases, carrier, modal, bands, cfg, stage, progress)
-        cam.write_surface_csv(str(stage / "cam_surface.csv"))
-        (stage / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
-        (out / "summary.json").unlink(missing_ok=True)
-        for item in sorted(stage.rglob("*"), key=lambda p: p.name == "summary.json"):
-            if item.is_file():
-                target = out / item.relative_to(stage)
-                target.parent.mkdir(parents=True, exist_ok=True)
-                os.replace(item, target)
-    finally:
-        shutil.rmtree(stage, ignore_errors=True)
+    if figures:
+        plot_kinematics(cam, cfg.rpm, out / "kinematics.png")
+        make_figures(cases, carrier, modal, bands, cfg, out, progress)
+    cam.write_surface_csv(str(out / "cam_surface.csv"))
+    _files.write_text(out / "summary.json", json.dumps(summary, indent=2) + "\n")
     return summary
 
 

@@ -156,6 +156,9 @@ class PaperCase:
 
     def nominal(self, name: str) -> float:
         self._check(name)
+        if name == "contact_damping":
+            raise ValueError("PaperCase: contact_damping is a model choice, not a number to scatter; "
+                             "fix it with PaperCase(contact_damping=...)")
         if name in self.fixed:
             return float(self.fixed[name])
         return self.EXTRA[name] if name in self.EXTRA else _core.Parameters().get(name)
@@ -309,13 +312,15 @@ class MonteCarloResult:
             out.append({"parameter": p, "correlation": r, "standardized_coefficient": float(coef[j])})
         return sorted(out, key=lambda d: -abs(d["standardized_coefficient"]))
 
-    def to_parquet(self, path: os.PathLike | str) -> None:
-        """Write the table as Parquet (pyarrow), atomically."""
+    def to_parquet(self, path: os.PathLike | str, *, protect=()) -> None:
+        """Write the table as Parquet (pyarrow), atomically (camfollower._files; never over `protect`)."""
         import io
+
+        from . import _files
 
         buf = io.BytesIO()
         self.table.to_parquet(buf, index=False)
-        _core.write_file_atomically(os.fspath(path), buf.getvalue())
+        _files.write_bytes(path, buf.getvalue(), protect=protect)
 
     def plot(self, metric: str = "min_force_N"):
         """Histogram of ``metric`` (nominal marked) and its scatter against the most influential

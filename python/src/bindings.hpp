@@ -43,6 +43,19 @@ py::dict map_to_dict(const DoubleArray& x, const std::array<const char*, K>& nam
     return d;
 }
 
+// A number given as a Python keyword or list entry: int, float or anything with __float__ (NumPy
+// scalars), never a string or a bool. Raises TypeError naming the argument, instead of pybind11's
+// "Unable to cast ... to C++ type '?'".
+inline double number_argument(const std::string& name, const py::handle& value) {
+    if (!py::isinstance<py::bool_>(value) && !py::isinstance<py::str>(value) && !py::isinstance<py::bytes>(value)) {
+        const double x = PyFloat_AsDouble(value.ptr());
+        if (!(x == -1.0 && PyErr_Occurred())) return x;
+        PyErr_Clear();
+    }
+    std::string type = py::str(py::type::handle_of(value).attr("__name__"));
+    throw py::type_error(name + " must be a number, got " + type);
+}
+
 // A follower object from Python as the C++ variant (mechanism.cpp): no pybind11 caster handles a
 // variant of types without a default constructor.
 Follower follower_from(const py::handle& f);

@@ -19,7 +19,7 @@ namespace {
 
 // Python ints of any sign arrive here, so a negative count is a ValueError naming the parameter.
 std::size_t point_count(long long points) {
-    if (points < 3) detail::fail("points must be an integer >= 3, got ", points);
+    detail::require_point_count(points, 3, "points");
     return static_cast<std::size_t>(points);
 }
 
@@ -92,14 +92,23 @@ void bind_export(py::module_& m) {
         "points; then theta_rad,surface_x_<unit>,surface_y_<unit>[,cutter_x_<unit>,cutter_y_<unit>]), atomically.");
     m.def(
         "write_file_atomically",
-        [](const std::string& path, const py::bytes& content) {
+        [](const std::string& path, const py::bytes& content, const std::vector<std::string>& protect) {
             const std::string data = content;
             py::gil_scoped_release release;
-            detail::write_file_atomically(path, data);
+            detail::write_file_atomically(path, data, "path", protect);
         },
-        py::arg("path"), py::arg("content"),
-        "Replace or create `path` with `content` (bytes) atomically: a temporary in the same folder, then rename.\n"
-        "Refuses a target that exists and is not a regular file; leaves nothing behind on failure.");
+        py::arg("path"), py::arg("content"), py::arg("protect") = std::vector<std::string>{},
+        "Replace or create `path` with `content` (bytes) atomically: a uniquely named temporary in the same\n"
+        "folder, then a rename; nothing is left behind on failure. Refuses (ValueError) a target that is a\n"
+        "directory, FIFO, socket, device or symbolic link, a read-only file, a path holding a NUL, and any\n"
+        "of `protect` (input files the run read).");
+    m.def(
+        "check_output_target",
+        [](const std::string& path, const std::vector<std::string>& protect) {
+            detail::require_output_target(path, "path", protect);
+        },
+        py::arg("path"), py::arg("protect") = std::vector<std::string>{},
+        "Raise ValueError if write_file_atomically would refuse `path` (checked before a long run).");
 }
 
 }  // namespace camfollower::python

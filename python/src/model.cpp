@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Bindings for include/camfollower/model: parameters, defects, the 7-DOF model, modal analysis.
+#include <cmath>
 #include <optional>
 
 #include <pybind11/eigen.h>
@@ -12,30 +13,50 @@
 namespace camfollower::python {
 
 namespace {
-CamFollowerParameters parameters_from_kwargs(const py::kwargs& kwargs) {
-    CamFollowerParameters p;
-    for (const auto& item : kwargs) {
-        const std::string name = py::str(item.first);
-        if (name == "contact_damping") {
-            const std::string model = py::str(item.second);
-            if (model == "none") p.contact_damping = ContactDampingModel::none;
-            else if (model == "hunt_crossley") p.contact_damping = ContactDampingModel::hunt_crossley;
-            else if (model == "lankarani_nikravesh") p.contact_damping = ContactDampingModel::lankarani_nikravesh;
-            else detail::fail("contact_damping must be 'none', 'hunt_crossley' or 'lankarani_nikravesh', got '", model, "'");
-            continue;
-        }
-        double& slot = p.ref(name);  // unknown names fail here, before the value is converted
-        slot = item.second.cast<double>();  // validated once all are set: order does not matter
+constexpr const char* contact_damping_models = "'none', 'hunt_crossley' or 'lankarani_nikravesh'";
+
+const char* contact_damping_name(ContactDampingModel model) {
+    return model == ContactDampingModel::none            ? "none"
+           : model == ContactDampingModel::hunt_crossley ? "hunt_crossley"
+                                                         : "lankarani_nikravesh";
+}
+
+// One setter for every name Parameters.names() lists, used by the constructor, replace() and
+// with_parameters(); the caller validates once all are set (order does not matter).
+void assign_parameter(CamFollowerParameters& p, const std::string& name, const py::handle& value) {
+    if (name == "contact_damping") {
+        if (!py::isinstance<py::str>(value))
+            throw py::type_error(detail::concat("contact_damping must be ", contact_damping_models, ", got ",
+                                                std::string(py::str(py::type::handle_of(value).attr("__name__")))));
+        const std::string model = py::str(value);
+        if (model == "none") p.contact_damping = ContactDampingModel::none;
+        else if (model == "hunt_crossley") p.contact_damping = ContactDampingModel::hunt_crossley;
+        else if (model == "lankarani_nikravesh") p.contact_damping = ContactDampingModel::lankarani_nikravesh;
+        else detail::fail("contact_damping must be ", contact_damping_models, ", got '", detail::printable(model), "'");
+        return;
     }
+    double& slot = p.ref(name);  // unknown names fail here, before the value is converted
+    slot = number_argument(name, value);
+}
+
+CamFollowerParameters with_kwargs(CamFollowerParameters p, const py::kwargs& kwargs) {
+    for (const auto& item : kwargs) assign_parameter(p, py::str(item.first), item.second);
     p.validate();
     return p;
 }
+
+CamFollowerParameters parameters_from_kwargs(const py::kwargs& kwargs) { return with_kwargs({}, kwargs); }
 
 std::vector<std::string> parameter_names() {
     std::vector<std::string> names;
     for (const auto& f : CamFollowerParameters::fields()) names.emplace_back(f.name);
     names.emplace_back("contact_damping");
     return names;
+}
+
+py::object get_parameter(const CamFollowerParameters& p, const std::string& name) {
+    if (name == "contact_damping") return py::str(contact_damping_name(p.contact_damping));
+    return py::float_(p.get(name));
 }
 }  // namespace
 
@@ -46,26 +67,13 @@ void bind_model(py::module_& m) {
         "Parameters(contact_stiffness=2e8, camshaft_speed_rpm=1000). Parameters.names() lists them.");
     params.def(py::init(&parameters_from_kwargs))
         .def_static("names", &parameter_names)
-        .def("get", &CamFollowerParameters::get, py::arg("name"))
-        .def(
-            "replace",
-            [](const CamFollowerParameters& p, const py::kwargs& kwargs) {
-                CamFollowerParameters q = p;
-                for (const auto& item : kwargs) {
-                    const std::string name = py::str(item.first);
-                    if (name == "contact_damping") detail::fail("replace: give contact_damping to Parameters(...)");
-                    q.ref(name) = item.second.cast<double>();
-                }
-                q.validate();
-                return q;
-            },
-            "A copy with the given parameters changed (validated); Parameters are immutable.")
+        .def("get", &get_parameter, py::arg("name"),
+             "The value of one of names(): a float (SI units), or the contact_damping model's name.")
+        .def("replace", &with_kwargs,
+             "A copy with the given parameters changed (validated); Parameters are immutable.")
         .def("to_dict", [](const CamFollowerParameters& p) {
             py::dict d;
-            for (const auto& f : CamFollowerParameters::fields()) d[f.name] = p.get(f.name);
-            d["contact_damping"] = p.contact_damping == ContactDampingModel::none ? "none"
-                                   : p.contact_damping == ContactDampingModel::hunt_crossley ? "hunt_crossley"
-                                                                                           : "lankarani_nikravesh";
+            for (const auto& name : parameter_names()) d[name.c_str()] = get_parameter(p, name);
             return d;
         })
         .def_property_readonly("omega", &CamFollowerParameters::omega, "camshaft speed, rad/s")
@@ -73,8 +81,12 @@ void bind_model(py::module_& m) {
             std::string s = "Parameters(";
             for (const auto& f : CamFollowerParameters::fields())
                 s += detail::concat(f.name, "=", p.get(f.name), ", ");
-            return s.substr(0, s.size() - 2) + ")";
+            return s + "contact_damping='" + contact_damping_name(p.contact_damping) + "')";
         });
+    params.def_property_readonly(
+        "contact_damping", [](const CamFollowerParameters& p) { return contact_damping_name(p.contact_damping); },
+        "contact damping model: 'none', 'hunt_crossley' or 'lankarani_nikravesh'; read-only: use "
+        "replace(contact_damping=...)");
     for (const auto& f : CamFollowerParameters::fields()) {
         const std::string name = f.name;
         params.def_property_readonly(
@@ -117,10 +129,7 @@ void bind_model(py::module_& m) {
         .def(
             "with_parameters",
             [](const CamFollowerModel& m, const py::kwargs& kwargs) {
-                CamFollowerParameters q = m.parameters();
-                for (const auto& item : kwargs) q.ref(py::str(item.first)) = item.second.cast<double>();
-                q.validate();
-                return CamFollowerModel(q, m.cam().program(), m.defects());
+                return CamFollowerModel(with_kwargs(m.parameters(), kwargs), m.cam().program(), m.defects());
             },
             "A new model with the given parameters changed (the model itself is immutable).")
         .def_property_readonly("defects", &CamFollowerModel::defects)
@@ -145,6 +154,13 @@ void bind_model(py::module_& m) {
             "contact",
             [](const CamFollowerModel& model, double t, const CamFollowerModel::Vector& q,
                const CamFollowerModel::Vector& v) {
+                for (int k = 0; k < CamFollowerModel::dofs; ++k) {
+                    if (!(std::abs(q[k]) <= detail::max_part_length))
+                        detail::fail("q[", k, "] (", CamFollowerModel::dof_name(k), ") must be in [",
+                                     -detail::max_part_length, ", ", detail::max_part_length, "] m, got ", q[k]);
+                    if (!std::isfinite(v[k]))
+                        detail::fail("v[", k, "] (", CamFollowerModel::dof_name(k), ") must be finite (m/s), got ", v[k]);
+                }
                 const auto c = model.at_time(t);
                 const auto n = model.nonlinear(c, q, v);
                 py::dict d;

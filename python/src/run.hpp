@@ -133,6 +133,8 @@ py::dict run_system(const System& system, double duration, const NewmarkSettings
     stats["decimation"] = result->decimation;
     stats["cancelled"] = result->report.cancelled;
     stats["backend"] = result->backend;
+    stats["highest_mode_hz"] = result->highest_mode_hz;
+    stats["steps_per_shortest_period"] = 1.0 / (result->highest_mode_hz * result->time_step);
     const SettleReport& sr = result->settle;
     if (sr.requested) {
         py::dict st;

@@ -184,7 +184,7 @@ TEST_CASE("a cutter larger than the tightest concave radius is refused at that c
     double tightest = std::numeric_limits<double>::infinity(), at = 0.0;
     for (std::size_t k = 0; k < s.size(); ++k) {
         const double r = three_point_radius(s[(k + s.size() - 1) % s.size()], s[k], s[(k + 1) % s.size()]);
-        if (r < 0.0 && -r < tightest) tightest = -r, at = 2 * pi * static_cast<double>(k) / s.size();
+        if (r < 0.0 && -r < tightest) tightest = -r, at = 2 * pi * static_cast<double>(k) / static_cast<double>(s.size());
     }
     REQUIRE(std::isfinite(tightest));
     INFO("tightest concave radius " << tightest << " m at " << at / deg << " deg");
@@ -347,5 +347,51 @@ TEST_CASE("the atomic writer refuses non-regular targets and never leaves partia
         REQUIRE(::stat(path.c_str(), &st) == 0);
         CHECK((st.st_mode & 0777) == 0600);
         CHECK(dir.entries() == std::vector<std::string>{"cam.csv"});
+    }
+    SECTION("a symbolic link is refused and stays a link to its untouched file") {
+        const std::string real = dir.path + "/real.csv", link = dir.path + "/link.csv";
+        { std::ofstream(real) << "keep\n"; }
+        REQUIRE(::symlink(real.c_str(), link.c_str()) == 0);
+        CHECK_THROWS_WITH(detail::write_file_atomically(link, "new\n"), Catch::Contains("symbolic link"));
+        struct stat st {};
+        REQUIRE(::lstat(link.c_str(), &st) == 0);
+        CHECK(S_ISLNK(st.st_mode));
+        CHECK(read_all(real) == "keep\n");
+        CHECK(dir.entries() == std::vector<std::string>{"link.csv", "real.csv"});
+    }
+    SECTION("a read-only file is refused, even for root") {
+        const std::string path = dir.path + "/cam.csv";
+        { std::ofstream(path) << "protected\n"; }
+        ::chmod(path.c_str(), 0444);
+        CHECK_THROWS_WITH(detail::write_file_atomically(path, "new\n"), Catch::Contains("read-only"));
+        CHECK(read_all(path) == "protected\n");
+        CHECK(dir.entries() == std::vector<std::string>{"cam.csv"});
+    }
+    SECTION("an input file is refused under any of its names") {
+        const std::string input = dir.path + "/case.toml";
+        { std::ofstream(input) << "[camshaft]\n"; }
+        ::mkdir((dir.path + "/sub").c_str(), 0755);
+        CHECK_THROWS_WITH(detail::write_file_atomically(dir.path + "/sub/../case.toml", "x", "output", {input}),
+                          Catch::StartsWith("output: ") && Catch::Contains("is the input file"));
+        CHECK(read_all(input) == "[camshaft]\n");
+    }
+    SECTION("a NUL in the path is refused, not truncated") {
+        const std::string path = dir.path + std::string("/a\0b.csv", 8);
+        CHECK_THROWS_WITH(detail::write_file_atomically(path, "x"), Catch::Contains("NUL"));
+        CHECK(dir.entries().empty());
+    }
+    SECTION("the temporary's name is unique: a file named like it is left alone") {
+        const std::string path = dir.path + "/cam.csv", lookalike = dir.path + "/.cam.csv.tmp";
+        { std::ofstream(lookalike) << "someone else's\n"; }
+        detail::write_file_atomically(path, "one\n");
+        detail::write_file_atomically(path, "two\n");
+        CHECK(read_all(path) == "two\n");
+        CHECK(read_all(lookalike) == "someone else's\n");
+        CHECK(dir.entries() == std::vector<std::string>{".cam.csv.tmp", "cam.csv"});
+    }
+    SECTION("point counts are bounded") {
+        CHECK_THROWS_WITH(write_cam_csv(dir.path + "/cam.csv", f, paper, std::size_t(1) << 40),
+                          Catch::Contains("points must be an integer in [3, 10000000]"));
+        CHECK(dir.entries().empty());
     }
 }

@@ -116,8 +116,23 @@ TEST_CASE("invalid programs are rejected with the parameter named") {
     }
     SECTION("non-finite") {
         CHECK_THROWS_WITH(MotionProgram({{mt, 0, pi, 0, std::nan("")}, {mt, pi, 2 * pi, 0, 0}}),
-                          Catch::Contains("segments[0].h_start/h_end must be finite"));
+                          Catch::Contains("segments[0].h_start/h_end must be in"));
         CHECK_THROWS_WITH(MotionProgram::paper_default().evaluate(INFINITY), Catch::Contains("theta must be finite"));
     }
     SECTION("empty") { CHECK_THROWS_AS(MotionProgram({}), std::invalid_argument); }
+    SECTION("a segment shorter than the snapping tolerance cannot carry a step in the lift") {
+        // Boundaries 4e-10 rad apart pass the 1e-9 rad tiling check; snapped, the rise would span
+        // -5e-10 rad (or 0) and its 1 mm lift would be a step in h.
+        const double r0 = pi - 9e-10, r1 = pi - 5e-10;
+        CHECK_THROWS_WITH(MotionProgram({{dw, 0, pi, 0, 0}, {mt, r0, r1, 0, 1e-3}, {dw, r1, 2 * pi - 0.5, 1e-3, 1e-3},
+                                         {mt, 2 * pi - 0.5, 2 * pi, 1e-3, 0}}),
+                          Catch::Contains("segments[1] spans") && Catch::Contains("at least 1e-06 rad"));
+        CHECK_THROWS_WITH(MotionProgram({{mt, 0, 1e-300, 0, 1e-3}, {mt, 1e-300, 2 * pi, 1e-3, 0}}),
+                          Catch::Contains("segments[0] spans"));
+        CHECK_NOTHROW(MotionProgram({{mt, 0, 2e-6, 0, 1e-9}, {mt, 2e-6, 2 * pi, 1e-9, 0}}));
+    }
+    SECTION("lifts beyond a kilometre") {
+        CHECK_THROWS_WITH(MotionProgram({{mt, 0, pi, 0, 1e154}, {mt, pi, 2 * pi, 1e154, 0}}),
+                          Catch::Contains("segments[0].h_start/h_end must be in [-1000, 1000] m"));
+    }
 }

@@ -22,7 +22,9 @@ import camfollower as cf  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = sorted((ROOT / "examples").glob("*.toml"))
-CLI = ROOT / "build" / "src" / "camfollower"
+# The sanitized build of scripts/test.sh first (the fuzzer then runs under ASan/UBSan), else a Release one.
+CLI = next((p for p in (ROOT / "build-sanitize" / "src" / "camfollower", ROOT / "build" / "src" / "camfollower")
+            if p.exists()), ROOT / "build-sanitize" / "src" / "camfollower")
 
 HOSTILE = ["-1", "0", "1e300", "-1e300", "1e-320", "nan", "inf", "-inf", "2.5", "9223372036854775807",
            "-9223372036854775808", "true", "[]", "{}", "[1, 2]", '"x"', '""', '"nan"', '"1e999 mm"', '"10 parsec"',

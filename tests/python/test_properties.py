@@ -127,3 +127,85 @@ def test_simulate_runs_or_refuses_its_step_and_duration(time_step, duration):
     result = raises_naming(run, "time_step", "duration", "steps", "stability")
     if result is not None:
         assert finite(result.q) and finite(result["cam.force"])
+
+
+def _follower(kind, base, size, offset):
+    if kind == "translating_flat":
+        return cf.TranslatingFlat(base, 0.0, offset)
+    if kind == "oscillating_roller":
+        return cf.OscillatingRoller(base, size, [0.12, 0.0], 0.11 + offset)
+    if kind == "oscillating_flat":
+        return cf.OscillatingFlat(base, [0.12, 0.05], offset)
+    return cf.DiskCam(cf.MotionProgram.paper_default(), base, size, offset)
+
+
+@given(kind=st.sampled_from(["translating_flat", "oscillating_roller", "oscillating_flat", "disk_cam"]),
+       base=length, size=length, offset=st.one_of(st.floats(min_value=-0.02, max_value=0.02), anything),
+       lift=st.one_of(st.floats(min_value=1e-4, max_value=0.05), anything))
+def test_every_follower_type_is_checked_or_refused(kind, base, size, offset, lift):
+    """The other three follower types and the paper's DiskCam: built and checked against a program
+    of any lift, or refused naming the part; what is accepted has finite, meaningful geometry."""
+    names = ("base_radius", "roller_radius", "offset", "face", "arm", "pivot", "undercut", "theta", "cusp",
+             "pressure angle", "radius", "lift", "h_")
+    follower = raises_naming(lambda: _follower(kind, base, size, offset), *names)
+    program = raises_naming(lambda: cf.MotionProgram.paper_default(lift), "rise", "lift", "total_rise", "h")
+    if follower is None or program is None:
+        return
+    if kind == "disk_cam":
+        theta, radius = follower.min_surface_radius()
+        assert math.isfinite(theta) and math.isfinite(radius) and radius > 0
+        return
+    if raises_naming(lambda: follower.check(program) or True, *names):
+        theta, alpha = follower.max_pressure_angle(program)
+        assert math.isfinite(alpha) and abs(alpha) < math.pi / 2
+        theta, radius = follower.min_surface_radius(program)
+        assert math.isfinite(radius)
+
+
+NUMERIC = [n for n in cf.Parameters.names() if n != "contact_damping"]
+
+
+@given(values=st.dictionaries(st.sampled_from(NUMERIC), anything, min_size=1, max_size=3),
+       damping=st.sampled_from(["none", "hunt_crossley", "lankarani_nikravesh", "viscous"]))
+def test_parameters_build_a_model_or_are_refused_by_name(values, damping):
+    names = tuple(values) + ("contact_damping", "static equilibrium", "calibration", "offset", "radius")
+
+    def build():
+        return cf.CamFollowerModel(cf.Parameters(contact_damping=damping, **values))
+
+    model = raises_naming(build, *names)
+    if model is not None:
+        assert finite(model.initial_state) and finite(model.stiffness_matrix) and math.isfinite(model.spring_preload)
+
+
+@given(eccentricity=anything, phase=anything, backlash=anything, width=anything)
+def test_defects_are_validated_by_name(eccentricity, phase, backlash, width):
+    defects = raises_naming(lambda: cf.Defects(eccentricity, phase, backlash, width),
+                            "eccentricity", "backlash", "phase", "width")
+    if defects is None:
+        return
+    model = raises_naming(lambda: cf.CamFollowerModel(defects=defects), "eccentricity", "backlash", "static equilibrium")
+    if model is not None:
+        assert finite(model.initial_state)
+
+
+@given(signal=st.lists(anything, max_size=40), rate=anything, count=st.integers(-2, 5))
+def test_analysis_is_finite_or_refused_by_name(signal, rate, count):
+    from camfollower import analysis as an
+
+    spec = raises_naming(lambda: an.spectrum(signal, rate), "signal", "sample_rate")
+    if spec is not None:
+        assert finite(spec.amplitude) and finite(spec.frequency)
+        peaks = raises_naming(lambda: an.find_peaks(spec, count), "count")
+        assert peaks is None or all(math.isfinite(f) and math.isfinite(a) for f, a in peaks)
+    t = np.arange(len(signal), dtype=float)
+    flags = [x > 0 if math.isfinite(x) else False for x in signal]
+    intervals = an.contact_loss_intervals(t, flags)
+    assert all(a <= b for a, b in intervals)
+    theta = np.linspace(0.0, 2 * math.pi, len(signal), endpoint=False)
+    stats = raises_naming(lambda: an.phase_statistics(PRESET_MODEL, theta, signal), "theta", "signal", "phase")
+    if stats is not None:
+        assert all(math.isfinite(s["peak"]) and math.isfinite(s["rms"]) for s in stats)
+
+
+PRESET_MODEL = cf.CamFollowerModel()

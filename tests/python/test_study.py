@@ -25,7 +25,7 @@ def test_study_writes_figures_data_and_summary(tmp_path):
         assert len(list((out / "data").glob(f"fig{n:02d}_*.csv"))) == 1
     assert (out / "kinematics.png").stat().st_size > 10000
     assert summary["spectral_resolution_hz"] == pytest.approx(6.25)
-    assert not list(out.glob(".camfollower-study-*"))  # no staging left behind
+    assert not [p.name for p in out.rglob(".*")]  # no temporaries or staging folders left behind
     k = summary["kinematics"]
     assert k["max_theoretical_follower_acceleration_m_s2"] == pytest.approx(43.993, abs=1e-3)
 

@@ -173,7 +173,7 @@ public:
 
     // n + 1 points theta_k = 2 pi k / n (k = 0..n), so the last point closes the profile.
     std::vector<ProfilePoint> sample(std::size_t n, double offset) const {
-        if (n < 3) detail::fail("points must be >= 3, got ", n);
+        detail::require_point_count(n, 3, "points");
         std::vector<ProfilePoint> out;
         out.reserve(n + 1);
         for (std::size_t k = 0; k <= n; ++k)
@@ -199,9 +199,17 @@ private:
     // (follower/profile.hpp): each segment split further at the program's breakpoints (a profile
     // error's dent centres and edges: a dent narrower than a segment's sampling step would fall
     // between two samples), each piece sampled at least 600 times and no coarser than the program's
-    // sampling step (waviness), then refined. Ties keep the earliest piece. -inf if none is kept.
+    // sampling step (waviness), then refined. Ties keep the earliest piece. -inf if none is kept. A
+    // non-finite f is refused: a comparison would skip a NaN and report a value that is not the worst.
     template <class Keep, class F>
-    AngleExtremum max_over_pieces(const Keep& keep, const F& f) const {
+    AngleExtremum max_over_pieces(const Keep& keep, const F& raw) const {
+        const auto f = [&](double t) {
+            const double v = raw(t);
+            if (!std::isfinite(v))
+                detail::fail("the cam profile's geometry is not finite at theta = ", radians_to_degrees(t),
+                             " deg (the lift's derivatives overflow: check the program's spans and lifts)");
+            return v;
+        };
         const std::vector<double> breaks = program_.breakpoints();
         const double step = program_.sampling_step();
         AngleExtremum best{0.0, -std::numeric_limits<double>::infinity()};

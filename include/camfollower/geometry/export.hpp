@@ -63,7 +63,7 @@ AngleExtremum min_concave_radius(const MotionProgram& program, const F& follower
 template <class F>
 CamOutline cam_outline(const F& follower, const MotionProgram& program, std::size_t points = 3600,
                        std::optional<double> cutter_radius = std::nullopt, LengthUnit unit = LengthUnit::mm) {
-    if (points < 3) detail::fail("points must be >= 3, got ", points);
+    detail::require_point_count(points, 3, "points");
     if (cutter_radius) detail::require_non_negative(*cutter_radius, "cutter_radius", "(m)");
     length_unit_spec(unit);  // validates the enumerator
     check_undercut(program, follower);

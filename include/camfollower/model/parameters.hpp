@@ -143,7 +143,7 @@ struct CamFollowerParameters {
         detail::require_in_range(restitution, 0.0, 1.0, "restitution");
         require_positive(reference_speed, "reference_speed", "(m/s)");
         require_non_negative(gravity, "gravity", "(m/s^2)");
-        require_positive(camshaft_speed_rpm, "camshaft_speed_rpm", "(rpm)");
+        detail::require_camshaft_speed_rpm(camshaft_speed_rpm, "camshaft_speed_rpm");
         require_positive(geometry.base_radius, "base_radius", "(m)");
         require_positive(geometry.roller_radius, "roller_radius", "(m)");
         const double rp = geometry.base_radius + geometry.roller_radius;

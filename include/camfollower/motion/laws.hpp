@@ -27,12 +27,11 @@
 #include "camfollower/error.hpp"
 #include "camfollower/motion/follower_motion.hpp"
 #include "camfollower/motion/lift_peaks.hpp"
+#include "camfollower/constants.hpp"
 #include "camfollower/motion/lift_polynomial.hpp"
 #include "camfollower/motion/lift_spline.hpp"
 
 namespace camfollower {
-
-inline constexpr double pi = 3.14159265358979323846;
 
 struct LawValue {
     double S, V, A, J;

@@ -19,6 +19,7 @@
 #include <Eigen/Core>
 #include <Eigen/SVD>
 
+#include "camfollower/constants.hpp"
 #include "camfollower/error.hpp"
 #include "camfollower/motion/follower_motion.hpp"
 #include "camfollower/motion/lift_peaks.hpp"
@@ -55,11 +56,11 @@ public:
             if (!std::isfinite(theta) || !std::isfinite(h))
                 detail::fail("interior[", i, "] must be finite, got theta = ", theta, " rad, h = ", h, " m");
             if (!(theta > theta_start && theta < theta_end))
-                detail::fail("interior[", i, "]: theta = ", theta * 180.0 / pi_, " deg must lie strictly inside (",
-                             theta_start * 180.0 / pi_, ", ", theta_end * 180.0 / pi_, ") deg");
+                detail::fail("interior[", i, "]: theta = ", theta * 180.0 / pi, " deg must lie strictly inside (",
+                             theta_start * 180.0 / pi, ", ", theta_end * 180.0 / pi, ") deg");
             for (std::size_t j = 0; j < i; ++j)
                 if (std::abs(interior[j].first - theta) <= 1e-12 * span)
-                    detail::fail("interior[", i, "] repeats the angle of interior[", j, "] (", theta * 180.0 / pi_,
+                    detail::fail("interior[", i, "] repeats the angle of interior[", j, "] (", theta * 180.0 / pi,
                                  " deg): each interior angle may carry one lift");
         }
         LiftPolynomial p(theta_start, theta_end, std::move(start), std::move(end), std::move(interior));
@@ -114,8 +115,6 @@ public:
     }
 
 private:
-    static constexpr double pi_ = 3.14159265358979323846;
-
     LiftPolynomial(double theta_start, double theta_end, std::vector<double> start, std::vector<double> end,
                    std::vector<std::pair<double, double>> interior)
         : theta_start_(theta_start),

@@ -83,6 +83,10 @@ class MotionProgram {
 public:
     // Boundaries may be off by up to this much (rad) and are then snapped to exact tiling.
     static constexpr double angle_tolerance = 1e-9;
+    // The shortest segment, checked after snapping: a span near the snapping tolerance would be set by
+    // rounding (zero or negative spans carrying a step in the lift), and the derivatives h^(k) scale as
+    // lift / span^k (a 1e-300 rad rise overflows them). 1e-6 rad = 0.2 arc seconds.
+    static constexpr double min_span = 1e-6;
 
     explicit MotionProgram(std::vector<Segment> segments) : segments_(std::move(segments)) {
         validate();
@@ -257,8 +261,9 @@ private:
             const std::string at = detail::concat("segments[", i, "]");
             if (!std::isfinite(s.theta_start) || !std::isfinite(s.theta_end))
                 detail::fail(at, ".theta_start/theta_end must be finite");
-            if (!std::isfinite(s.h_start) || !std::isfinite(s.h_end))
-                detail::fail(at, ".h_start/h_end must be finite (m), got ", s.h_start, ", ", s.h_end);
+            if (!(std::abs(s.h_start) <= detail::max_part_length && std::abs(s.h_end) <= detail::max_part_length))
+                detail::fail(at, ".h_start/h_end must be in [", -detail::max_part_length, ", ", detail::max_part_length,
+                             "] m, got ", s.h_start, ", ", s.h_end);
             if (!(s.span() > 0.0))
                 detail::fail(at, ": span beta = theta_end - theta_start must be > 0 rad, got ",
                              s.span(), " rad (", radians_to_degrees(s.span()), " deg)");
@@ -303,6 +308,11 @@ private:
         }
         segments_.back().theta_end = two_pi;
         segments_.back().h_end = segments_.front().h_start;
+        for (std::size_t i = 0; i < segments_.size(); ++i)
+            if (!(segments_[i].span() >= min_span))
+                detail::fail("segments[", i, "] spans ", radians_to_degrees(segments_[i].span()),
+                             " deg once the boundaries are snapped to tile the revolution; a segment must span at least ",
+                             min_span, " rad (", radians_to_degrees(min_span), " deg)");
         max_lift_ = design_max_lift(), min_lift_ = design_min_lift();
     }
 

@@ -31,6 +31,7 @@
 #include <Eigen/SparseCore>
 
 #include "camfollower/core/system.hpp"
+#include "camfollower/constants.hpp"
 #include "camfollower/error.hpp"
 
 namespace camfollower {
@@ -246,17 +247,26 @@ public:
     template <class StateType>
     void check_stability_limit(const StateType& s0) {
         if (s_.beta >= 0.5 * s_.gamma) return;
+        const double omega_max = highest_angular_frequency(s0);
+        if (!std::isfinite(omega_max)) return;
+        const double limit = 0.9 / (omega_max * std::sqrt(0.5 * s_.gamma - s_.beta));
+        if (s_.time_step > limit)
+            detail::fail("time_step = ", s_.time_step, " s exceeds the stability limit ", limit, " s of Newmark with beta = ",
+                         s_.beta, " < gamma / 2 (highest mode ", omega_max / (2.0 * pi),
+                         " Hz); reduce time_step or use beta = 1/4");
+    }
+
+    // Highest undamped natural angular frequency (rad/s) with the contacts' tangent at state s0; NaN
+    // when the eigen solve fails. Reported with a run, so the step can be read against the shortest
+    // period it has to resolve.
+    template <class StateType>
+    double highest_angular_frequency(const StateType& s0) {
         fill_tangent(s0.workspace, s0.q, s0.v, 1.0, 0.0);
         const Matrix uv = uv_.U.leftCols(uv_.rank) * uv_.V.leftCols(uv_.rank).transpose();
         const Matrix Kt = system_.stiffness() + 0.5 * (uv + uv.transpose());
         const Eigen::GeneralizedSelfAdjointEigenSolver<Matrix> eig(Kt, system_.mass(), Eigen::EigenvaluesOnly);
-        if (eig.info() != Eigen::Success) return;
-        const double omega_max = std::sqrt(std::max(eig.eigenvalues().maxCoeff(), 0.0));
-        const double limit = 0.9 / (omega_max * std::sqrt(0.5 * s_.gamma - s_.beta));
-        if (s_.time_step > limit)
-            detail::fail("time_step = ", s_.time_step, " s exceeds the stability limit ", limit, " s of Newmark with beta = ",
-                         s_.beta, " < gamma / 2 (highest mode ", omega_max / (2.0 * 3.14159265358979323846),
-                         " Hz); reduce time_step or use beta = 1/4");
+        if (eig.info() != Eigen::Success) return std::numeric_limits<double>::quiet_NaN();
+        return std::sqrt(std::max(eig.eigenvalues().maxCoeff(), 0.0));
     }
 
 private:
@@ -340,6 +350,10 @@ public:
         accepted(system_, s.workspace, s.q, s.v);  // path memory starts from the initial state
         return s;
     }
+
+    // Highest undamped natural angular frequency (rad/s) at a state, contacts linearized (NaN when
+    // the eigen solve fails): what the step has to resolve.
+    double highest_angular_frequency(const StateType& s) { return linear_.highest_angular_frequency(s); }
 
     // One step of the nominal size, halving (recursively, bounded) when Newton fails.
     void step(StateType& state, SolverStatistics& stats, int level = 0) {

@@ -102,7 +102,7 @@ public:
     RevolutionMap(Stepper& stepper, const ShootingOptions& o, int n)
         : stepper_(stepper), t0_(o.start_time), n_(n),
           steps_(static_cast<std::uint64_t>(std::round(o.period / stepper.time_step()))),
-          v_floor_(1e-9 * 2.0 * 3.14159265358979323846 / o.period) {
+          v_floor_(1e-9 * 2.0 * pi / o.period) {
         q_.resize(n), v_.resize(n);
     }
     // out = Phi(z); scales of the run in q_max, v_max.

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <type_traits>
 
@@ -38,6 +39,9 @@ struct RunResult {
     std::size_t decimation = 1;
     SettleReport settle;
     const char* backend = "dense";  // the Newton algebra used: "dense" or "sparse"
+    // Highest natural frequency at the start (Hz, contacts linearized), for reading the step against
+    // the shortest period: dense backend up to 200 DOFs only, else NaN (an eigen solve too costly).
+    double highest_mode_hz = std::numeric_limits<double>::quiet_NaN();
 };
 
 namespace detail {
@@ -60,6 +64,8 @@ RunResult<System> run(const System& system, const NewmarkSettings& settings, con
     const Vector v = v0 ? *v0 : initial_velocity(system);
     RunResult<System> result;
     result.final_state = stepper.start(0.0, q, v);
+    if constexpr (std::is_same_v<Stepper, Newmark<System>>)
+        if (system.size() <= 200) result.highest_mode_hz = stepper.highest_angular_frequency(result.final_state) / (2.0 * pi);
     RecordOptions record = options.record;
     if (options.settle.enabled) {
         const std::uint64_t planned = std::uint64_t(options.settle.max_revolutions) *

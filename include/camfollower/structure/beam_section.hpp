@@ -14,6 +14,7 @@
 
 #include <cmath>
 
+#include "camfollower/constants.hpp"
 #include "camfollower/error.hpp"
 
 namespace camfollower {
@@ -42,7 +43,6 @@ struct BeamSection {
             detail::fail("poisson_ratio must be in [0, 0.5), got ", nu);
         detail::require_positive(rho, "density", "(kg/m^3)");
 
-        const double pi = 3.14159265358979323846;
         const double d4 = outer * outer * outer * outer - inner * inner * inner * inner;
         const double I = pi * d4 / 64.0;
         const double m2 = (inner / outer) * (inner / outer);

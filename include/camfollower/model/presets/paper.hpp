@@ -192,11 +192,15 @@ inline Mechanism<paper_dofs> paper(const CamFollowerParameters& p = {},
                                    const PaperOptions& options = {}) {
     const double target = p.spring_stiffness * p.spring_preload_deflection;
     const int y4 = 3;
+    double terms = target;  // the residual's rounding follows its terms (see CamFollowerModel)
     auto residual = [&](double P) {
-        return P + p.spring_stiffness * Mechanism<paper_dofs>(paper_spec(p, program, P, {}, &undamped_dampers)).initial_displacement()[y4] - target;
+        const double spring = p.spring_stiffness *
+                              Mechanism<paper_dofs>(paper_spec(p, program, P, {}, &undamped_dampers)).initial_displacement()[y4];
+        terms = std::abs(P) + std::abs(spring) + target;
+        return P + spring - target;
     };
     const detail::SecantRoot root = detail::secant_root(residual, target, 1e-12 * target);
-    if (!(std::abs(root.residual) <= 1e-9 * target))
+    if (!(std::abs(root.residual) <= 1e-9 * terms))
         throw ConvergenceError(detail::concat("spring preload calibration did not converge: spring force ",
                                               target + root.residual, " N against K_rs delta_rs = ", target, " N"));
     if (options.element_damping_ratio == 0.0) return Mechanism<paper_dofs>(paper_spec(p, program, root.x, options));
