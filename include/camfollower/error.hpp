@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <type_traits>
 
 #include "camfollower/constants.hpp"
 
@@ -32,9 +33,26 @@ std::string concat(const Parts&... parts) {
     return out.str();
 }
 
+// Text parts of an error message as they are shown: control characters (terminal escapes, bells,
+// NULs) as '?' (newlines kept), at most 1,000 bytes each, so no message carries raw control bytes
+// or megabytes of a user's input, whatever the call site passes.
+inline std::string message_text(std::string_view s) {
+    constexpr std::size_t max = 1000;
+    std::string out;
+    for (char c : s.substr(0, max))
+        out += (c != '\n' && (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)) ? '?' : c;
+    if (s.size() > max) out += "... (" + std::to_string(s.size()) + " bytes)";
+    return out;
+}
+template <class T>
+decltype(auto) message_part(const T& part) {
+    if constexpr (std::is_convertible_v<const T&, std::string_view>) return message_text(std::string_view(part));
+    else return (part);
+}
+
 template <class... Parts>
 [[noreturn]] void fail(const Parts&... parts) {
-    throw std::invalid_argument(concat(parts...));
+    throw std::invalid_argument(concat(message_part(parts)...));
 }
 
 inline void require_finite(double value, const char* name) {
@@ -62,17 +80,17 @@ inline constexpr double min_part_length = 1e-6, max_part_length = 1e3;  // m
 // Forces and preloads of machine elements, N: beyond this a static solution overflows its digits.
 inline constexpr double max_force = 1e9;
 
-// Camshaft speeds, rad/s: 1e5 rad/s is about 955,000 rpm, far beyond any machine; beyond, the cam
-// angle omega t overflows its digits within a run.
-inline constexpr double max_camshaft_speed = 1e5;
+// Camshaft speeds, rad/s: 1e-6 rad/s (a revolution in 73 days) to 1e5 rad/s (about 955,000 rpm),
+// far beyond any machine either way; beyond, the period or the cam angle omega t overflows.
+inline constexpr double min_camshaft_speed = 1e-6, max_camshaft_speed = 1e5;
 inline void require_camshaft_speed(double omega, const char* name) {
-    if (!(std::isfinite(omega) && omega > 0.0 && omega <= max_camshaft_speed))
-        fail(name, " must be in (0, ", max_camshaft_speed, "] rad/s, got ", omega, " rad/s");
+    if (!(std::isfinite(omega) && omega >= min_camshaft_speed && omega <= max_camshaft_speed))
+        fail(name, " must be in [", min_camshaft_speed, ", ", max_camshaft_speed, "] rad/s, got ", omega, " rad/s");
 }
 inline void require_camshaft_speed_rpm(double rpm, const char* name) {
-    const double max_rpm = max_camshaft_speed * 30.0 / pi;
-    if (!(std::isfinite(rpm) && rpm > 0.0 && rpm <= max_rpm))
-        fail(name, " must be in (0, ", max_rpm, "] rpm, got ", rpm);
+    const double min_rpm = min_camshaft_speed * 30.0 / pi, max_rpm = max_camshaft_speed * 30.0 / pi;
+    if (!(std::isfinite(rpm) && rpm >= min_rpm && rpm <= max_rpm))
+        fail(name, " must be in [", min_rpm, ", ", max_rpm, "] rpm, got ", rpm);
 }
 
 // Points of a sampled curve or outline (profiles, exports, plots): 10 million is 0.13 arc seconds

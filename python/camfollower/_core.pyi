@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['ArmTurn', 'BoundaryContinuity', 'CamEccentricity', 'CamFollowerModel', 'ContinuityReport', 'Defects', 'DiskCam', 'Elastic', 'LineContact', 'Mechanism', 'MechanismBuilder', 'MotionLaw', 'MotionProgram', 'OscillatingFlat', 'OscillatingRoller', 'Parameters', 'PeakCoefficients', 'ProfileError', 'Segment', 'TranslatingFlat', 'TranslatingRoller', 'cam_outline', 'length_units', 'paper_preset', 'realistic_damping_ratio', 'valve_train_parameter_units', 'valve_train_preset', 'write_cam_csv', 'write_file_atomically']
+__all__: list[str] = ['ArmTurn', 'BoundaryContinuity', 'CamEccentricity', 'CamFollowerModel', 'ContinuityReport', 'Defects', 'DiskCam', 'Elastic', 'LineContact', 'MAX_CAMSHAFT_SPEED', 'MAX_POINTS', 'Mechanism', 'MechanismBuilder', 'MotionLaw', 'MotionProgram', 'OscillatingFlat', 'OscillatingRoller', 'Parameters', 'PeakCoefficients', 'ProfileError', 'Segment', 'TranslatingFlat', 'TranslatingRoller', 'cam_outline', 'check_output_target', 'length_units', 'paper_preset', 'realistic_damping_ratio', 'valve_train_parameter_units', 'valve_train_preset', 'write_cam_csv', 'write_file_atomically']
 class PeakCoefficients:
     """
     Peaks of |V|, |A|, |J| of a normalized law.
@@ -409,8 +409,10 @@ class Parameters:
         ...
     def __repr__(self) -> str:
         ...
-    def get(self, name: str) -> float:
-        ...
+    def get(self, name: str) -> typing.Any:
+        """
+        The value of one of names(): a float (SI units), or the contact_damping model's name.
+        """
     def replace(self, **kwargs) -> Parameters:
         """
         A copy with the given parameters changed (validated); Parameters are immutable.
@@ -451,6 +453,11 @@ class Parameters:
     def camshaft_speed_rpm(self) -> float:
         """
         camshaft_speed_rpm (rpm); read-only: use replace(camshaft_speed_rpm=...)
+        """
+    @property
+    def contact_damping(self) -> str:
+        """
+        contact damping model: 'none', 'hunt_crossley' or 'lankarani_nikravesh'; read-only: use replace(contact_damping=...)
         """
     @property
     def contact_exponent(self) -> float:
@@ -1208,6 +1215,10 @@ def cam_outline(follower: typing.Any, program: MotionProgram, points: typing.Sup
     surface_x/y, normal_x/y, cutter_x/y (with a cutter), unit, cutter_radius, notes (the file header lines).
     Raises ValueError on undercut, or a cutter larger than the tightest concave radius (named with its angle).
     """
+def check_output_target(path: str, protect: collections.abc.Sequence[str] = []) -> None:
+    """
+    Raise ValueError if write_file_atomically would refuse `path` (checked before a long run).
+    """
 def length_units() -> dict:
     """
     Length units accepted by the exports: {name: metres per unit} (m, mm, um, inch = 0.0254 m).
@@ -1234,10 +1245,14 @@ def write_cam_csv(path: str, follower: typing.Any, program: MotionProgram, point
     Write the cam outline as CSV (commented header with units, rotation, zero reference, follower, cutter,
     points; then theta_rad,surface_x_<unit>,surface_y_<unit>[,cutter_x_<unit>,cutter_y_<unit>]), atomically.
     """
-def write_file_atomically(path: str, content: bytes) -> None:
+def write_file_atomically(path: str, content: bytes, protect: collections.abc.Sequence[str] = []) -> None:
     """
-    Replace or create `path` with `content` (bytes) atomically: a temporary in the same folder, then rename.
-    Refuses a target that exists and is not a regular file; leaves nothing behind on failure.
+    Replace or create `path` with `content` (bytes) atomically: a uniquely named temporary in the same
+    folder, then a rename; nothing is left behind on failure. Refuses (ValueError) a target that is a
+    directory, FIFO, socket, device or symbolic link, a read-only file, a path holding a NUL, and any
+    of `protect` (input files the run read).
     """
+MAX_CAMSHAFT_SPEED: float = 100000.0
+MAX_POINTS: int = 10000000
 __version__: str = '0.1.0'
 realistic_damping_ratio: float = 0.03

@@ -113,7 +113,11 @@ def spectrum(signal, sample_rate: float, window: str = "hann", detrend: bool = T
     amplitude[0] /= 2.0  # DC and (even length) Nyquist have no mirror image
     if x.size % 2 == 0:
         amplitude[-1] /= 2.0
-    frequency = np.fft.rfftfreq(x.size, d=1.0 / sample_rate)
+    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+        frequency = np.fft.rfftfreq(x.size, d=1.0 / sample_rate)
+    if not (np.all(np.isfinite(frequency)) and np.all(np.diff(frequency) > 0)):
+        raise ValueError(f"sample_rate = {sample_rate} Hz gives no usable frequency axis for {x.size} samples "
+                         "(the bin spacing overflows or underflows)")
     return Spectrum(frequency, amplitude)
 
 
@@ -195,8 +199,10 @@ def phase_statistics(model, theta, signal) -> list[dict]:
         name = f"{kind} {math.degrees(seg.theta_start):.0f}-{math.degrees(seg.theta_end):.0f} deg"
         if not inside.any():
             raise ValueError(f"no sample of theta falls in the {name} phase: give at least one revolution")
-        stats.append({"phase": name, "samples": int(np.count_nonzero(inside)),
-                      "peak": float(np.max(np.abs(x[inside]))), "rms": float(np.sqrt(np.mean(x[inside] ** 2)))})
+        peak = float(np.max(np.abs(x[inside])))
+        scaled = x[inside] / peak if peak > 0 else x[inside]  # no overflow of x^2 for |x| > 1e154
+        stats.append({"phase": name, "samples": int(np.count_nonzero(inside)), "peak": peak,
+                      "rms": (peak if peak > 0 else 1.0) * float(np.sqrt(np.mean(scaled ** 2)))})
     return stats
 
 

@@ -27,7 +27,8 @@ def _at_speed(system, rpm: float, options: Dict[str, Any]) -> Dict[str, Any]:
     return steady_response(system.with_camshaft_speed_rpm(float(rpm)), **options)
 
 
-_MAX_RPM = _core.MAX_CAMSHAFT_SPEED * 30.0 / math.pi  # the model's own limit, stated in the core
+# The model's own limits, stated in the core.
+_MIN_RPM, _MAX_RPM = _core.MIN_CAMSHAFT_SPEED * 30.0 / math.pi, _core.MAX_CAMSHAFT_SPEED * 30.0 / math.pi
 
 
 def _check_speeds(speeds, name: str = "speeds") -> List[float]:
@@ -40,9 +41,9 @@ def _check_speeds(speeds, name: str = "speeds") -> List[float]:
         out.append(float(s))
     if not out:
         raise ValueError(f"{name}: give at least one camshaft speed (rpm)")
-    bad = [s for s in out if not (math.isfinite(s) and 0.0 < s <= _MAX_RPM)]
+    bad = [s for s in out if not (math.isfinite(s) and _MIN_RPM <= s <= _MAX_RPM)]
     if bad:
-        raise ValueError(f"{name} must be finite camshaft speeds in (0, {_MAX_RPM:.6g}] rpm, got {bad[:3]}")
+        raise ValueError(f"{name} must be finite camshaft speeds in [{_MIN_RPM:.6g}, {_MAX_RPM:.6g}] rpm, got {bad[:3]}")
     return out
 
 

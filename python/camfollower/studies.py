@@ -26,7 +26,7 @@ import re
 from typing import Any, Dict, Optional
 
 from .response import STUDY_STEPS_PER_REVOLUTION
-from .speed import _MAX_RPM
+from .speed import _MAX_RPM, _MIN_RPM
 from .tolerance import DISTRIBUTIONS, distribution
 
 
@@ -87,8 +87,9 @@ def _int(table, key, default, lo, hi, path, prefix):
 
 
 def _speed(v, key, path) -> float:
-    if isinstance(v, bool) or not isinstance(v, (int, float)) or not (math.isfinite(v) and 0 < v <= _MAX_RPM):
-        raise ValueError(f"{_where(path, key)}: must be a camshaft speed in (0, {_MAX_RPM:.6g}] rpm, got {_shown(v)}")
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or not (math.isfinite(v) and _MIN_RPM <= v <= _MAX_RPM):
+        raise ValueError(f"{_where(path, key)}: must be a camshaft speed in [{_MIN_RPM:.6g}, {_MAX_RPM:.6g}] rpm, "
+                         f"got {_shown(v)}")
     return float(v)
 
 

@@ -346,7 +346,7 @@ TEST_CASE("a motor drive: its torque twists the shaft by torque / position gain,
     b.add_motor("motor", "s", 0.0, 2e-3, gain, 5.0, torque);
     const Mechanism<> m(b);
     // No other torque on the shaft: it turns rigidly ahead of the nominal rotation by T / k_p.
-    for (const std::string& node : {"s.0.rx", "s.4.rx", "s.8.rx"})
+    for (const char* node : {"s.0.rx", "s.4.rx", "s.8.rx"})
         CHECK(m.initial_displacement()[m.dof_index(node)] == Approx(torque / gain).epsilon(1e-9));
     MechanismBuilder free;
     free.add_shaft({"s", shaft_section(), 0.4, 0.05, {}, false});

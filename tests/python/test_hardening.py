@@ -183,23 +183,26 @@ def test_contact_damping_names_its_choices():
 
 
 def test_an_overflowing_speed_names_the_speed_and_its_range():
-    with pytest.raises(ValueError, match=r"camshaft_speed_rpm must be in \(0, 954\d+\.?\d*\] rpm, got 1e\+308"):
+    with pytest.raises(ValueError, match=r"camshaft_speed_rpm must be in \[9.5\d*e-06, 954\d+\.?\d*\] rpm, got 1e\+308"):
         cf.CamFollowerModel(cf.Parameters(camshaft_speed_rpm=1e308))
     with pytest.raises(ValueError, match="camshaft_speed_rpm must be in"):
         cf.presets.paper().with_camshaft_speed_rpm(1e308)
+    with pytest.raises(ValueError, match="camshaft_speed_rpm must be in .* got 5e-324"):  # infinite period
+        cf.CamFollowerModel(cf.Parameters(camshaft_speed_rpm=5e-324))
 
 
 @pytest.mark.parametrize("stiffness,exponent", [(10.0, 1.5), (1.0, 1.0), (1e13, 1.0), (1e14, 1.5)])
 def test_preload_calibration_holds_from_soft_to_rigid_contacts(stiffness, exponent):
-    """Without gravity the follower chain at rest is held by the contact alone, so the contact force
-    at the static equilibrium equals the spring force, which calibration sets to K_rs delta_rs."""
+    """Without gravity the follower chain at rest is held along its axis by the contact alone (the
+    guide takes the lateral part), so the contact force's axial component F cos(pressure angle) at
+    the static equilibrium equals the spring force, which calibration sets to K_rs delta_rs."""
     p = cf.Parameters(contact_stiffness=stiffness, contact_exponent=exponent, gravity=0.0)
     model = cf.CamFollowerModel(p)
     q0 = model.initial_state
     assert np.all(np.isfinite(q0))
-    force = model.contact(0.0, q0, np.zeros(7))["force"]
+    c = model.contact(0.0, q0, np.zeros(7))
     target = p.spring_stiffness * p.spring_preload_deflection
-    assert force == pytest.approx(target, rel=1e-6)
+    assert c["force"] * math.cos(c["pressure_angle"]) == pytest.approx(target, rel=1e-6)
 
 
 def test_contact_refuses_non_finite_states():
@@ -287,6 +290,8 @@ def test_analysis_helpers_name_bad_arguments():
     theta = np.linspace(0, 2 * math.pi, 721)[:-1]
     stats = an.phase_statistics(model, theta, np.ones_like(theta))
     assert sum(s["samples"] for s in stats) == theta.size and all(s["peak"] == 1.0 for s in stats)
+    huge = an.phase_statistics(model, theta, np.full_like(theta, -1e200))  # x^2 would overflow
+    assert all(s["rms"] == pytest.approx(1e200) for s in huge)
 
 
 def test_speed_helpers_name_bad_arguments():
@@ -319,7 +324,7 @@ def test_study_tables_echo_short_printable_values_with_file_and_line(tmp_path):
     config.write_text("[montecarlo]\ncases = 10\n\n[[montecarlo.tolerance]]\nparameter = \"a\"\n"
                       "distribution = \"normal\"\nstd = 0.1\n\n[[montecarlo.tolerance]]\nparameter = \"b\"\n"
                       "distribution = \"gamma\"\n")
-    with pytest.raises(ValueError, match=rf"^{config}:12: montecarlo.tolerance\[1\].distribution: must be one of"):
+    with pytest.raises(ValueError, match=rf"^{config}:11: montecarlo.tolerance\[1\].distribution: must be one of"):
         montecarlo_settings({"cases": 10, "tolerance": [{"parameter": "a", "distribution": "normal", "std": 0.1},
                                                          {"parameter": "b", "distribution": "gamma"}]}, path=config)
 
@@ -334,3 +339,35 @@ def test_a_run_reports_its_step_against_the_shortest_natural_period():
     assert fine.stats["steps_per_shortest_period"] == pytest.approx(1.0 / (highest * 1e-6), rel=1e-6)
     coarse = cf.simulate(model, duration=model.period, time_step=model.period / 12)
     assert coarse.stats["steps_per_shortest_period"] < 0.1
+
+
+def test_a_step_longer_than_the_run_or_a_twelfth_of_a_revolution_is_refused():
+    model = cf.CamFollowerModel()
+    with pytest.raises(ValueError, match=r"time_step = 0.001 s is longer than the duration 0.0001 s"):
+        cf.simulate(model, duration=1e-4, time_step=1e-3)
+    with pytest.raises(ValueError, match="cannot resolve the cam's motion: it must be <="):
+        cf.simulate(model, revolutions=2, time_step=model.period)
+
+
+def test_no_error_message_carries_control_characters_or_megabytes():
+    """Every message is sanitized where it is raised (detail::fail): a looked-up name is echoed with
+    its control characters as '?' and cut at 1,000 bytes."""
+    name = "\x07\x1b[2J" + "x" * 5_000_000
+    builder = cf.MechanismBuilder()
+    builder.add_dof("tappet", 0.1, [0, 1, 0])
+    for call in (lambda: cf.Parameters().get(name),
+                 lambda: (builder.add_spring("spring", "tappet", name, stiffness=1e5), builder.build()),
+                 lambda: cf.simulate(cf.CamFollowerModel(), duration=1e-4, linear_solver=name)):
+        with pytest.raises(ValueError) as e:
+            call()
+        text = str(e.value)
+        assert "\x1b" not in text and "\x07" not in text and len(text) < 2000, text[:200]
+        assert "?" in text and "bytes)" in text
+
+
+def test_geometry_beyond_a_kilometre_is_refused():
+    with pytest.raises(ValueError, match=r"base_radius must be finite and > 0 \(m\), in \[1e-06, 1000\] m"):
+        cf.DiskCam(cf.MotionProgram.paper_default(), 5.6e102, 0.125, 0.0)
+    with pytest.raises(ValueError, match="sample_rate = .* gives no usable frequency axis"):
+        from camfollower import analysis
+        analysis.spectrum(np.zeros(8), 2.2250738585072014e-308)

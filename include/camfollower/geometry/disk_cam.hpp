@@ -72,8 +72,8 @@ class DiskCam {
 public:
     DiskCam(const DiskCamGeometry& geometry, MotionProgram program)
         : geometry_(geometry), program_(std::move(program)) {
-        detail::require_positive(geometry.base_radius, "base_radius", "(m)");
-        detail::require_positive(geometry.roller_radius, "roller_radius", "(m)");
+        detail::require_length(geometry.base_radius, "base_radius");
+        detail::require_length(geometry.roller_radius, "roller_radius");
         check_offset(geometry.offset, "offset");
         if (program_.min_lift() + pitch_base(geometry.offset) <= geometry.roller_radius)
             detail::fail("the motion program's lowest lift ", program_.min_lift(),

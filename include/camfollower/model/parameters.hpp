@@ -144,8 +144,8 @@ struct CamFollowerParameters {
         require_positive(reference_speed, "reference_speed", "(m/s)");
         require_non_negative(gravity, "gravity", "(m/s^2)");
         detail::require_camshaft_speed_rpm(camshaft_speed_rpm, "camshaft_speed_rpm");
-        require_positive(geometry.base_radius, "base_radius", "(m)");
-        require_positive(geometry.roller_radius, "roller_radius", "(m)");
+        detail::require_length(geometry.base_radius, "base_radius");
+        detail::require_length(geometry.roller_radius, "roller_radius");
         const double rp = geometry.base_radius + geometry.roller_radius;
         if (!(std::isfinite(geometry.offset) && std::abs(geometry.offset) < rp))
             detail::fail("offset must satisfy |offset| < base_radius + roller_radius = ", rp, " m, got ",
