@@ -111,14 +111,34 @@ def simulate(system, *, duration: Optional[float] = None, revolutions: Optional[
         except (TypeError, ValueError):
             raise ValueError("initial_state must be a pair (q, v) of arrays or a PeriodicOrbit") from None
         q0, v0 = _vector("initial_state q", q0), _vector("initial_state v", v0)
-    raw = _core._run(system, float(duration), time_step, decimation, gamma, beta, hht_alpha, linear_solver,
-                     residual_tolerance, increment_tolerance, max_iterations, max_halvings, start,
-                     max_output_bytes, progress, progress_interval, **settle_args, q0=q0, v0=v0)
+    # The output cap never exceeds this machine's memory: a run needing more is refused by name
+    # (ValueError), not left to fail with a MemoryError half way through allocating.
+    memory = _physical_memory()
+    cap = min(float(max_output_bytes), memory) if memory else float(max_output_bytes)
+    try:
+        raw = _core._run(system, float(duration), time_step, decimation, gamma, beta, hht_alpha, linear_solver,
+                         residual_tolerance, increment_tolerance, max_iterations, max_halvings, start,
+                         cap, progress, progress_interval, **settle_args, q0=q0, v0=v0)
+    except ValueError as e:
+        if cap < max_output_bytes and "max_output_bytes" in str(e):
+            raise ValueError(f"{e} (max_output_bytes = {max_output_bytes:g} B was capped at this machine's memory, "
+                             f"{memory / 2**30:.3g} GiB)") from None
+        raise
     stats = dict(raw["stats"])
     report = stats.pop("settle", None)
     if report is not None:
         report["dofs"] = list(settle_dofs)
     return Result(raw["names"], raw["dofs"], raw["data"], stats, raw["contact_loss"], report)
+
+
+def _physical_memory() -> float:
+    """Bytes of physical memory (0 if the platform does not say)."""
+    import os
+
+    try:
+        return float(os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES"))
+    except (AttributeError, ValueError, OSError):
+        return 0.0
 
 
 def _vector(name: str, x):

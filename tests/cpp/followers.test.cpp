@@ -603,7 +603,7 @@ TEST_CASE("check_undercut: an undercutting roller and a cusped flat face are ref
     const std::string undercut = message_of([&] { check_undercut(steep, big_roller); });
     CHECK_THAT(undercut, Catch::Contains("undercuts at theta = ") && Catch::Contains("roller_radius = 0.012 m"));
     // The named angle is where the pitch curve is tightest (DiskCam's own search, independent code).
-    const AngleExtremum tightest = DiskCam({0.022 - 1e-9, 1e-9, 0.0}, steep).max_pitch_curvature();
+    const AngleExtremum tightest = DiskCam({0.022 - 1e-6, 1e-6, 0.0}, steep).max_pitch_curvature();
     CHECK(theta_in(undercut) == Approx(tightest.theta / deg).margin(1e-5));
     // The same small cam with a 50 mm arm swinging 0.5 rad (25 mm at the roller) in 40 deg.
     const MotionProgram steep_swing({{MotionLaw::cycloidal(), 0, 40 * deg, 0, 0.5},

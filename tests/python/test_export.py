@@ -179,9 +179,9 @@ def test_too_large_cutter_is_refused_at_the_tightest_concave_spot():
 
 
 @pytest.mark.parametrize("kwargs,message", [
-    (dict(points=2), "points must be an integer >= 3"),
-    (dict(points=-5), "points must be an integer >= 3"),
-    (dict(points=10.5), "points must be an integer >= 3"),
+    (dict(points=2), r"points must be an integer in \[3, 10000000\]"),
+    (dict(points=-5), r"points must be an integer in \[3, 10000000\]"),
+    (dict(points=10.5), r"points must be an integer in \[3, 10000000\]"),
     (dict(cutter_radius=-0.001), "cutter_radius must be None or a finite number >= 0"),
     (dict(cutter_radius=float("nan")), "cutter_radius"),
     (dict(unit="cm"), "unit must be one of m, mm, um, inch"),
@@ -197,5 +197,5 @@ def test_bad_input_names_the_parameter(tmp_path, kwargs, message):
 def test_bad_follower_and_core_checks():
     with pytest.raises(ValueError, match="follower must be a TranslatingRoller"):
         export.profile_points("roller", PAPER, points=10)
-    with pytest.raises(ValueError, match="points must be an integer >= 3"):
+    with pytest.raises(ValueError, match=r"points must be an integer in \[3, 10000000\]"):
         cf._core.cam_outline(roller(), PAPER, -1)  # the core checks too
