@@ -109,7 +109,10 @@ def spectrum(signal, sample_rate: float, window: str = "hann", detrend: bool = T
         w = np.ones(x.size)
     else:
         raise ValueError(f"window must be 'hann' or 'rect', got {window!r}")
-    amplitude = np.abs(np.fft.rfft(x * w)) * 2.0 / w.sum()
+    with np.errstate(over="ignore", invalid="ignore"):
+        amplitude = np.abs(np.fft.rfft(x * w)) * 2.0 / w.sum()
+    if not np.all(np.isfinite(amplitude)):
+        raise ValueError(f"signal: values up to {np.max(np.abs(x)):.3g} overflow the spectrum; scale the signal")
     amplitude[0] /= 2.0  # DC and (even length) Nyquist have no mirror image
     if x.size % 2 == 0:
         amplitude[-1] /= 2.0

@@ -678,7 +678,9 @@ CaseConfig build_case(const toml::table& table, const std::string& origin, const
     double rpm = 0.0;
     if (const std::optional<Section> cam = root.table("camshaft")) {
         rpm = cam->quantity("speed", "rpm");
-        if (!(rpm > 0.0 && rpm <= 1e6)) cam->fail("speed", detail::concat("must be in (0, 1e6] rpm, got ", rpm));
+        // The model's own bounds (error.hpp), checked here so that the message names the line.
+        const double lo = detail::min_camshaft_speed * 30.0 / pi, hi = detail::max_camshaft_speed * 30.0 / pi;
+        if (!(rpm >= lo && rpm <= hi)) cam->fail("speed", detail::concat("must be in [", lo, ", ", hi, "] rpm, got ", rpm));
         cam->finish({"speed"});
     } else {
         root.fail_here("a [camshaft] table with its speed is required, e.g. [camshaft] speed = \"750 rpm\"");
@@ -710,6 +712,8 @@ CaseConfig build_case(const toml::table& table, const std::string& origin, const
         else (void)Mechanism<Eigen::Dynamic>(c.mechanism);
     } catch (const std::invalid_argument& e) {
         detail::fail(origin, ": ", e.what());
+    } catch (const ConvergenceError& e) {  // e.g. a static equilibrium that cannot be found
+        throw ConvergenceError(detail::concat(detail::message_text(origin), ": ", e.what()));
     }
     return c;
 }

@@ -77,7 +77,7 @@ def test_mutated_configs_build_or_are_refused_naming_the_file(tmp_path, m):
     path.write_bytes(mutate(example.read_text(), op, line_pick, token, cut))
     try:
         case = cf.load_config(path)
-    except ValueError as e:
+    except (ValueError, RuntimeError) as e:  # bad input, or a mechanism that cannot be solved
         check_message(str(e), path)
         return
     assert case.mechanism.size >= 1

@@ -10,11 +10,15 @@ import sys
 import textwrap
 import time
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
 import camfollower as cf
 from camfollower import _files
+
+ROOT = Path(__file__).resolve().parents[2]
 
 # --- output files: one writer, refusing what it must not replace -----------------------------------
 
@@ -376,3 +380,32 @@ def test_geometry_beyond_a_kilometre_is_refused():
 def test_an_output_cap_beyond_memory_is_capped_and_named_not_a_memory_error():
     with pytest.raises(ValueError, match=r"max_output_bytes = 1e\+300 B was capped at this machine's memory"):
         cf.simulate(cf.CamFollowerModel(), duration=4e3, time_step=1e-6, max_output_bytes=1e300)
+
+
+def test_a_config_speed_outside_the_models_range_names_the_file_and_line(tmp_path):
+    text = (ROOT / "examples" / "swing_arm.toml").read_text()
+    assert 'speed = "' in text
+    lines = text.splitlines()
+    k = next(i for i, line in enumerate(lines) if line.strip().startswith("speed ="))
+    lines[k] = 'speed = "1e-320 rpm"'
+    path = tmp_path / "slow.toml"
+    path.write_text("\n".join(lines) + "\n")
+    with pytest.raises(ValueError, match=rf"slow.toml:{k + 1}: camshaft.speed: must be in \[9.5\d*e-06, 954\d*\.?\d*\] rpm"):
+        cf.load_config(path)
+
+
+def test_a_spectrum_that_would_overflow_is_refused():
+    from camfollower import analysis
+    with pytest.raises(ValueError, match=r"signal: values up to 1.\d*e\+308 overflow the spectrum"):
+        analysis.spectrum([0.0] * 6 + [1.6079056208947341e308, 0.0], 1.0)
+
+
+def test_a_config_whose_mechanism_cannot_be_solved_names_the_file(tmp_path):
+    """A contact of 1e300 N/m^n: its gap's rounding exceeds the static deflection, so the equilibrium
+    cannot be found; the RuntimeError says which file (found by the long fuzz profile)."""
+    text = (ROOT / "examples" / "oscillating_flat.toml").read_text()
+    assert "stiffness = 1e8" in text
+    path = tmp_path / "rigid.toml"
+    path.write_text(text.replace("stiffness = 1e8", "stiffness = 1e300"))
+    with pytest.raises(RuntimeError, match=r"rigid.toml: static equilibrium at theta = 0 deg did not converge"):
+        cf.load_config(path)
