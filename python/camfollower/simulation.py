@@ -20,7 +20,8 @@ def simulate(system, *, duration: Optional[float] = None, revolutions: Optional[
              progress: Optional[Callable[[int, int], Optional[bool]]] = None,
              progress_interval: float = 0.2, settle: bool = False, settle_tolerance: float = 1e-4,
              settle_dofs: Optional[Sequence[str]] = None, settle_min_revolutions: int = 2,
-             settle_max_revolutions: int = 200, initial_state=None) -> Result:
+             settle_max_revolutions: int = 200, initial_state=None, method: str = "newmark",
+             tolerance: Optional[float] = None, max_step: Optional[float] = None) -> Result:
     """Integrate ``system`` from its initial state (static equilibrium, at rest) and return a Result.
 
     Give ``duration`` (s) or ``revolutions`` (of the camshaft, for systems with a ``period``). One row
@@ -31,6 +32,16 @@ def simulate(system, *, duration: Optional[float] = None, revolutions: Optional[
     below 100 DOFs, sparse above), "low_rank" (dense: Sherman-Morrison / Woodbury on the contact
     rank), "dense_lu", "sparse" (SuiteSparse: CHOLMOD when symmetric positive definite, else KLU) or
     "klu"; ``stats["backend"]`` says which ran.
+
+    ``method``: "newmark" (the default: Newmark/HHT with ``gamma``, ``beta``, ``hht_alpha``, fixed step
+    ``time_step``), "fox_goodwin" (Newmark with gamma = 1/2, beta = 1/12: fourth-order phase on
+    undamped linear modes, stable below dt = sqrt(6) / omega_max, refused beyond it) or
+    "dormand_prince" (explicit Runge-Kutta 5(4) with adaptive steps: each step's error, in
+    displacements and velocities and in the forces it leaves, below ``tolerance`` (relative, default
+    1e-6; steps no longer than ``max_step`` s if given); ``time_step`` is then the output interval, the
+    rows filled by dense output). The global error is typically a few tens of times the tolerance;
+    ``stats`` reports ``method``, ``evaluations``, ``rejected_steps`` and ``stiff_steps`` (steps bounded
+    by stability rather than accuracy: an implicit method would be cheaper there).
 
     ``system`` is a Mechanism (camfollower.MechanismBuilder, camfollower.presets) or a CamFollowerModel.
     ``progress(steps_done, steps_planned)`` is called about every ``progress_interval`` seconds;
@@ -57,7 +68,8 @@ def simulate(system, *, duration: Optional[float] = None, revolutions: Optional[
                         ("increment_tolerance", increment_tolerance), ("max_output_bytes", max_output_bytes),
                         ("progress_interval", progress_interval), ("settle_tolerance", settle_tolerance),
                         ("duration", duration), ("revolutions", revolutions), ("record_from", record_from),
-                        ("record_last_revolutions", record_last_revolutions), ("gamma", gamma), ("beta", beta)):
+                        ("record_last_revolutions", record_last_revolutions), ("gamma", gamma), ("beta", beta),
+                        ("tolerance", tolerance), ("max_step", max_step)):
         if value is not None and (isinstance(value, bool) or not isinstance(value, numbers.Real)):
             raise TypeError(f"{name} must be a number, got {type(value).__name__}")
     for name, value in (("decimation", decimation), ("max_iterations", max_iterations), ("max_halvings", max_halvings),
@@ -67,8 +79,9 @@ def simulate(system, *, duration: Optional[float] = None, revolutions: Optional[
             raise TypeError(f"{name} must be an integer, got {type(value).__name__} {value!r}")
         if not 0 <= value <= 2**53:
             raise ValueError(f"{name} must be in [0, 2^53], got {value}")
-    if not isinstance(linear_solver, str):
-        raise TypeError(f"linear_solver must be a str, got {type(linear_solver).__name__}")
+    for name, value in (("linear_solver", linear_solver), ("method", method)):
+        if not isinstance(value, str):
+            raise TypeError(f"{name} must be a str, got {type(value).__name__}")
     if (duration is None) == (revolutions is None):
         raise ValueError("give exactly one of duration (s) or revolutions")
     if revolutions is not None or record_last_revolutions is not None:
@@ -118,7 +131,8 @@ def simulate(system, *, duration: Optional[float] = None, revolutions: Optional[
     try:
         raw = _core._run(system, float(duration), time_step, decimation, gamma, beta, hht_alpha, linear_solver,
                          residual_tolerance, increment_tolerance, max_iterations, max_halvings, start,
-                         cap, progress, progress_interval, **settle_args, q0=q0, v0=v0)
+                         cap, progress, progress_interval, **settle_args, q0=q0, v0=v0, method=method,
+                         tolerance=tolerance, max_step=max_step)
     except ValueError as e:
         if cap < max_output_bytes and "max_output_bytes" in str(e):
             raise ValueError(f"{e} (max_output_bytes = {max_output_bytes:g} B was capped at this machine's memory, "

@@ -55,9 +55,18 @@ py::dict to_python(const config::CaseConfig& c) {
     else solver["revolutions"] = s.revolutions;
     if (s.time_step > 0.0) solver["time_step"] = s.time_step;
     else solver["steps_per_revolution"] = s.steps_per_revolution;
-    solver["gamma"] = s.newmark.gamma;
-    solver["beta"] = s.newmark.beta;
-    solver["hht_alpha"] = s.newmark.hht_alpha;
+    const std::string method = method_name(s.newmark);
+    if (method == "newmark") {
+        solver["gamma"] = s.newmark.gamma;
+        solver["beta"] = s.newmark.beta;
+        solver["hht_alpha"] = s.newmark.hht_alpha;
+    } else {
+        solver["method"] = method;
+    }
+    if (method == "dormand_prince") {
+        solver["tolerance"] = s.newmark.tolerance;
+        solver["max_step"] = s.newmark.max_step;
+    }
     solver["linear_solver"] = linear_solver_name(s.newmark);
     solver["residual_tolerance"] = s.newmark.residual_tolerance;
     solver["increment_tolerance"] = s.newmark.increment_tolerance;

@@ -21,9 +21,17 @@ namespace camfollower::python {
 
 inline NewmarkSettings settings_from(double time_step, std::optional<double> gamma, std::optional<double> beta, double hht_alpha,
                               const std::string& linear_solver, double residual_tolerance, double increment_tolerance,
-                              int max_iterations, int max_halvings) {
+                              int max_iterations, int max_halvings, const std::string& method = "newmark",
+                              std::optional<double> tolerance = std::nullopt, std::optional<double> max_step = std::nullopt) {
     // gamma and beta default to the average-acceleration rule, or to HHT's own values.
     NewmarkSettings s = NewmarkSettings::hht(hht_alpha, time_step);
+    if (method != "newmark" && (gamma || beta || hht_alpha != 0.0))
+        detail::fail("gamma, beta and hht_alpha apply to method 'newmark' only (method '", method, "' sets its own)");
+    if (method != "dormand_prince" && (tolerance || max_step))
+        detail::fail(tolerance ? "tolerance" : "max_step", " applies to method 'dormand_prince' only, got method '", method, "'");
+    set_method(s, method);
+    if (tolerance) s.tolerance = *tolerance;
+    if (max_step) s.max_step = *max_step;
     if (gamma) s.gamma = *gamma;
     if (beta) s.beta = *beta;
     s.residual_tolerance = residual_tolerance;
@@ -133,6 +141,10 @@ py::dict run_system(const System& system, double duration, const NewmarkSettings
     stats["decimation"] = result->decimation;
     stats["cancelled"] = result->report.cancelled;
     stats["backend"] = result->backend;
+    stats["method"] = result->method;
+    stats["evaluations"] = st.evaluations;
+    stats["rejected_steps"] = st.rejected_steps;
+    stats["stiff_steps"] = st.stiff_steps;
     stats["highest_mode_hz"] = result->highest_mode_hz;
     stats["steps_per_shortest_period"] = 1.0 / (result->highest_mode_hz * result->time_step);
     const SettleReport& sr = result->settle;
@@ -166,9 +178,10 @@ void bind_run(py::module_& m, Run run) {
               const py::object& progress, double progress_interval, std::optional<double> settle_period,
               const std::vector<int>& settle_dofs, double settle_tolerance, int settle_min_revolutions,
               int settle_max_revolutions, const std::optional<Eigen::VectorXd>& q0,
-              const std::optional<Eigen::VectorXd>& v0) {
+              const std::optional<Eigen::VectorXd>& v0, const std::string& method, std::optional<double> tolerance, std::optional<double> max_step) {
             const NewmarkSettings s = settings_from(time_step, gamma, beta, hht_alpha, linear_solver, residual_tolerance,
-                                                    increment_tolerance, max_iterations, max_halvings);
+                                                    increment_tolerance, max_iterations, max_halvings, method, tolerance,
+                                                    max_step);
             SettleOptions settle;
             if (settle_period) {
                 settle.enabled = true;
@@ -186,7 +199,8 @@ void bind_run(py::module_& m, Run run) {
         py::arg("max_output_bytes"), py::arg("progress"), py::arg("progress_interval"), py::arg("settle_period") = py::none(),
         py::arg("settle_dofs") = std::vector<int>{}, py::arg("settle_tolerance") = 1e-4,
         py::arg("settle_min_revolutions") = 2, py::arg("settle_max_revolutions") = 200, py::arg("q0") = py::none(),
-        py::arg("v0") = py::none(), "Internal: camfollower.simulate() calls this and wraps the output in a Result.");
+        py::arg("v0") = py::none(), py::arg("method") = "newmark", py::arg("tolerance") = py::none(), py::arg("max_step") = py::none(),
+        "Internal: camfollower.simulate() calls this and wraps the output in a Result.");
 }
 
 // Shooting for the periodic steady state (solver/shooting.hpp), GIL released; Ctrl-C cancels (checked

@@ -20,7 +20,8 @@ namespace camfollower::config {
 namespace {
 
 // Runs f and returns its result; an error f throws without a location gets this table's (one that
-// already names the file passes through).
+// already names the file passes through). A ConvergenceError (a preset's calibration or static
+// equilibrium that cannot be found) stays one, located the same way.
 template <class F>
 decltype(auto) located(const Section& s, F&& f) {
     try {
@@ -29,6 +30,10 @@ decltype(auto) located(const Section& s, F&& f) {
         const std::string what = e.what();
         if (what.rfind(s.origin(), 0) == 0) throw;
         s.fail_here(what);
+    } catch (const ConvergenceError& e) {
+        const std::string what = e.what();
+        if (what.rfind(s.origin(), 0) == 0) throw;
+        throw ConvergenceError(detail::concat(detail::message_text(s.here()), ": ", what));
     }
 }
 
@@ -612,13 +617,23 @@ SolverConfig read_solver(const Section& s) {
     v.time_step = s.quantity("time_step", "s", 0.0);
     if (s.has("time_step") && !(v.time_step > 0.0)) s.fail("time_step", "must be > 0 s");
     v.steps_per_revolution = s.integer("steps_per_revolution", v.steps_per_revolution, 16, 1LL << 26);
-    const std::string scheme = s.choice("scheme", "average_acceleration", {"average_acceleration", "hht", "newmark"});
+    const std::string scheme = s.choice("scheme", "average_acceleration",
+                                        {"average_acceleration", "hht", "newmark", "fox_goodwin", "dormand_prince"});
     NewmarkSettings& n = v.newmark;
     if (scheme == "hht") {
         n = NewmarkSettings::hht(s.quantity("hht_alpha", "-", -0.05));
     } else if (scheme == "newmark") {
         n.gamma = s.quantity("gamma", "-");
         n.beta = s.quantity("beta", "-");
+    } else if (scheme == "fox_goodwin" || scheme == "dormand_prince") {
+        set_method(n, scheme);
+    }
+    if (scheme == "dormand_prince") {
+        n.tolerance = s.quantity("tolerance", "-", n.tolerance);
+        n.max_step = s.quantity("max_step", "s", n.max_step);
+    } else {
+        for (const char* k : {"tolerance", "max_step"})
+            if (s.has(k)) s.fail(k, "applies only with scheme = \"dormand_prince\"");
     }
     n.residual_tolerance = s.quantity("residual_tolerance", "-", n.residual_tolerance);
     n.increment_tolerance = s.quantity("increment_tolerance", "-", n.increment_tolerance);
@@ -636,6 +651,7 @@ SolverConfig read_solver(const Section& s) {
     if (scheme != "hht" && s.has("hht_alpha")) s.fail("hht_alpha", "applies only with scheme = \"hht\"");
     s.finish({"revolutions", "duration", "time_step", "steps_per_revolution", "scheme", "hht_alpha", "gamma", "beta",
               "residual_tolerance", "increment_tolerance", "max_iterations", "max_halvings", "linear_solver", "settle",
+              "tolerance", "max_step",
               "settle_tolerance", "settle_dofs", "settle_min_revolutions", "settle_max_revolutions"});
     NewmarkSettings check = n;
     check.time_step = 1.0;

@@ -51,7 +51,11 @@ void Section::fail(std::string_view key, const std::string& message) const {
 }
 
 void Section::fail_here(const std::string& message) const {
-    detail::fail(location(nullptr), ": ", path_.empty() ? "" : path_ + ": ", message);
+    detail::fail(here(), ": ", message);
+}
+
+std::string Section::here() const {
+    return path_.empty() ? location(nullptr) : location(nullptr) + ": " + path_;
 }
 
 const toml::node* Section::get(std::string_view key) const {

@@ -53,6 +53,7 @@ public:
     [[noreturn]] void fail(std::string_view key, const std::string& message) const;
     [[noreturn]] void fail_here(const std::string& message) const;
     std::string where(std::string_view key) const;  // "file:line: path.key"
+    std::string here() const;                       // "file:line: path" of the table itself
 
 private:
     const toml::node* get(std::string_view key) const;  // marks the key read; nullptr if absent

@@ -147,6 +147,14 @@ CAMFOLLOWER_DETECT(has_observe, std::declval<const S&>().observe(std::declval<co
 
 }  // namespace detail
 
+// Systems driven by a camshaft have a period() (s): the time scale of their motion.
+namespace detail {
+template <class S, class = void>
+struct has_period : std::false_type {};
+template <class S>
+struct has_period<S, void_t<decltype(double(std::declval<const S&>().period()))>> : std::true_type {};
+}  // namespace detail
+
 template <class S>
 inline constexpr bool is_nonlinear_system_v = detail::has_workspace_type<S>::value;
 

@@ -134,8 +134,9 @@ struct CamFollowerParameters {
         // preload keeps the follower on the cam. Dampers may be zero.
         for (const char* name : {"bearing_stiffness_vertical", "bearing_stiffness_horizontal",
                                  "roller_pin_stiffness_vertical", "roller_pin_stiffness_horizontal",
-                                 "guide_stiffness", "rod_stiffness", "spring_stiffness", "spring_preload_deflection"})
+                                 "guide_stiffness", "rod_stiffness", "spring_stiffness"})
             require_positive(get(name), name);
+        detail::require_length(spring_preload_deflection, "spring_preload_deflection");
         for (const char* name : {"bearing_damping_vertical", "bearing_damping_horizontal", "rod_damping"})
             require_non_negative(get(name), name);
         require_positive(contact_stiffness, "contact_stiffness", "(N/m^n)");

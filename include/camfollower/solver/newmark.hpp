@@ -44,9 +44,18 @@ enum class Backend { automatic, dense, sparse };
 // positive definite, KLU otherwise; klu always uses KLU.
 enum class SparseFactorization { automatic, klu };
 inline constexpr int sparse_backend_threshold = 100;  // DOFs; measured crossover: bench/camshaft.cpp
+// The integration method: implicit Newmark/HHT at the fixed time_step (this file), or explicit
+// Dormand-Prince 5(4) with adaptive steps under `tolerance` (solver/dormand_prince.hpp), time_step
+// then being the output interval only.
+enum class Method { newmark, dormand_prince };
 
+// The solver's settings (named for its first method; `method` picks another).
 struct NewmarkSettings {
-    double time_step = 3e-6;            // s
+    Method method = Method::newmark;
+    double time_step = 3e-6;            // s (dormand_prince: the output interval)
+    double tolerance = 1e-6;            // dormand_prince: relative error per step, displacements and forces
+    double max_step = 0.0;              // dormand_prince: largest step, s (0: unbounded)
+    bool adaptive = true;               // dormand_prince: false = fixed steps of max_step (or time_step), no error control
     double gamma = 0.5;
     double beta = 0.25;
     double hht_alpha = 0.0;             // in [-1/3, 0]
@@ -87,6 +96,10 @@ struct NewmarkSettings {
             detail::fail("max_iterations must be in [1, 1000], got ", max_iterations);
         if (max_halvings < 0 || max_halvings > max_levels - 1)
             detail::fail("max_halvings must be in [0, ", max_levels - 1, "], got ", max_halvings);
+        // Below 1e-13 the error estimate is rounding; above 0.1 it no longer measures anything.
+        detail::require_in_range(tolerance, 1e-13, 0.1, "tolerance");
+        if (!(std::isfinite(max_step) && max_step >= 0.0))
+            detail::fail("max_step must be finite and >= 0 s (0: unbounded), got ", max_step);
     }
     static constexpr int max_levels = 16;
 };
@@ -113,14 +126,41 @@ inline const char* linear_solver_name(const NewmarkSettings& s) {
     return s.backend == Backend::dense ? "low_rank" : "auto";
 }
 
+// The method by one name (config files, Python):
+//   "newmark"         Newmark/HHT with the settings' gamma, beta and hht_alpha (default: average
+//                     acceleration, second order, unconditionally stable)
+//   "fox_goodwin"     Newmark with gamma = 1/2, beta = 1/12: fourth-order phase on undamped linear
+//                     modes, stable below dt = sqrt(6) / omega_max (checked at the start)
+//   "dormand_prince"  explicit Runge-Kutta 5(4), adaptive steps under `tolerance`, dense output
+inline void set_method(NewmarkSettings& s, const std::string& name) {
+    if (name == "newmark") {
+        s.method = Method::newmark;
+    } else if (name == "fox_goodwin") {
+        s.method = Method::newmark;
+        s.hht_alpha = 0.0, s.gamma = 0.5, s.beta = 1.0 / 12.0;
+    } else if (name == "dormand_prince") {
+        s.method = Method::dormand_prince;
+    } else {
+        detail::fail("method must be 'newmark', 'fox_goodwin' or 'dormand_prince', got '", name, "'");
+    }
+}
+inline const char* method_name(const NewmarkSettings& s) {
+    if (s.method == Method::dormand_prince) return "dormand_prince";
+    return s.gamma == 0.5 && s.beta == 1.0 / 12.0 && s.hht_alpha == 0.0 ? "fox_goodwin" : "newmark";
+}
+
 struct SolverStatistics {
     std::uint64_t steps = 0;              // accepted steps, substeps included
     std::uint64_t newton_iterations = 0;  // linear solves
     std::uint64_t halvings = 0;
+    std::uint64_t evaluations = 0;        // explicit methods: force evaluations
+    std::uint64_t rejected_steps = 0;     // adaptive methods: steps retried smaller
+    std::uint64_t stiff_steps = 0;        // explicit methods: steps bounded by stability, not accuracy
     int max_iterations_in_a_step = 0;
     double mean_iterations() const { return steps ? double(newton_iterations) / double(steps) : 0.0; }
     void add(const SolverStatistics& o) {
         steps += o.steps, newton_iterations += o.newton_iterations, halvings += o.halvings;
+        evaluations += o.evaluations, rejected_steps += o.rejected_steps, stiff_steps += o.stiff_steps;
         max_iterations_in_a_step = std::max(max_iterations_in_a_step, o.max_iterations_in_a_step);
     }
 };
@@ -134,6 +174,37 @@ struct State {
     Vector q, v, a, f;
     workspace_t<System> workspace;
 };
+
+// Lowest (above rigid-body modes) and highest undamped natural angular frequencies (rad/s) of
+// `system` with its contacts' tangent at state s (NaN when the eigen solve fails): the time scales a
+// run has to resolve. Allocates; call once per run.
+struct FrequencyRange {
+    double lowest = std::numeric_limits<double>::quiet_NaN(), highest = std::numeric_limits<double>::quiet_NaN();
+};
+template <class System>
+FrequencyRange natural_frequency_range(const System& system, const State<System>& s) {
+    using Matrix = typename System::Matrix;
+    LowRank<typename System::Vector> uv(system.size(), std::max(1, max_rank(system)));
+    uv.clear();
+    tangent(system, s.workspace, s.q, s.v, 1.0, 0.0, uv);
+    const Matrix t = uv.U.leftCols(uv.rank) * uv.V.leftCols(uv.rank).transpose();
+    const Matrix Kt = system.stiffness() + 0.5 * (t + t.transpose());
+    const Eigen::GeneralizedSelfAdjointEigenSolver<Matrix> eig(Kt, system.mass(), Eigen::EigenvaluesOnly);
+    FrequencyRange r;
+    if (eig.info() != Eigen::Success) return r;
+    const double top = std::max(eig.eigenvalues().maxCoeff(), 0.0);
+    r.highest = std::sqrt(top);
+    for (Eigen::Index k = 0; k < eig.eigenvalues().size(); ++k)
+        if (eig.eigenvalues()[k] > 1e-12 * top) {
+            r.lowest = std::sqrt(eig.eigenvalues()[k]);
+            break;
+        }
+    return r;
+}
+template <class System>
+double highest_angular_frequency(const System& system, const State<System>& s) {
+    return natural_frequency_range(system, s).highest;
+}
 
 // The Newton matrix's algebra for dense systems: A0 = M / (beta dt^2) + (1 + alpha)(gamma / (beta dt) C
 // + K) inverted once per step size, the tangent as dense low-rank columns, Sherman-Morrison / Woodbury
@@ -256,18 +327,9 @@ public:
                          " Hz); reduce time_step or use beta = 1/4");
     }
 
-    // Highest undamped natural angular frequency (rad/s) with the contacts' tangent at state s0; NaN
-    // when the eigen solve fails. Reported with a run, so the step can be read against the shortest
-    // period it has to resolve.
+    // Highest undamped natural angular frequency (rad/s) at state s0, contacts linearized.
     template <class StateType>
-    double highest_angular_frequency(const StateType& s0) {
-        fill_tangent(s0.workspace, s0.q, s0.v, 1.0, 0.0);
-        const Matrix uv = uv_.U.leftCols(uv_.rank) * uv_.V.leftCols(uv_.rank).transpose();
-        const Matrix Kt = system_.stiffness() + 0.5 * (uv + uv.transpose());
-        const Eigen::GeneralizedSelfAdjointEigenSolver<Matrix> eig(Kt, system_.mass(), Eigen::EigenvaluesOnly);
-        if (eig.info() != Eigen::Success) return std::numeric_limits<double>::quiet_NaN();
-        return std::sqrt(std::max(eig.eigenvalues().maxCoeff(), 0.0));
-    }
+    double highest_angular_frequency(const StateType& s0) const { return camfollower::highest_angular_frequency(system_, s0); }
 
 private:
     // Z = A0^-1 (1 + alpha) U for the active columns; a column is recomputed only when U changed

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // One call for the common case: start a system in its initial state (or a given
-// state), integrate with Newmark/HHT for a duration, record named channels, report progress and
+// state), integrate with Newmark/HHT or Dormand-Prince (settings.method) for a duration, record named channels, report progress and
 // honour cancellation.
 #pragma once
 
@@ -10,6 +10,7 @@
 #include <optional>
 #include <type_traits>
 
+#include "camfollower/solver/dormand_prince.hpp"
 #include "camfollower/solver/integrate.hpp"
 #include "camfollower/solver/newmark.hpp"
 #include "camfollower/solver/observers.hpp"
@@ -39,6 +40,7 @@ struct RunResult {
     std::size_t decimation = 1;
     SettleReport settle;
     const char* backend = "dense";  // the Newton algebra used: "dense" or "sparse"
+    const char* method = "newmark";  // method_name(settings)
     // Highest natural frequency at the start (Hz, contacts linearized), for reading the step against
     // the shortest period: dense backend up to 200 DOFs only, else NaN (an eigen solve too costly).
     double highest_mode_hz = std::numeric_limits<double>::quiet_NaN();
@@ -64,8 +66,8 @@ RunResult<System> run(const System& system, const NewmarkSettings& settings, con
     const Vector v = v0 ? *v0 : initial_velocity(system);
     RunResult<System> result;
     result.final_state = stepper.start(0.0, q, v);
-    if constexpr (std::is_same_v<Stepper, Newmark<System>>)
-        if (system.size() <= 200) result.highest_mode_hz = stepper.highest_angular_frequency(result.final_state) / (2.0 * pi);
+    if constexpr (!std::is_same_v<Stepper, SparseNewmark<System>>)
+        if (system.size() <= 200) result.highest_mode_hz = highest_angular_frequency(system, result.final_state) / (2.0 * pi);
     RecordOptions record = options.record;
     if (options.settle.enabled) {
         const std::uint64_t planned = std::uint64_t(options.settle.max_revolutions) *
@@ -97,7 +99,8 @@ RunResult<System> run(const System& system, const NewmarkSettings& settings, con
     result.recording = recorder.take();
     result.time_step = settings.time_step;
     result.decimation = options.record.decimation;
-    result.backend = std::is_same_v<Stepper, Newmark<System>> ? "dense" : "sparse";
+    result.backend = std::is_same_v<Stepper, SparseNewmark<System>> ? "sparse" : "dense";
+    result.method = method_name(settings);
     return result;
 }
 
@@ -115,13 +118,6 @@ bool uses_sparse_backend(const System& system, const NewmarkSettings& settings) 
         return false;
     }
 }
-
-namespace detail {
-template <class S, class = void>
-struct has_period : std::false_type {};
-template <class S>
-struct has_period<S, void_t<decltype(double(std::declval<const S&>().period()))>> : std::true_type {};
-}  // namespace detail
 
 // Refuses a time step the run cannot use: longer than the run itself, or (for a cam mechanism) longer
 // than a twelfth of a camshaft revolution, which cannot resolve the cam's motion.
@@ -145,6 +141,10 @@ RunResult<System> simulate(const System& system, const NewmarkSettings& settings
                            const std::optional<typename System::Vector>& v0 = std::nullopt) {
     if (options.progress && options.progress_every < 1) detail::fail("progress_every must be >= 1");
     check_time_step(system, settings, options.duration);
+    if (settings.method == Method::dormand_prince) {
+        if (settings.backend == Backend::sparse) detail::fail("linear_solver 'sparse' or 'klu' applies to Newmark; dormand_prince solves no linear system");
+        return detail::run<DormandPrince<System>>(system, settings, options, q0, v0);
+    }
     if constexpr (detail::has_sparse_matrices<System>::value) {
         if (uses_sparse_backend(system, settings)) return detail::run<SparseNewmark<System>>(system, settings, options, q0, v0);
     } else {
@@ -176,6 +176,8 @@ PeriodicOrbit periodic_orbit(const System& system, const NewmarkSettings& settin
     check_time_step(system, settings, options.period);
     const Eigen::VectorXd q = q0 ? Eigen::VectorXd(*q0) : Eigen::VectorXd(initial_displacement(system));
     const Eigen::VectorXd v = v0 ? Eigen::VectorXd(*v0) : Eigen::VectorXd(initial_velocity(system));
+    if (settings.method == Method::dormand_prince)
+        return detail::shoot_with<DormandPrince<System>>(system, settings, options, q, v, keep_going);
     if constexpr (detail::has_sparse_matrices<System>::value) {
         if (uses_sparse_backend(system, settings))
             return detail::shoot_with<SparseNewmark<System>>(system, settings, options, q, v, keep_going);

@@ -1,0 +1,338 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Explicit Dormand-Prince 5(4) with adaptive steps and dense output, for any system of the contract in
+// core/system.hpp, written as the first-order system y = (q, v), y' = (v, a(t, q, v)) with
+// M a = -(C v + K q + f(t, q, v) - p(t)).
+//
+// Why beside Newmark: at the accuracy users read contact forces and accelerations (1e-4 ... 1e-8) a
+// lumped cam-follower model is not stiff (the explicit stability limit allows larger steps than the
+// accuracy does), and a fifth-order method needs far fewer steps than a second-order one.
+//
+// Error control: a step is accepted when both
+//   - the mixed displacement/velocity norm sqrt(mean((e_i / (tol (|y_i| + y_ref)))^2)) <= 1, q_ref the
+//     largest |q| of the run so far, v_ref the largest |v| but at least q_ref omega_ref (omega_ref:
+//     2 pi / period for a camshaft-driven system, else its lowest natural frequency), so that components
+//     near zero (a dwell starting at rest) do not demand absolute accuracy,
+//   - the force-weighted error |K_t e_q + C_t e_v|_inf <= tol * force_scale, K_t, C_t the stiffness and
+//     damping with the contacts' tangent at the new state: the error in the forces (and, through M^-1,
+//     the accelerations) the step leaves behind. A stiff contact turns nanometres into newtons; a
+//     displacement norm alone lets the contact force drift far beyond the tolerance.
+// Step size by Hairer's PI controller (Hairer, Norsett & Wanner, Solving ODE I, II.4 and code DOPRI5),
+// stiffness detection by the same code's test (h |lambda| beyond the stability boundary for 15 steps).
+//
+// The stepper keeps its own integration state ahead of the reported one: step() moves the reported
+// state by exactly one output interval (time_step) and fills it by the fourth-order dense output, so
+// the output grid never shortens the integration steps.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+
+#include "camfollower/core/system.hpp"
+#include "camfollower/constants.hpp"
+#include "camfollower/error.hpp"
+#include "camfollower/solver/newmark.hpp"
+
+namespace camfollower {
+
+// The Dormand-Prince 5(4) tableau (FSAL: the seventh stage is the next step's first) and Hairer's
+// dense-output coefficients.
+namespace dopri5 {
+inline constexpr std::array<double, 7> c{0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0, 1.0};
+inline constexpr double a[7][6] = {
+    {0, 0, 0, 0, 0, 0},
+    {1.0 / 5.0, 0, 0, 0, 0, 0},
+    {3.0 / 40.0, 9.0 / 40.0, 0, 0, 0, 0},
+    {44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0, 0, 0},
+    {19372.0 / 6561.0, -25360.0 / 2187.0, 64448.0 / 6561.0, -212.0 / 729.0, 0, 0},
+    {9017.0 / 3168.0, -355.0 / 33.0, 46732.0 / 5247.0, 49.0 / 176.0, -5103.0 / 18656.0, 0},
+    {35.0 / 384.0, 0.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0}};
+// Fifth-order weights are the last row of a; e = b5 - b4 gives the embedded error estimate.
+inline constexpr std::array<double, 7> e{71.0 / 57600.0, 0.0, -71.0 / 16695.0, 71.0 / 1920.0,
+                                         -17253.0 / 339200.0, 22.0 / 525.0, -1.0 / 40.0};
+inline constexpr std::array<double, 7> d{-12715105075.0 / 11282082432.0, 0.0, 87487479700.0 / 32700410799.0,
+                                         -10690763975.0 / 1880347072.0, 701980252875.0 / 199316789632.0,
+                                         -1453857185.0 / 822651844.0, 69997945.0 / 29380423.0};
+}  // namespace dopri5
+
+template <class System>
+class DormandPrince {
+    static_assert(check_system<System>());
+
+public:
+    using Vector = typename System::Vector;
+    using Matrix = typename System::Matrix;
+    using StateType = State<System>;
+    // h |lambda| beyond this (the method's stability boundary on the negative real axis is ~3.3) on
+    // `stiff_run` successive steps: the step is bounded by stability, not by accuracy.
+    static constexpr double stiffness_bound = 3.25;
+    static constexpr int stiff_run = 15;
+
+    DormandPrince(const System& system, const NewmarkSettings& settings)
+        : system_(system), s_(validated(settings)), n_(system.size()), uv_(n_, std::max(1, max_rank(system))) {
+        const Matrix& M = system.mass();
+        if (M.rows() != n_ || M.cols() != n_ || system.damping().rows() != n_ || system.stiffness().rows() != n_)
+            detail::fail("system: mass, damping and stiffness must be ", n_, " x ", n_, " (size())");
+        for (int k = 0; k < n_; ++k)
+            if (!(M(k, k) > 0.0)) detail::fail("system: mass matrix diagonal must be > 0, got M(", k, ", ", k, ") = ", M(k, k));
+        M_inv_ = M.partialPivLu().inverse();
+        for (Vector* x : {&q_, &v_, &qs_, &vs_, &q6_, &v6_, &eq_, &ev_, &ef_, &f_, &rhs_})
+            x->resize(n_);
+        for (int i = 0; i < 7; ++i) kq_[i].resize(n_), kv_[i].resize(n_);
+        for (int i = 0; i < 5; ++i) rq_[i].resize(n_), rv_[i].resize(n_);
+    }
+    DormandPrince(System&&, const NewmarkSettings&) = delete;
+
+    const NewmarkSettings& settings() const { return s_; }
+    const System& system() const { return system_; }
+    double time_step() const { return s_.time_step; }  // the output interval (steps are adaptive)
+    double force_scale() const { return force_scale_; }
+
+    StateType start(double t, const Vector& q, const Vector& v) {
+        detail::require_finite(t, "start time");
+        if (q.size() != n_ || v.size() != n_) detail::fail("initial q and v must have size ", n_, ", got ", q.size(), ", ", v.size());
+        if (!q.allFinite() || !v.allFinite()) detail::fail("initial q and v must be finite");
+        StateType s;
+        s.t = t, s.q = q, s.v = v;
+        s.workspace = make_workspace(system_);
+        prepare(system_, t, s.workspace);
+        s.f.resize(n_);
+        nonlinear_force(system_, s.workspace, s.q, s.v, s.f);
+        s.a.resize(n_);
+        acceleration(s.q, s.v, s.f, s.a);
+        const Vector Kq = system_.stiffness() * s.q;
+        force_scale_ = std::max({1.0, Kq.cwiseAbs().maxCoeff(), s.f.cwiseAbs().maxCoeff()});
+        accepted(system_, s.workspace, s.q, s.v);
+        // The integration state starts at the reported one.
+        ws_ = s.workspace;
+        t_ = t, q_ = q, v_ = v;
+        t_start_ = t, fixed_steps_ = 0;
+        kq_[0] = v_, kv_[0] = s.a;
+        if constexpr (detail::has_period<System>::value) {
+            omega_ref_ = 2.0 * pi / system_.period();
+        } else {
+            const double lowest = natural_frequency_range(system_, s).lowest;
+            omega_ref_ = std::isfinite(lowest) ? lowest : 1.0 / s_.time_step;
+        }
+        q_ref_ = q_.cwiseAbs().maxCoeff();
+        v_ref_ = std::max(v_.cwiseAbs().maxCoeff(), omega_ref_ * q_ref_);
+        h_ = initial_step(s.a);
+        t_old_ = t_, h_last_ = 0.0, err_old_ = 1e-4;
+        stiff_count_ = 0, non_stiff_count_ = 0;
+        return s;
+    }
+
+    // Moves the reported state one output interval on (dense output between integration steps).
+    void step(StateType& s, SolverStatistics& stats) {
+        const double target = s.t + s_.time_step;
+        // (a step ending within rounding of the target reaches it: no sliver of a step)
+        while (target - t_ > 1e-9 * s_.time_step) take_step(stats);
+        interpolate(target, s.q, s.v);
+        s.t = target;
+        // The reported state carries the integration's path memory (e.g. contact losses so far).
+        s.workspace = ws_;
+        prepare(system_, target, s.workspace);
+        nonlinear_force(system_, s.workspace, s.q, s.v, s.f);
+        acceleration(s.q, s.v, s.f, s.a);
+        ++stats.evaluations;
+    }
+
+    // Highest natural angular frequency at a state (rad/s), contacts linearized.
+    double highest_angular_frequency(const StateType& s) const { return camfollower::highest_angular_frequency(system_, s); }
+
+private:
+    static NewmarkSettings validated(const NewmarkSettings& s) {
+        s.validate();
+        return s;
+    }
+
+    // a = M^-1 (-(C v + K q + f)).
+    void acceleration(const Vector& q, const Vector& v, const Vector& f, Vector& out) {
+        rhs_.noalias() = system_.damping() * v;
+        rhs_.noalias() += system_.stiffness() * q;
+        rhs_ += f;
+        out.noalias() = -(M_inv_ * rhs_);
+    }
+
+    // Stage derivative at (t, q, v): kq = v, kv = a.
+    void derivative(double t, const Vector& q, const Vector& v, Vector& kq, Vector& kv, SolverStatistics& stats) {
+        prepare(system_, t, ws_);
+        nonlinear_force(system_, ws_, q, v, f_);
+        kq = v;
+        acceleration(q, v, f_, kv);
+        ++stats.evaluations;
+    }
+
+    double error_norm_qv(const Vector& eq, const Vector& ev, const Vector& q0, const Vector& v0, const Vector& q1,
+                         const Vector& v1) const {
+        double sum = 0.0;
+        const double tol = s_.tolerance;
+        for (int i = 0; i < n_; ++i) {
+            const double sq = tol * (std::max(std::abs(q0[i]), std::abs(q1[i])) + q_ref_ + 1e-12);
+            const double sv = tol * (std::max(std::abs(v0[i]), std::abs(v1[i])) + v_ref_ + 1e-12);
+            sum += (eq[i] / sq) * (eq[i] / sq) + (ev[i] / sv) * (ev[i] / sv);
+        }
+        return std::sqrt(sum / double(2 * n_));
+    }
+
+    // Hairer's starting step: from the sizes of y, y' and an estimate of y''.
+    double initial_step(const Vector& a0) {
+        SolverStatistics scratch;
+        Vector zero = Vector::Zero(n_);
+        const double d0 = error_norm_qv(q_, v_, zero, zero, zero, zero);
+        const double d1 = error_norm_qv(v_, a0, zero, zero, zero, zero);
+        double h0 = (d0 < 1e-5 || d1 < 1e-5) ? 1e-6 : 0.01 * d0 / d1;
+        h0 = std::min(h0, s_.time_step * 100.0);
+        qs_ = q_ + h0 * v_;
+        vs_ = v_ + h0 * a0;
+        derivative(t_ + h0, qs_, vs_, kq_[1], kv_[1], scratch);
+        eq_ = (kq_[1] - v_) / h0;
+        ev_ = (kv_[1] - a0) / h0;
+        const double d2 = error_norm_qv(eq_, ev_, zero, zero, zero, zero);
+        const double dm = std::max(d1, d2);
+        const double h1 = dm <= 1e-15 ? std::max(1e-6, h0 * 1e-3) : std::pow(0.01 / dm, 1.0 / 5.0);
+        prepare(system_, t_, ws_);  // the workspace back at the integration time
+        return std::min(100.0 * h0, h1);
+    }
+
+    // One accepted step of the integration state (rejected attempts retried with a smaller step).
+    void take_step(SolverStatistics& stats) {
+        const double min_step = 1e-14 * std::max(1.0, std::abs(t_));
+        for (;;) {
+            double h = h_;
+            if (s_.max_step > 0.0) h = std::min(h, s_.max_step);
+            if (!s_.adaptive) h = s_.max_step > 0.0 ? s_.max_step : s_.time_step;
+            if (!(h >= min_step))
+                throw ConvergenceError(detail::concat("Dormand-Prince: the step fell to ", h, " s at t = ", t_,
+                                                      " s without meeting tolerance = ", s_.tolerance,
+                                                      " (the response is not smooth there, or the tolerance is below rounding)"));
+            // Stages 2..7 (stage 1 is the previous step's last: FSAL).
+            for (int i = 1; i < 7; ++i) {
+                qs_ = q_;
+                vs_ = v_;
+                for (int j = 0; j < i; ++j) {
+                    const double w = h * dopri5::a[i][j];
+                    if (w == 0.0) continue;
+                    qs_.noalias() += w * kq_[j];
+                    vs_.noalias() += w * kv_[j];
+                }
+                if (i == 5) q6_ = qs_, v6_ = vs_;  // for the stiffness test
+                derivative(t_ + dopri5::c[std::size_t(i)] * h, qs_, vs_, kq_[i], kv_[i], stats);
+            }
+            // qs_, vs_ now hold the fifth-order solution (stage 7's input). Embedded error:
+            eq_.setZero();
+            ev_.setZero();
+            for (int i = 0; i < 7; ++i) {
+                if (dopri5::e[std::size_t(i)] == 0.0) continue;
+                eq_.noalias() += (h * dopri5::e[std::size_t(i)]) * kq_[i];
+                ev_.noalias() += (h * dopri5::e[std::size_t(i)]) * kv_[i];
+            }
+            double err = error_norm_qv(eq_, ev_, q_, v_, qs_, vs_);
+            err = std::max(err, force_error(qs_, vs_) / (s_.tolerance * force_scale_));
+            if (!std::isfinite(err)) err = 1e10;
+            if (!s_.adaptive) {
+                if (err == 1e10)
+                    throw ConvergenceError(detail::concat("Dormand-Prince: the state became non-finite at t = ", t_,
+                                                          " s with the fixed step ", h, " s: the step is beyond the stability limit"));
+                err = 0.5;
+            }
+            // Hairer's PI step-size controller.
+            const double fac11 = std::pow(err, 0.17);
+            if (err <= 1.0) {
+                double fac = fac11 / std::pow(err_old_, 0.04) / 0.9;
+                fac = std::clamp(fac, 0.1, 5.0);  // grow at most x10, shrink at most x5
+                const double h_new = h / fac;
+                err_old_ = std::max(err, 1e-4);
+                stiffness_test(h, stats);
+                accept(h, stats);
+                h_ = rejected_last_ ? std::min(h_new, h) : h_new;
+                rejected_last_ = false;
+                return;
+            }
+            h_ = h / std::min(5.0, fac11 / 0.9);
+            rejected_last_ = true;
+            ++stats.rejected_steps;  // the next attempt's stages prepare the workspace again
+        }
+    }
+
+    // |K_t e_q + C_t e_v|_inf with the contacts' tangent at the new state (the last stage evaluated it).
+    double force_error(const Vector& q1, const Vector& v1) {
+        ef_.noalias() = system_.stiffness() * eq_;
+        ef_.noalias() += system_.damping() * ev_;
+        uv_.clear();
+        tangent(system_, ws_, q1, v1, 1.0, 0.0, uv_);
+        for (int k = 0; k < uv_.rank; ++k) ef_ += uv_.U.col(k) * uv_.V.col(k).dot(eq_);
+        uv_.clear();
+        tangent(system_, ws_, q1, v1, 0.0, 1.0, uv_);
+        for (int k = 0; k < uv_.rank; ++k) ef_ += uv_.U.col(k) * uv_.V.col(k).dot(ev_);
+        return ef_.cwiseAbs().maxCoeff();
+    }
+
+    // Hairer's test: h |lambda| ~ h |k7 - k6| / |y7 - y6| beyond the stability boundary.
+    void stiffness_test(double h, SolverStatistics& stats) {
+        const double num = (kq_[6] - kq_[5]).squaredNorm() + (kv_[6] - kv_[5]).squaredNorm();
+        const double den = (qs_ - q6_).squaredNorm() + (vs_ - v6_).squaredNorm();
+        if (den > 0.0 && h * std::sqrt(num / den) > stiffness_bound) {
+            non_stiff_count_ = 0;
+            if (++stiff_count_ >= stiff_run) ++stats.stiff_steps;
+        } else if (++non_stiff_count_ >= 6) {
+            stiff_count_ = 0;
+        }
+    }
+
+    void accept(double h, SolverStatistics& stats) {
+        // Dense output coefficients (Hairer's CONTD5) on [t_, t_ + h].
+        rq_[0] = q_, rv_[0] = v_;
+        rq_[1] = qs_ - q_, rv_[1] = vs_ - v_;
+        rq_[2] = h * kq_[0] - rq_[1], rv_[2] = h * kv_[0] - rv_[1];
+        rq_[3] = rq_[1] - h * kq_[6] - rq_[2], rv_[3] = rv_[1] - h * kv_[6] - rv_[2];
+        rq_[4].setZero(), rv_[4].setZero();
+        for (int i = 0; i < 7; ++i) {
+            if (dopri5::d[std::size_t(i)] == 0.0) continue;
+            rq_[4].noalias() += (h * dopri5::d[std::size_t(i)]) * kq_[i];
+            rv_[4].noalias() += (h * dopri5::d[std::size_t(i)]) * kv_[i];
+        }
+        t_old_ = t_, h_last_ = h;
+        // Fixed steps: time as t0 + n h (a sum drifts by ulps, off the output grid).
+        t_ = s_.adaptive ? t_ + h : t_start_ + double(++fixed_steps_) * h;
+        q_ = qs_, v_ = vs_;
+        kq_[0] = kq_[6], kv_[0] = kv_[6];  // FSAL; the workspace holds the force at the new state
+        q_ref_ = std::max(q_ref_, q_.cwiseAbs().maxCoeff());
+        v_ref_ = std::max({v_ref_, v_.cwiseAbs().maxCoeff(), omega_ref_ * q_ref_});
+        accepted(system_, ws_, q_, v_);
+        ++stats.steps;
+    }
+
+    // The dense output at time t in [t_old_, t_] (the last accepted step).
+    void interpolate(double t, Vector& q, Vector& v) const {
+        const double th = h_last_ > 0.0 ? (t - t_old_) / h_last_ : 1.0, th1 = 1.0 - th;
+        q = rq_[0] + th * (rq_[1] + th1 * (rq_[2] + th * (rq_[3] + th1 * rq_[4])));
+        v = rv_[0] + th * (rv_[1] + th1 * (rv_[2] + th * (rv_[3] + th1 * rv_[4])));
+    }
+
+    const System& system_;
+    NewmarkSettings s_;
+    int n_;
+    Matrix M_inv_;
+    double force_scale_ = 1.0;
+    // The integration state (ahead of the reported one) and its workspace.
+    double t_ = 0.0, t_old_ = 0.0, h_ = 0.0, h_last_ = 0.0, err_old_ = 1e-4;
+    double q_ref_ = 0.0, v_ref_ = 0.0, omega_ref_ = 0.0;
+    double t_start_ = 0.0;
+    std::uint64_t fixed_steps_ = 0;
+    bool rejected_last_ = false;
+    int stiff_count_ = 0, non_stiff_count_ = 0;
+    workspace_t<System> ws_;
+    // Scratch, sized once: nothing is allocated inside the time loop.
+    Vector q_, v_, qs_, vs_, q6_, v6_, eq_, ev_, ef_, f_, rhs_;
+    std::array<Vector, 7> kq_, kv_;
+    std::array<Vector, 5> rq_, rv_;
+    LowRank<Vector> uv_;
+};
+
+}  // namespace camfollower

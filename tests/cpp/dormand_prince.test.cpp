@@ -1,0 +1,206 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Dormand-Prince 5(4): order against closed forms, dense output, error control against an independent
+// reference (Richardson-extrapolated Newmark) on the paper preset, stiffness detection, bad settings.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "camfollower/model/presets/paper.hpp"
+#include "camfollower/solver/simulate.hpp"
+#include "linear_system.hpp"
+#include "run.hpp"
+
+using namespace camfollower;
+
+namespace {
+
+// Damped SDOF driven by F sin(W t) from rest at x = 0: the closed form is the steady response plus
+// the free response that cancels its initial displacement and velocity.
+struct DrivenSdof {
+    double m = 2.0, k = 800.0, c = 4.0, F = 3.0, W = 13.0;
+    LinearSystem<1> system() const {
+        LinearSystem<1> s;
+        s.M(0, 0) = m, s.K(0, 0) = k, s.C(0, 0) = c;
+        const double f = F, w = W;
+        s.external = [f, w](double t) { return Eigen::Matrix<double, 1, 1>(f * std::sin(w * t)); };
+        return s;
+    }
+    double exact(double t) const {
+        const double w = std::sqrt(k / m), zeta = c / (2 * std::sqrt(k * m)), wd = w * std::sqrt(1 - zeta * zeta);
+        // Steady: X sin(W t - phi)
+        const double den = (k - m * W * W) * (k - m * W * W) + (c * W) * (c * W);
+        const double A = F * (k - m * W * W) / den, B = -F * c * W / den;  // x_p = A sin + B cos
+        const double x0 = -B, v0 = -A * W;                                // free part's start
+        const double free = std::exp(-zeta * w * t) * (x0 * std::cos(wd * t) + (v0 + zeta * w * x0) / wd * std::sin(wd * t));
+        return A * std::sin(W * t) + B * std::cos(W * t) + free;
+    }
+    double period() const { return 2 * pi / std::sqrt(k / m); }
+};
+
+NewmarkSettings dopri(double time_step, double tolerance = 1e-6) {
+    NewmarkSettings s;
+    s.method = Method::dormand_prince;
+    s.time_step = time_step;
+    s.tolerance = tolerance;
+    return s;
+}
+
+double max_error(const DrivenSdof& sdof, const NewmarkSettings& s, double duration) {
+    const auto r = run(sdof.system(), s, duration);
+    double err = 0.0;
+    for (std::size_t i = 0; i < r.rows; ++i) err = std::max(err, std::abs(r.q[i] - sdof.exact(r.t[i])));
+    return err;
+}
+
+}  // namespace
+
+TEST_CASE("Dormand-Prince with fixed steps is fifth order on a driven damped oscillator") {
+    const DrivenSdof sdof;
+    const double T = sdof.period();
+    double errors[4];
+    for (int i = 0; i < 4; ++i) {
+        NewmarkSettings s = dopri(T / (20.0 * (1 << i)));
+        s.adaptive = false;
+        errors[i] = max_error(sdof, s, 3 * T);
+    }
+    for (int i = 0; i < 3; ++i) {
+        const double order = std::log2(errors[i] / errors[i + 1]);
+        INFO("h = T/" << 20 * (1 << i) << ": error " << errors[i] << ", observed order " << order);
+        CHECK(order == Approx(5.0).margin(0.1));
+    }
+}
+
+TEST_CASE("Dormand-Prince's dense output between fixed steps keeps the order of the steps") {
+    const DrivenSdof sdof;
+    const double T = sdof.period();
+    double errors[3];
+    for (int i = 0; i < 3; ++i) {
+        NewmarkSettings s = dopri(T / (160.0 * (1 << i)));  // output 8 times per step
+        s.adaptive = false;
+        s.max_step = 8.0 * s.time_step;
+        errors[i] = max_error(sdof, s, 3 * T);
+    }
+    for (int i = 0; i < 2; ++i) {
+        const double order = std::log2(errors[i] / errors[i + 1]);
+        INFO("step T/" << 20 * (1 << i) << ", output 8 per step: error " << errors[i] << ", observed order " << order);
+        CHECK(order == Approx(5.0).margin(0.15));
+    }
+}
+
+TEST_CASE("Dormand-Prince's adaptive error follows the tolerance") {
+    const DrivenSdof sdof;
+    const double T = sdof.period();
+    double previous = 1.0;
+    for (double tol : {1e-4, 1e-6, 1e-8, 1e-10}) {
+        const double peak = sdof.F / sdof.k * 10.0;  // generous bound of |x|
+        const double err = max_error(sdof, dopri(T / 64, tol), 3 * T);
+        INFO("tolerance " << tol << ": max error " << err << " (" << err / peak << " of the peak)");
+        CHECK(err < 30.0 * tol * peak);
+        CHECK(err < previous);
+        previous = err;
+    }
+}
+
+TEST_CASE("Dormand-Prince on the paper preset: contact force against Richardson-extrapolated Newmark") {
+    const Mechanism<presets::paper_dofs> m = presets::paper();
+    const double T = m.period();
+    const int grid = 512;  // output rows per revolution
+    // Reference: average-acceleration Newmark is second order, so (4 F(h/2) - F(h)) / 3 cancels the h^2 term.
+    auto newmark = [&](int per_output) {
+        NewmarkSettings s;
+        s.time_step = T / (grid * per_output);
+        return run(m, s, T, std::size_t(per_output));
+    };
+    const auto coarse = newmark(128), fine = newmark(256);
+    REQUIRE(coarse.rows == std::size_t(grid + 1));
+    REQUIRE(fine.rows == coarse.rows);
+    const double* fc = coarse.channel("cam.force");
+    const double* ff = fine.channel("cam.force");
+    std::vector<double> reference(coarse.rows);
+    double peak = 0.0, newmark_error = 0.0;
+    for (std::size_t i = 0; i < coarse.rows; ++i) {
+        reference[i] = (4.0 * ff[i] - fc[i]) / 3.0;
+        peak = std::max(peak, std::abs(reference[i]));
+        newmark_error = std::max(newmark_error, std::abs(ff[i] - reference[i]));
+    }
+    INFO("Newmark at T/" << grid * 256 << ": force error ~" << newmark_error / peak << " of the peak " << peak << " N");
+    for (double tol : {1e-5, 1e-6}) {
+        const auto r = run(m, dopri(T / grid, tol), T);
+        REQUIRE(r.rows == coarse.rows);
+        const double* f = r.channel("cam.force");
+        double err = 0.0;
+        for (std::size_t i = 0; i < r.rows; ++i) err = std::max(err, std::abs(f[i] - reference[i]));
+        INFO("tolerance " << tol << ": force error " << err / peak << " of the peak, " << r.stats.steps << " steps, "
+                          << r.stats.rejected_steps << " rejected, " << r.stats.evaluations << " evaluations");
+        // The tolerance bounds each step's error; over a revolution's thousands of steps the global
+        // error is some tens of times larger (measured against a tighter run: 47 and 42 times).
+        CHECK(err / peak < 100.0 * tol + 2e-5);  // the reference is good to ~1.4e-5
+        CHECK(err / peak > 0.5 * tol);  // and the comparison resolves it: the reference is that good
+        CHECK(r.stats.newton_iterations == 0u);
+    }
+}
+
+TEST_CASE("Fox-Goodwin (beta = 1/12) is fourth order on an undamped oscillator, average acceleration second") {
+    // Free vibration from x0 at rest: x = x0 cos(w t). The phase error of Newmark with gamma = 1/2 is
+    // (1/12 - beta) (w dt)^2 per radian plus O(dt^4): beta = 1/12 cancels the second-order term.
+    DrivenSdof free;
+    free.c = 0.0, free.F = 0.0;
+    LinearSystem<1> system = free.system();
+    system.q0[0] = 0.01;
+    const double w = std::sqrt(free.k / free.m), T = 2 * pi / w;
+    auto error = [&](const char* method, double dt) {
+        NewmarkSettings s;
+        s.time_step = dt;
+        set_method(s, method);
+        const auto r = run(system, s, 5 * T);
+        double err = 0.0;
+        for (std::size_t i = 0; i < r.rows; ++i) err = std::max(err, std::abs(r.q[i] - 0.01 * std::cos(w * r.t[i])));
+        return err;
+    };
+    for (auto [method, order] : {std::pair{"fox_goodwin", 4.0}, std::pair{"newmark", 2.0}}) {
+        const double e1 = error(method, T / 40), e2 = error(method, T / 80);
+        INFO(method << ": errors " << e1 << ", " << e2);
+        CHECK(std::log2(e1 / e2) == Approx(order).margin(0.1));
+    }
+    NewmarkSettings s;
+    set_method(s, "fox_goodwin");
+    CHECK(s.gamma == 0.5);
+    CHECK(s.beta == Approx(1.0 / 12.0));
+    CHECK(std::string(method_name(s)) == "fox_goodwin");
+    s.time_step = 3.0 / w;  // beyond sqrt(6) / w
+    CHECK_THROWS_WITH(run(system, s, 10 * T), Catch::Contains("exceeds the stability limit"));
+    CHECK_THROWS_WITH(set_method(s, "rk4"), Catch::Contains("method must be 'newmark', 'fox_goodwin' or 'dormand_prince', got 'rk4'"));
+}
+
+TEST_CASE("Dormand-Prince reports steps bounded by stability on a stiff system, none on a soft one") {
+    // Two masses: a soft mode (1 Hz) driven slowly, and a stiff one (~16 kHz) that never moves visibly.
+    LinearSystem<2> stiff;
+    stiff.M = Eigen::Matrix2d::Identity();
+    stiff.K << 40.0 + 1e10, -1e10, -1e10, 1e10;
+    stiff.C << 1e3, -1e3, -1e3, 1e3;
+    stiff.external = [](double t) { return Eigen::Vector2d(std::sin(6.0 * t), 0.0); };
+    const auto r = run(stiff, dopri(0.01, 1e-3), 2.0);
+    CHECK(r.stats.stiff_steps > 0u);
+    const DrivenSdof sdof;
+    const auto soft = run(sdof.system(), dopri(sdof.period() / 32, 1e-6), 3 * sdof.period());
+    CHECK(soft.stats.stiff_steps == 0u);
+}
+
+TEST_CASE("Dormand-Prince refuses tolerances and steps it cannot honour, naming them") {
+    const DrivenSdof sdof;
+    const auto system = sdof.system();
+    for (double tol : {0.0, -1e-6, 1e-14, 0.5, std::nan("")})
+        CHECK_THROWS_WITH(run(system, dopri(1e-3, tol), 0.1), Catch::Contains("tolerance must be in [1e-13, 0.1]"));
+    NewmarkSettings s = dopri(1e-3);
+    s.max_step = -1.0;
+    CHECK_THROWS_WITH(run(system, s, 0.1), Catch::Contains("max_step must be finite and >= 0 s"));
+    // A fixed step far beyond the stability limit blows up: reported, not returned.
+    s.max_step = 0.0;
+    s.adaptive = false;
+    LinearSystem<1> rigid;
+    rigid.K(0, 0) = 1e12;
+    rigid.q0[0] = 1e-3;
+    CHECK_THROWS_WITH(run(rigid, s, 1.0), Catch::Contains("beyond the stability limit"));
+}
