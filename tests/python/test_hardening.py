@@ -409,3 +409,25 @@ def test_a_config_whose_mechanism_cannot_be_solved_names_the_file(tmp_path):
     path.write_text(text.replace("stiffness = 1e8", "stiffness = 1e300"))
     with pytest.raises(RuntimeError, match=r"rigid.toml: static equilibrium at theta = 0 deg did not converge"):
         cf.load_config(path)
+
+
+def test_a_preset_whose_calibration_cannot_converge_names_the_file_and_table(tmp_path):
+    """The paper preset calibrates its spring preload at build: a denormal preload deflection was a
+    RuntimeError without the file (long fuzz profile); now the deflection is bounded like every
+    length, and a preset that cannot be built says which file and table."""
+    text = (ROOT / "examples" / "paper_studies.toml").read_text()
+    lines = text.splitlines()
+    k = next(i for i, line in enumerate(lines) if line.startswith("spring_preload_deflection ="))
+    lines[k] = "spring_preload_deflection = 1e-320"
+    path = tmp_path / "denormal.toml"
+    path.write_text("\n".join(lines) + "\n")
+    with pytest.raises(ValueError, match=r"denormal.toml:\d+: preset(.parameters)?: spring_preload_deflection must be "
+                                         r"finite and > 0 \(m\), in \[1e-06, 1000\] m, got (1e-320|9.99\d*e-321)"):
+        cf.load_config(path)
+    # A contact no double can balance (1e25 N/m): whichever check stops it, the message is located.
+    lines[k] = "spring_preload_deflection = 0.013"
+    c = next(i for i, line in enumerate(lines) if line.startswith("contact_stiffness ="))
+    lines[c] = "contact_stiffness = 1e25"
+    path.write_text("\n".join(lines) + "\n")
+    with pytest.raises((ValueError, RuntimeError), match=r"denormal.toml:\d+: preset: static equilibrium"):
+        cf.load_config(path)

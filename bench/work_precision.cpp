@@ -1,0 +1,226 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Work against precision on what users read: the contact force and the follower acceleration of the
+// paper preset over one revolution, for each camfollower method and setting, and (when Boost is
+// installed) boost::numeric::odeint's dopri5 and fehlberg78 driving the same model evaluation.
+//   cmake -S . -B build-bench -DCAMFOLLOWER_BUILD_BENCHMARKS=ON && cmake --build build-bench
+//   build-bench/bench/camfollower_work_precision [--stiff] [--rpm N] [--repeats N]
+// Each setting runs `repeats` times, interleaved with the others; the CPU time reported is the median.
+// Errors: max |x - x_ref| / max |x_ref| over the output grid (2048 rows per revolution); the reference
+// is odeint's fehlberg78 at rtol 1e-13 when Boost is available, else Dormand-Prince at tolerance 1e-12.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "camfollower/model/presets/paper.hpp"
+#include "camfollower/solver/simulate.hpp"
+
+#if CAMFOLLOWER_HAVE_ODEINT
+#include <boost/numeric/odeint.hpp>
+#endif
+
+namespace cf = camfollower;
+using Model = cf::Mechanism<cf::presets::paper_dofs>;
+
+namespace {
+
+constexpr int grid = 2048;   // output rows per revolution
+constexpr int follower = 3;  // y4, the follower's DOF
+
+// The channels compared: contact force and follower acceleration on the output grid.
+struct Histories {
+    std::vector<double> force, accel;
+    double cpu_ms = 0.0;
+    std::uint64_t steps = 0, evaluations = 0;
+};
+
+double cpu_seconds() { return double(std::clock()) / CLOCKS_PER_SEC; }
+
+Histories run_camfollower(const Model& m, const cf::NewmarkSettings& s) {
+    cf::RunOptions o;
+    o.duration = m.period();
+    const double dt = m.period() / grid;
+    o.record.decimation = std::size_t(std::llround(dt / s.time_step));
+    const double t0 = cpu_seconds();
+    const auto r = cf::simulate(m, s, o);
+    Histories h;
+    h.cpu_ms = 1e3 * (cpu_seconds() - t0);
+    const double* f = r.recording.channel("cam.force");
+    const double* a = r.recording.channel(r.recording.block(2) + follower);
+    h.force.assign(f, f + r.recording.rows);
+    h.accel.assign(a, a + r.recording.rows);
+    h.steps = r.report.stats.steps;
+    h.evaluations = r.report.stats.evaluations;
+    return h;
+}
+
+#if CAMFOLLOWER_HAVE_ODEINT
+using Y = std::array<double, 2 * cf::presets::paper_dofs>;
+
+// y' = (v, M^-1 (-(C v + K q + f))) through the system contract: the same evaluation camfollower uses.
+struct Rhs {
+    const Model& m;
+    Model::Matrix M_inv;
+    mutable Model::Workspace ws;
+    mutable std::uint64_t evaluations = 0;
+    explicit Rhs(const Model& model) : m(model), M_inv(model.mass().inverse()), ws(model.workspace()) {}
+    void acceleration(double t, const Model::Vector& q, const Model::Vector& v, Model::Vector& a) const {
+        Model::Vector f;
+        m.prepare(t, ws);
+        m.force(ws, q, v, f);
+        a = -(M_inv * (m.damping() * v + m.stiffness() * q + f));
+        ++evaluations;
+    }
+    void operator()(const Y& y, Y& dy, double t) const {
+        Model::Vector q, v, a;
+        for (int i = 0; i < 7; ++i) q[i] = y[std::size_t(i)], v[i] = y[std::size_t(7 + i)];
+        acceleration(t, q, v, a);
+        for (int i = 0; i < 7; ++i) dy[std::size_t(i)] = v[i], dy[std::size_t(7 + i)] = a[i];
+    }
+};
+
+// Observer on the grid: contact force (the model's channel) and follower acceleration at each row.
+struct GridObserver {
+    const Rhs& rhs;
+    Histories& h;
+    void operator()(const Y& y, double t) const {
+        Model::Vector q, v, a;
+        for (int i = 0; i < 7; ++i) q[i] = y[std::size_t(i)], v[i] = y[std::size_t(7 + i)];
+        rhs.acceleration(t, q, v, a);
+        std::vector<double> out(rhs.m.channel_names().size());
+        rhs.m.observe(rhs.ws, q, v, out.data());
+        h.force.push_back(out[force_channel(rhs.m)]);
+        h.accel.push_back(a[follower]);
+    }
+    static std::size_t force_channel(const Model& m) {
+        const auto names = m.channel_names();
+        return std::size_t(std::find(names.begin(), names.end(), "cam.force") - names.begin());
+    }
+};
+
+Histories run_odeint(const Model& m, const std::string& method, double tol) {
+    namespace odeint = boost::numeric::odeint;
+    Rhs rhs(m);
+    Y y{};
+    const Model::Vector q0 = m.initial_displacement();
+    for (int i = 0; i < 7; ++i) y[std::size_t(i)] = q0[i];
+    std::vector<double> times(grid + 1);
+    for (int i = 0; i <= grid; ++i) times[std::size_t(i)] = m.period() * i / grid;
+    Histories h;
+    h.force.reserve(grid + 1), h.accel.reserve(grid + 1);
+    GridObserver obs{rhs, h};
+    const double t0 = cpu_seconds();
+    // Absolute tolerance at the scale of the smallest meaningful displacement (1e-3 of the 10 mm lift).
+    const double atol = tol * 1e-5;
+    if (method == "dopri5") {
+        h.steps = odeint::integrate_times(odeint::make_dense_output(atol, tol, odeint::runge_kutta_dopri5<Y>()),
+                                          std::ref(rhs), y, times.begin(), times.end(), m.period() / grid, std::ref(obs));
+    } else {
+        h.steps = odeint::integrate_times(odeint::make_controlled(atol, tol, odeint::runge_kutta_fehlberg78<Y>()),
+                                          std::ref(rhs), y, times.begin(), times.end(), m.period() / grid, std::ref(obs));
+    }
+    h.cpu_ms = 1e3 * (cpu_seconds() - t0);
+    h.evaluations = rhs.evaluations;
+    return h;
+}
+#endif
+
+struct Setting {
+    std::string label;
+    std::function<Histories()> run;
+    std::vector<double> times;
+    Histories last;
+};
+
+double relative_error(const std::vector<double>& x, const std::vector<double>& ref) {
+    double err = 0.0, peak = 0.0;
+    for (std::size_t i = 0; i < ref.size() && i < x.size(); ++i) {
+        err = std::max(err, std::abs(x[i] - ref[i]));
+        peak = std::max(peak, std::abs(ref[i]));
+    }
+    return x.size() == ref.size() ? err / peak : INFINITY;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    bool stiff = false;
+    double rpm = 750.0;
+    int repeats = 5;
+    for (int i = 1; i < argc; ++i) {
+        if (!std::strcmp(argv[i], "--stiff")) stiff = true;
+        else if (!std::strcmp(argv[i], "--rpm") && i + 1 < argc) rpm = std::atof(argv[++i]);
+        else if (!std::strcmp(argv[i], "--repeats") && i + 1 < argc) repeats = std::atoi(argv[++i]);
+        else {
+            std::fprintf(stderr, "usage: %s [--stiff] [--rpm N] [--repeats N]\n", argv[0]);
+            return 2;
+        }
+    }
+    cf::CamFollowerParameters p;
+    p.camshaft_speed_rpm = rpm;
+    if (stiff) p.contact_stiffness *= 100.0;
+    const Model m = cf::presets::paper(p);
+    const double T = m.period();
+
+    std::vector<Setting> settings;
+    for (int k : {13, 14, 15, 16, 17, 18}) {
+        for (const char* method : {"newmark", "fox_goodwin"}) {
+            cf::NewmarkSettings s;
+            s.time_step = T / double(1 << k);
+            cf::set_method(s, method);
+            try {
+                cf::Newmark<Model> probe(m, s);
+                (void)probe.start(0.0, m.initial_displacement(), Model::Vector::Zero());
+            } catch (const std::exception&) {
+                continue;  // beyond the stability limit
+            }
+            settings.push_back({std::string(method) + " T/2^" + std::to_string(k), [&m, s] { return run_camfollower(m, s); }, {}, {}});
+        }
+    }
+    for (double tol : {1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10}) {
+        cf::NewmarkSettings s;
+        cf::set_method(s, "dormand_prince");
+        s.tolerance = tol;
+        s.time_step = T / grid;
+        char label[64];
+        std::snprintf(label, sizeof label, "dormand_prince tol %.0e", tol);
+        settings.push_back({label, [&m, s] { return run_camfollower(m, s); }, {}, {}});
+    }
+#if CAMFOLLOWER_HAVE_ODEINT
+    for (const char* method : {"dopri5", "fehlberg78"})
+        for (double tol : {1e-4, 1e-6, 1e-8, 1e-10}) {
+            char label[64];
+            std::snprintf(label, sizeof label, "odeint %s rtol %.0e", method, tol);
+            settings.push_back({label, [&m, method, tol] { return run_odeint(m, method, tol); }, {}, {}});
+        }
+    const Histories ref = run_odeint(m, "fehlberg78", 1e-13);
+    const char* ref_name = "odeint fehlberg78 at rtol 1e-13";
+#else
+    cf::NewmarkSettings rs;
+    cf::set_method(rs, "dormand_prince");
+    rs.tolerance = 1e-12;
+    rs.time_step = T / grid;
+    const Histories ref = run_camfollower(m, rs);
+    const char* ref_name = "camfollower dormand_prince at tolerance 1e-12 (Boost not found)";
+#endif
+    for (int r = 0; r < repeats; ++r)
+        for (Setting& s : settings) {
+            s.last = s.run();
+            s.times.push_back(s.last.cpu_ms);
+        }
+    std::printf("# paper preset%s, %.0f rpm, one revolution, %d output rows; reference: %s; median CPU time of %d\n",
+                stiff ? " with contact stiffness x100" : "", rpm, grid, ref_name, repeats);
+    std::printf("| method | CPU ms | force error | follower accel. error | steps | force evaluations |\n|---|---|---|---|---|---|\n");
+    for (Setting& s : settings) {
+        std::sort(s.times.begin(), s.times.end());
+        std::printf("| %s | %.2f | %.2e | %.2e | %llu | %llu |\n", s.label.c_str(), s.times[s.times.size() / 2],
+                    relative_error(s.last.force, ref.force), relative_error(s.last.accel, ref.accel),
+                    static_cast<unsigned long long>(s.last.steps), static_cast<unsigned long long>(s.last.evaluations));
+    }
+    return 0;
+}

@@ -1,0 +1,110 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""The integration methods (docs/solvers.md): Dormand-Prince against an independent solution of the same
+equations (the NumPy model integrated by scipy), Fox-Goodwin, the settings each method accepts, the
+config's [solver] scheme."""
+from pathlib import Path
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+import camfollower as cf
+from camfollower.reference import NumpyCamFollower
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+@pytest.fixture(scope="module")
+def model():
+    return cf.CamFollowerModel()
+
+
+@pytest.fixture(scope="module")
+def reference(model):
+    """The 7-DOF equations written again in NumPy, integrated by scipy's DOP853 at rtol 1e-12."""
+    ref = NumpyCamFollower(model)
+    sol = solve_ivp(ref.rhs, (0, model.period), ref.initial(), method="DOP853", rtol=1e-12, atol=1e-15,
+                    dense_output=True)
+    assert sol.status == 0
+    return ref, sol
+
+
+def force_error(model, reference, result):
+    ref, sol = reference
+    z = sol.sol(result["t"])
+    forces = np.array([ref.kh * max(ref.contact(t, zi[:7])[1], 0.0) for t, zi in zip(result["t"], z.T)])
+    return np.max(np.abs(result["contact_force"] - forces)) / np.max(forces)
+
+
+@pytest.mark.parametrize("tolerance, bound", [(1e-5, 2e-3), (1e-7, 2e-5)])
+def test_dormand_prince_contact_force_against_scipy_on_independent_equations(model, reference, tolerance, bound):
+    r = cf.simulate(model, revolutions=1, time_step=model.period / 512, method="dormand_prince", tolerance=tolerance)
+    assert r.stats["method"] == "dormand_prince"
+    assert r.stats["newton_iterations"] == 0
+    assert r.stats["evaluations"] >= 6 * r.stats["steps"]
+    assert len(r["t"]) == 513 and r["t"][-1] == pytest.approx(model.period, rel=1e-12)
+    err = force_error(model, reference, r)
+    print(f"tolerance {tolerance:g}: contact force error {err:.2e} of the peak, {r.stats['steps']} steps")
+    assert tolerance / 2 < err < bound
+
+
+def test_dormand_prince_converges_to_newmark_at_fine_steps(model):
+    """Two methods, one model: the force histories approach each other as both are refined."""
+    dp = cf.simulate(model, revolutions=1, time_step=model.period / 256, method="dormand_prince", tolerance=1e-9)
+    nm = cf.simulate(model, revolutions=1, time_step=model.period / 65536, decimation=256)
+    assert np.array_equal(dp["t"].shape, nm["t"].shape)
+    np.testing.assert_allclose(dp["t"], nm["t"], rtol=0, atol=1e-12)
+    diff = np.max(np.abs(dp["contact_force"] - nm["contact_force"])) / np.max(np.abs(nm["contact_force"]))
+    assert diff < 2e-4
+
+
+def test_fox_goodwin_is_newmark_with_beta_one_twelfth(model):
+    fg = cf.simulate(model, revolutions=0.25, time_step=model.period / 16384, method="fox_goodwin")
+    nm = cf.simulate(model, revolutions=0.25, time_step=model.period / 16384, gamma=0.5, beta=1 / 12)
+    assert fg.stats["method"] == "fox_goodwin" and nm.stats["method"] == "fox_goodwin"
+    np.testing.assert_array_equal(fg["contact_force"], nm["contact_force"])
+    with pytest.raises(ValueError, match=r"exceeds the stability limit"):
+        cf.simulate(model, revolutions=0.25, time_step=model.period / 1024, method="fox_goodwin")
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(method="rk4"), r"method must be 'newmark', 'fox_goodwin' or 'dormand_prince', got 'rk4'"),
+    (dict(tolerance=1e-6), r"tolerance applies to method 'dormand_prince' only"),
+    (dict(max_step=1e-5, method="fox_goodwin"), r"max_step applies to method 'dormand_prince' only"),
+    (dict(method="dormand_prince", beta=0.3), r"gamma, beta and hht_alpha apply to method 'newmark' only"),
+    (dict(method="dormand_prince", tolerance=0.0), r"tolerance must be in \[1e-13, 0.1\], got 0"),
+    (dict(method="dormand_prince", tolerance=float("nan")), r"tolerance must be in \[1e-13, 0.1\], got nan"),
+    (dict(method="dormand_prince", max_step=-1.0), r"max_step must be finite and >= 0 s"),
+])
+def test_method_settings_are_checked_by_name(model, kwargs, message):
+    with pytest.raises(ValueError, match=message):
+        cf.simulate(model, revolutions=0.1, **kwargs)
+
+
+def test_method_must_be_a_string(model):
+    with pytest.raises(TypeError, match="method must be a str, got int"):
+        cf.simulate(model, revolutions=0.1, method=5)
+    with pytest.raises(TypeError, match="tolerance must be a number, got str"):
+        cf.simulate(model, revolutions=0.1, method="dormand_prince", tolerance="1e-6")
+
+
+def test_config_scheme_dormand_prince_reaches_simulate(tmp_path):
+    text = (ROOT / "examples" / "translating_roller.toml").read_text()
+    assert "[solver]" in text
+    lines = text.splitlines()
+    k = lines.index("[solver]")
+    lines.insert(k + 1, 'scheme = "dormand_prince"\ntolerance = 1e-7')
+    path = tmp_path / "dp.toml"
+    path.write_text("\n".join(lines) + "\n")
+    cfg = cf.load_config(path)
+    kw = cfg.simulate_kwargs()
+    assert kw["method"] == "dormand_prince" and kw["tolerance"] == 1e-7
+    assert "gamma" not in kw
+    r = cfg.run(revolutions=0.2)
+    assert r.stats["method"] == "dormand_prince"
+
+    bad = list(lines)
+    bad[k + 1] = 'tolerance = 1e-7'
+    path.write_text("\n".join(bad) + "\n")
+    with pytest.raises(ValueError, match=rf"dp.toml:{k + 2}: solver.tolerance: applies only with scheme = \"dormand_prince\""):
+        cf.load_config(path)
