@@ -52,6 +52,8 @@
 
 #include <Eigen/Core>
 
+#include "camfollower/detail/force_inline.hpp"
+
 namespace camfollower {
 
 // A rank-k matrix U V^T with n rows; the columns are allocated once (capacity) and `rank` says how
@@ -215,9 +217,9 @@ void prepare(const S& s, double t, workspace_t<S>& ws) {
     else ws.t = t;
 }
 
-// f(t, q, v) - p(t) at the prepared time.
+// f(t, q, v) - p(t) at the prepared time (forced inline: the hot path of every integrator).
 template <class S, class V>
-void nonlinear_force(const S& s, const workspace_t<S>& ws, const V& q, const V& v, V& f) {
+CAMFOLLOWER_FORCE_INLINE void nonlinear_force(const S& s, const workspace_t<S>& ws, const V& q, const V& v, V& f) {
     if constexpr (is_nonlinear_system_v<S>) {
         s.force(ws, q, v, f);
     } else if constexpr (detail::has_load<S>::value) {

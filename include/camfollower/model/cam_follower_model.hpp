@@ -31,6 +31,7 @@
 
 #include "camfollower/contact/hertz.hpp"
 #include "camfollower/core/system.hpp"
+#include "camfollower/detail/force_inline.hpp"
 #include "camfollower/detail/secant.hpp"
 #include "camfollower/geometry/disk_cam.hpp"
 #include "camfollower/model/defects.hpp"
@@ -132,7 +133,7 @@ public:
     Vector initial_displacement() const { return initial_state_; }
     Workspace workspace() const { return {}; }
     void prepare(double t, Workspace& w) const { w.context = at_time(t); }
-    void force(const Workspace& w, const Vector& q, const Vector& v, Vector& f) const {
+    CAMFOLLOWER_FORCE_INLINE void force(const Workspace& w, const Vector& q, const Vector& v, Vector& f) const {
         w.last = nonlinear(w.context, q, v);
         f = w.last.force;
     }
@@ -232,7 +233,7 @@ public:
         return c;
     }
 
-    Nonlinear nonlinear(const TimeContext& c, const Vector& q, const Vector& v) const {
+    CAMFOLLOWER_FORCE_INLINE Nonlinear nonlinear(const TimeContext& c, const Vector& q, const Vector& v) const {
         Nonlinear n;
         n.delta = c.g.dot(q) + c.delta0;
         n.delta_dot = c.g.dot(v) + c.g_dot.dot(q) + c.delta0_dot;
