@@ -94,16 +94,7 @@ public:
     double force_scale() const { return force_scale_; }
 
     StateType start(double t, const Vector& q, const Vector& v) {
-        detail::require_finite(t, "start time");
-        if (q.size() != n_ || v.size() != n_) detail::fail("initial q and v must have size ", n_, ", got ", q.size(), ", ", v.size());
-        if (!q.allFinite() || !v.allFinite()) detail::fail("initial q and v must be finite");
-        StateType s;
-        s.t = t, s.q = q, s.v = v;
-        s.workspace = make_workspace(system_);
-        prepare(system_, t, s.workspace);
-        s.f.resize(n_);
-        nonlinear_force(system_, s.workspace, s.q, s.v, s.f);
-        s.a.resize(n_);
+        StateType s = state_at(system_, t, q, v);
         acceleration(s.q, s.v, s.f, s.a);
         const Vector Kq = system_.stiffness() * s.q;
         force_scale_ = std::max({1.0, Kq.cwiseAbs().maxCoeff(), s.f.cwiseAbs().maxCoeff()});

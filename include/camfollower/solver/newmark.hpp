@@ -175,6 +175,25 @@ struct State {
     workspace_t<System> workspace;
 };
 
+// A state at (t, q, v) with a fresh workspace prepared at t and the nonlinear force there; the
+// acceleration is the stepper's to set. Refuses a non-finite time or state and a wrong size.
+template <class System>
+State<System> state_at(const System& system, double t, const typename System::Vector& q,
+                       const typename System::Vector& v) {
+    detail::require_finite(t, "start time");
+    const int n = system.size();
+    if (q.size() != n || v.size() != n) detail::fail("initial q and v must have size ", n, ", got ", q.size(), ", ", v.size());
+    if (!q.allFinite() || !v.allFinite()) detail::fail("initial q and v must be finite");
+    State<System> s;
+    s.t = t, s.q = q, s.v = v;
+    s.workspace = make_workspace(system);
+    prepare(system, t, s.workspace);
+    s.f.resize(n);
+    nonlinear_force(system, s.workspace, s.q, s.v, s.f);
+    s.a.resize(n);
+    return s;
+}
+
 // Lowest (above rigid-body modes) and highest undamped natural angular frequencies (rad/s) of
 // `system` with its contacts' tangent at state s (NaN when the eigen solve fails): the time scales a
 // run has to resolve. Allocates; call once per run.
@@ -393,15 +412,7 @@ public:
     // A state at (t, q, v) with the consistent acceleration M a = -(C v + K q + f). Sets the
     // residual scale from it and refuses a conditionally stable scheme beyond its step limit.
     StateType start(double t, const Vector& q, const Vector& v) {
-        detail::require_finite(t, "start time");
-        if (q.size() != n_ || v.size() != n_) detail::fail("initial q and v must have size ", n_, ", got ", q.size(), ", ", v.size());
-        if (!q.allFinite() || !v.allFinite()) detail::fail("initial q and v must be finite");
-        StateType s;
-        s.t = t, s.q = q, s.v = v;
-        s.workspace = make_workspace(system_);
-        prepare(system_, t, s.workspace);
-        s.f.resize(n_);
-        nonlinear_force(system_, s.workspace, s.q, s.v, s.f);
+        StateType s = state_at(system_, t, q, v);
         Vector rhs = linear_.damping() * s.v;
         rhs += linear_.stiffness() * s.q;
         rhs += s.f;
