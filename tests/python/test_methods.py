@@ -74,11 +74,17 @@ def test_fox_goodwin_is_newmark_with_beta_one_twelfth(model):
     (dict(method="dormand_prince", beta=0.3), r"gamma, beta and hht_alpha apply to method 'newmark' only"),
     (dict(method="dormand_prince", tolerance=0.0), r"tolerance must be in \[1e-13, 0.1\], got 0"),
     (dict(method="dormand_prince", tolerance=float("nan")), r"tolerance must be in \[1e-13, 0.1\], got nan"),
-    (dict(method="dormand_prince", max_step=-1.0), r"max_step must be finite and >= 0 s"),
+    (dict(method="dormand_prince", max_step=-1.0), r"max_step must be 0 \(unbounded\) or finite and >= 1e-12 s"),
+    (dict(method="dormand_prince", max_step=1e-13), r"max_step must be 0 \(unbounded\) or finite and >= 1e-12 s"),
 ])
 def test_method_settings_are_checked_by_name(model, kwargs, message):
     with pytest.raises(ValueError, match=message):
         cf.simulate(model, revolutions=0.1, **kwargs)
+
+
+def test_a_max_step_that_would_take_beyond_ten_billion_steps_is_refused(model):
+    with pytest.raises(ValueError, match=r"duration / max_step = 8e\+10 steps is too many \(limit 1e10\)"):
+        cf.simulate(model, revolutions=1, method="dormand_prince", max_step=1e-12)
 
 
 def test_method_must_be_a_string(model):

@@ -98,8 +98,9 @@ struct NewmarkSettings {
             detail::fail("max_halvings must be in [0, ", max_levels - 1, "], got ", max_halvings);
         // Below 1e-13 the error estimate is rounding; above 0.1 it no longer measures anything.
         detail::require_in_range(tolerance, 1e-13, 0.1, "tolerance");
-        if (!(std::isfinite(max_step) && max_step >= 0.0))
-            detail::fail("max_step must be finite and >= 0 s (0: unbounded), got ", max_step);
+        // As for time_step: below a picosecond no mechanical model needs a step.
+        if (!(std::isfinite(max_step) && (max_step == 0.0 || max_step >= 1e-12)))
+            detail::fail("max_step must be 0 (unbounded) or finite and >= 1e-12 s, got ", max_step);
     }
     static constexpr int max_levels = 16;
 };

@@ -127,6 +127,10 @@ void check_time_step(const System& system, const NewmarkSettings& settings, doub
     detail::require_positive(duration, "duration", "(s)");
     if (settings.time_step > duration)
         detail::fail("time_step = ", settings.time_step, " s is longer than the duration ", duration, " s");
+    // A run whose steps are bounded by max_step is bounded like a fixed-step run (1e10 steps).
+    if (settings.method == Method::dormand_prince && settings.max_step > 0.0 && !(duration / settings.max_step <= 1e10))
+        detail::fail("duration / max_step = ", duration / settings.max_step, " steps is too many (limit 1e10); raise "
+                     "max_step or shorten the run");
     if constexpr (detail::has_period<System>::value) {
         const double limit = system.period() / 12.0;
         if (settings.time_step > limit)
