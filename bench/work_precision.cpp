@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Work against precision on what users read: the contact force and the follower acceleration of the
-// paper preset over one revolution, for each camfollower method and setting, and (when Boost is
-// installed) boost::numeric::odeint's dopri5 and fehlberg78 driving the same model evaluation.
+// paper preset over one revolution, for each camfollower method and setting, and (when installed)
+// boost::numeric::odeint's dopri5 and fehlberg78 and SUNDIALS' CVODE (BDF, Adams) and ARKODE ERK
+// (orders 5 and 8) driving the same model evaluation.
 //   cmake -S . -B build-bench -DCAMFOLLOWER_BUILD_BENCHMARKS=ON && cmake --build build-bench
 //   build-bench/bench/camfollower_work_precision [--stiff] [--rpm N] [--repeats N]
 // Each setting runs `repeats` times, interleaved with the others; the CPU time reported is the median.
@@ -13,6 +14,7 @@
 #include <cstdio>
 #include <cstring>
 #include <ctime>
+#include <stdexcept>
 #include <functional>
 #include <string>
 #include <vector>
@@ -22,6 +24,14 @@
 
 #if CAMFOLLOWER_HAVE_ODEINT
 #include <boost/numeric/odeint.hpp>
+#endif
+#if CAMFOLLOWER_HAVE_SUNDIALS
+#include <arkode/arkode_erkstep.h>
+#include <cvode/cvode.h>
+#include <nvector/nvector_serial.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+#include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 #endif
 
 namespace cf = camfollower;
@@ -59,7 +69,6 @@ Histories run_camfollower(const Model& m, const cf::NewmarkSettings& s) {
     return h;
 }
 
-#if CAMFOLLOWER_HAVE_ODEINT
 using Y = std::array<double, 2 * cf::presets::paper_dofs>;
 
 // y' = (v, M^-1 (-(C v + K q + f))) through the system contract: the same evaluation camfollower uses.
@@ -103,6 +112,11 @@ struct GridObserver {
     }
 };
 
+// Absolute tolerance of the peers: at the scale of the smallest meaningful displacement (1e-3 of the
+// 10 mm lift).
+double peer_atol(double rtol) { return rtol * 1e-5; }
+
+#if CAMFOLLOWER_HAVE_ODEINT
 Histories run_odeint(const Model& m, const std::string& method, double tol) {
     namespace odeint = boost::numeric::odeint;
     Rhs rhs(m);
@@ -115,8 +129,7 @@ Histories run_odeint(const Model& m, const std::string& method, double tol) {
     h.force.reserve(grid + 1), h.accel.reserve(grid + 1);
     GridObserver obs{rhs, h};
     const double t0 = cpu_seconds();
-    // Absolute tolerance at the scale of the smallest meaningful displacement (1e-3 of the 10 mm lift).
-    const double atol = tol * 1e-5;
+    const double atol = peer_atol(tol);
     if (method == "dopri5") {
         h.steps = odeint::integrate_times(odeint::make_dense_output(atol, tol, odeint::runge_kutta_dopri5<Y>()),
                                           std::ref(rhs), y, times.begin(), times.end(), m.period() / grid, std::ref(obs));
@@ -126,6 +139,88 @@ Histories run_odeint(const Model& m, const std::string& method, double tol) {
     }
     h.cpu_ms = 1e3 * (cpu_seconds() - t0);
     h.evaluations = rhs.evaluations;
+    return h;
+}
+#endif
+
+#if CAMFOLLOWER_HAVE_SUNDIALS
+// SUNDIALS 6 on the same right-hand side: CVODE (BDF with Newton and a dense Jacobian by differences;
+// Adams with fixed-point iteration) and ARKODE's explicit ERKStep (order 5: Dormand-Prince 7-4-5,
+// order 8: Fehlberg 13-7-8), each interpolating to the output grid (CV_NORMAL / ARK_NORMAL).
+int sundials_rhs(sunrealtype t, N_Vector y, N_Vector dy, void* user) {
+    const Rhs& rhs = *static_cast<const Rhs*>(user);
+    Y in, out;
+    std::copy(N_VGetArrayPointer(y), N_VGetArrayPointer(y) + in.size(), in.begin());
+    rhs(in, out, t);
+    std::copy(out.begin(), out.end(), N_VGetArrayPointer(dy));
+    return 0;
+}
+
+Histories run_sundials(const Model& m, const std::string& method, double tol) {
+    Rhs rhs(m);
+    SUNContext ctx = nullptr;
+    if (SUNContext_Create(nullptr, &ctx) != 0) throw std::runtime_error("SUNContext_Create failed");
+    N_Vector y = N_VNew_Serial(sunindextype(Y().size()), ctx);
+    N_VConst(0.0, y);
+    const Model::Vector q0 = m.initial_displacement();
+    for (int i = 0; i < 7; ++i) N_VGetArrayPointer(y)[i] = q0[i];
+    Histories h;
+    h.force.reserve(grid + 1), h.accel.reserve(grid + 1);
+    GridObserver obs{rhs, h};
+    const auto observe = [&](double t) {
+        Y state;
+        std::copy(N_VGetArrayPointer(y), N_VGetArrayPointer(y) + state.size(), state.begin());
+        obs(state, t);
+    };
+    const double t0 = cpu_seconds();
+    observe(0.0);
+    long steps = 0;
+    const bool erk = method == "erk5" || method == "erk8";
+    void* mem = nullptr;
+    SUNMatrix A = nullptr;
+    SUNLinearSolver LS = nullptr;
+    SUNNonlinearSolver NLS = nullptr;
+    bool ok = true;
+    if (erk) {
+        mem = ERKStepCreate(sundials_rhs, 0.0, y, ctx);
+        ok = ERKStepSStolerances(mem, tol, peer_atol(tol)) == 0 && ERKStepSetUserData(mem, &rhs) == 0 &&
+             ERKStepSetTableNum(mem, method == "erk5" ? ARKODE_DORMAND_PRINCE_7_4_5 : ARKODE_FEHLBERG_13_7_8) == 0 &&
+             ERKStepSetMaxNumSteps(mem, 100000000) == 0;
+    } else {
+        mem = CVodeCreate(method == "bdf" ? CV_BDF : CV_ADAMS, ctx);
+        ok = CVodeInit(mem, sundials_rhs, 0.0, y) == 0 && CVodeSStolerances(mem, tol, peer_atol(tol)) == 0 &&
+             CVodeSetUserData(mem, &rhs) == 0 && CVodeSetMaxNumSteps(mem, 100000000) == 0;
+        if (method == "bdf") {
+            A = SUNDenseMatrix(sunindextype(Y().size()), sunindextype(Y().size()), ctx);
+            LS = SUNLinSol_Dense(y, A, ctx);
+            ok = ok && CVodeSetLinearSolver(mem, LS, A) == 0;
+        } else {
+            NLS = SUNNonlinSol_FixedPoint(y, 0, ctx);
+            ok = ok && CVodeSetNonlinearSolver(mem, NLS) == 0;
+        }
+    }
+    for (int i = 1; ok && i <= grid; ++i) {
+        const double t_out = m.period() * i / grid;
+        double t = 0.0;
+        ok = (erk ? ERKStepEvolve(mem, t_out, y, &t, ARK_NORMAL) : CVode(mem, t_out, y, &t, CV_NORMAL)) >= 0;
+        if (ok) observe(t);
+    }
+    if (erk) {
+        ERKStepGetNumSteps(mem, &steps);
+        ERKStepFree(&mem);
+    } else {
+        CVodeGetNumSteps(mem, &steps);
+        CVodeFree(&mem);
+    }
+    h.cpu_ms = 1e3 * (cpu_seconds() - t0);
+    if (LS) SUNLinSolFree(LS);
+    if (A) SUNMatDestroy(A);
+    if (NLS) SUNNonlinSolFree(NLS);
+    N_VDestroy(y);
+    SUNContext_Free(&ctx);
+    h.steps = std::uint64_t(steps);
+    h.evaluations = rhs.evaluations;
+    if (!ok) h.force.clear(), h.accel.clear();  // failed: reported with an infinite error
     return h;
 }
 #endif
@@ -198,6 +293,16 @@ int main(int argc, char** argv) {
             std::snprintf(label, sizeof label, "odeint %s rtol %.0e", method, tol);
             settings.push_back({label, [&m, method, tol] { return run_odeint(m, method, tol); }, {}, {}});
         }
+#endif
+#if CAMFOLLOWER_HAVE_SUNDIALS
+    for (const char* method : {"bdf", "adams", "erk5", "erk8"})
+        for (double tol : {1e-4, 1e-6, 1e-8, 1e-10}) {
+            char label[64];
+            std::snprintf(label, sizeof label, "SUNDIALS %s rtol %.0e", method, tol);
+            settings.push_back({label, [&m, method, tol] { return run_sundials(m, method, tol); }, {}, {}});
+        }
+#endif
+#if CAMFOLLOWER_HAVE_ODEINT
     const Histories ref = run_odeint(m, "fehlberg78", 1e-13);
     const char* ref_name = "odeint fehlberg78 at rtol 1e-13";
 #else

@@ -2,16 +2,19 @@
 # SPDX-License-Identifier: BSD-3-Clause
 # Benchmarks (not part of the tests): C++ throughput (Google Benchmark), flexible camshafts with 1-64
 # cams on the dense and sparse backends, work against precision of every method (and boost odeint's
-# when libboost-dev is installed) on contact force and follower acceleration, the side-by-side comparison with scipy and Exudyn at equal
-# accuracy, the scaling runs and the Monte-Carlo study on a Dask LocalCluster. Results go to ./bench-out.
+# and SUNDIALS') on contact force and follower acceleration, the side-by-side comparison with scipy and Exudyn at equal
+# accuracy, the scaling runs, the Monte-Carlo study on a Dask LocalCluster and Monte-Carlo transients on C++
+# threads (simulate_many). Results go to ./bench-out.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh test
-# boost::numeric::odeint (header-only) for the work-precision peers and reference.
-if ! dpkg-query -W -f='${Status}' libboost-dev 2>/dev/null | grep -q "install ok installed"; then
-  sudo=""; [ "$(id -u)" -eq 0 ] || sudo="sudo"
-  $sudo apt-get update -qq && DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq libboost-dev >/dev/null
-fi
+# boost::numeric::odeint (header-only) and SUNDIALS for the work-precision peers and reference.
+for pkg in libboost-dev libsundials-dev; do
+  if ! dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed"; then
+    sudo=""; [ "$(id -u)" -eq 0 ] || sudo="sudo"
+    $sudo apt-get update -qq && DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "$pkg" >/dev/null
+  fi
+done
 .venv/bin/python -c "import exudyn" 2>/dev/null || .venv/bin/python -m pip install -q exudyn
 mkdir -p bench-out
 cmake -S . -B build-bench -G Ninja -DCMAKE_BUILD_TYPE=Release -DCAMFOLLOWER_BUILD_BENCHMARKS=ON \
@@ -26,3 +29,4 @@ build-bench/bench/camfollower_work_precision --stiff | tee bench-out/work_precis
 .venv/bin/python bench/compare.py --out bench-out
 .venv/bin/python bench/scaling.py | tee bench-out/scaling.txt
 .venv/bin/python bench/montecarlo.py | tee bench-out/montecarlo.txt
+.venv/bin/python bench/montecarlo_threads.py | tee bench-out/montecarlo_threads.txt

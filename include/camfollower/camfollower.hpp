@@ -31,6 +31,7 @@
 #include "camfollower/solver/newmark.hpp"
 #include "camfollower/solver/observers.hpp"
 #include "camfollower/solver/simulate.hpp"
+#include "camfollower/solver/simulate_many.hpp"
 #include "camfollower/solver/sparse_newton.hpp"
 #include "camfollower/structure/network.hpp"
 #include "camfollower/structure/shaft_assembly.hpp"

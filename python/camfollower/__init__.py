@@ -39,7 +39,7 @@ from ._core import (
 from . import export, motion, presets
 from .config import Config, config_from_dict, load_config
 from .results import Result
-from .simulation import simulate
+from .simulation import simulate, simulate_many
 from .periodic import PeriodicOrbit, periodic_steady_state
 
 __all__ = [
@@ -74,5 +74,6 @@ __all__ = [
     "periodic_steady_state",
     "presets",
     "simulate",
+    "simulate_many",
 ]
 __version__ = _core.__version__  # stated once, in pyproject.toml

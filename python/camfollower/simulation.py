@@ -1,11 +1,13 @@
 # SPDX-License-Identifier: BSD-3-Clause
-"""simulate(): integrate any camfollower system with Newmark-beta / HHT-alpha and Newton-Raphson."""
+"""simulate(): integrate any camfollower system (Newmark-beta / HHT-alpha, Fox-Goodwin, Dormand-Prince);
+simulate_many(): many systems at once on C++ threads."""
 
 from __future__ import annotations
 
+import inspect
 import math
 import numbers
-from typing import Callable, Optional, Sequence
+from typing import Callable, List, Optional, Sequence
 
 from . import _core
 from .results import Result
@@ -63,6 +65,99 @@ def simulate(system, *, duration: Optional[float] = None, revolutions: Optional[
 
     Raises ValueError for bad input and RuntimeError when Newton fails after ``max_halvings``.
     """
+    args, settle_dofs = _run_arguments(system, duration=duration, revolutions=revolutions, time_step=time_step,
+                                       decimation=decimation, record_from=record_from,
+                                       record_last_revolutions=record_last_revolutions, gamma=gamma, beta=beta,
+                                       hht_alpha=hht_alpha, linear_solver=linear_solver,
+                                       residual_tolerance=residual_tolerance,
+                                       increment_tolerance=increment_tolerance, max_iterations=max_iterations,
+                                       max_halvings=max_halvings, max_output_bytes=max_output_bytes,
+                                       progress_interval=progress_interval, settle=settle,
+                                       settle_tolerance=settle_tolerance, settle_dofs=settle_dofs,
+                                       settle_min_revolutions=settle_min_revolutions,
+                                       settle_max_revolutions=settle_max_revolutions, initial_state=initial_state,
+                                       method=method, tolerance=tolerance, max_step=max_step)
+    return _result(_capped(lambda: _core._run(system, progress=progress, **args), args, max_output_bytes), settle_dofs)
+
+
+def simulate_many(systems: Sequence, *, threads: Optional[int] = None, errors: str = "raise",
+                  progress: Optional[Callable[[int, int], Optional[bool]]] = None, progress_interval: float = 0.2,
+                  **options) -> List[Optional[Result]]:
+    """Run :func:`simulate` on every system of ``systems`` at once, on ``threads`` C++ threads (default:
+    one per CPU core) with the GIL released, and return their Results in the systems' order.
+
+    ``options``: any keyword of :func:`simulate` but ``initial_state`` and ``progress``, the same for
+    every case (``revolutions`` count each system's own period). ``max_output_bytes`` bounds the
+    recordings of all cases together (each case gets an equal share): record what a study needs
+    (``decimation``, ``record_last_revolutions``).
+
+    ``errors``: "raise" (default) raises the first failed case's error (ValueError, RuntimeError, ...),
+    prefixed with ``systems[i]``, once every case has run; "return" puts each failed case's exception
+    in the list in place of its Result. ``progress(cases_done, cases)`` is called about every
+    ``progress_interval`` seconds; returning False stops the call: the cases running stop (their
+    Results have ``stats["cancelled"]``) and those not started are None. Ctrl-C stops every case and
+    raises KeyboardInterrupt. Systems are immutable, so one system may appear many times.
+    """
+    systems = list(systems)
+    for name in ("initial_state", "progress"):
+        if name in options:
+            raise TypeError(f"simulate_many() takes no {name}: every case starts from its own static equilibrium")
+    unknown = sorted(set(options) - set(_SIMULATE_OPTIONS))
+    if unknown:
+        raise TypeError(f"simulate_many() got unexpected keyword argument(s) {unknown}; simulate() takes "
+                        f"{sorted(_SIMULATE_OPTIONS)}")
+    if threads is not None and (isinstance(threads, bool) or not isinstance(threads, numbers.Integral)
+                                or not 1 <= threads <= 1024):
+        raise ValueError(f"threads must be an integer in [1, 1024] (None: one per CPU core), got {threads!r}")
+    if errors not in ("raise", "return"):
+        raise ValueError(f"errors must be 'raise' or 'return', got {errors!r}")
+    if not systems:
+        return []
+    kw = {**_SIMULATE_OPTIONS, **options, "progress_interval": progress_interval}
+    del kw["progress"]
+    cases, shared, dofs = [], None, []
+    for i, system in enumerate(systems):
+        try:
+            args, settle_dofs = _run_arguments(system, **kw)
+        except (TypeError, ValueError) as e:
+            raise type(e)(f"systems[{i}]: {e}") from None
+        cases.append((system, args.pop("duration"), args.pop("record_from"), args.pop("settle_period", None),
+                      args.pop("settle_dofs", [])))
+        dofs.append(settle_dofs)
+        for name in ("q0", "v0", "settle_tolerance", "settle_min_revolutions", "settle_max_revolutions"):
+            args.pop(name, None)
+        shared = args
+    shared["max_output_bytes"] /= len(systems)
+    raw = _core._run_many(cases, threads=threads or 0, progress=progress,
+                          settle_tolerance=kw["settle_tolerance"], settle_min_revolutions=kw["settle_min_revolutions"],
+                          settle_max_revolutions=kw["settle_max_revolutions"], **shared)
+    out: List[Optional[Result]] = []
+    for i, r in enumerate(raw):
+        if isinstance(r, tuple):
+            kind, message = r
+            error = {"ValueError": ValueError, "MemoryError": MemoryError}.get(kind, RuntimeError)(f"systems[{i}]: {message}")
+            if errors == "raise":
+                raise error
+            out.append(error)
+        else:
+            out.append(None if r is None else _result(r, dofs[i]))
+    return out
+
+
+def _result(raw, settle_dofs) -> Result:
+    stats = dict(raw["stats"])
+    report = stats.pop("settle", None)
+    if report is not None:
+        report["dofs"] = list(settle_dofs)
+    return Result(raw["names"], raw["dofs"], raw["data"], stats, raw["contact_loss"], report)
+
+
+def _run_arguments(system, *, duration, revolutions, time_step, decimation, record_from, record_last_revolutions,
+                   gamma, beta, hht_alpha, linear_solver, residual_tolerance, increment_tolerance, max_iterations,
+                   max_halvings, max_output_bytes, progress_interval, settle, settle_tolerance, settle_dofs,
+                   settle_min_revolutions, settle_max_revolutions, initial_state, method, tolerance, max_step):
+    """simulate()'s arguments checked and turned into _core._run's (but for system and progress), and the
+    watched DOFs' names (None without settle)."""
     # Numbers and counts checked here by name (pybind11 would say "incompatible function arguments").
     for name, value in (("time_step", time_step), ("hht_alpha", hht_alpha), ("residual_tolerance", residual_tolerance),
                         ("increment_tolerance", increment_tolerance), ("max_output_bytes", max_output_bytes),
@@ -128,21 +223,29 @@ def simulate(system, *, duration: Optional[float] = None, revolutions: Optional[
     # (ValueError), not left to fail with a MemoryError half way through allocating.
     memory = _physical_memory()
     cap = min(float(max_output_bytes), memory) if memory else float(max_output_bytes)
+    args = dict(duration=float(duration), time_step=time_step, decimation=decimation, gamma=gamma, beta=beta,
+                hht_alpha=hht_alpha, linear_solver=linear_solver, residual_tolerance=residual_tolerance,
+                increment_tolerance=increment_tolerance, max_iterations=max_iterations, max_halvings=max_halvings,
+                record_from=start, max_output_bytes=cap, progress_interval=progress_interval, **settle_args,
+                q0=q0, v0=v0, method=method, tolerance=tolerance, max_step=max_step)
+    return args, (list(settle_dofs) if settle else None)
+
+
+def _capped(call, args, max_output_bytes):
+    """call(), naming this machine's memory when it capped max_output_bytes and the run hit the cap."""
     try:
-        raw = _core._run(system, float(duration), time_step, decimation, gamma, beta, hht_alpha, linear_solver,
-                         residual_tolerance, increment_tolerance, max_iterations, max_halvings, start,
-                         cap, progress, progress_interval, **settle_args, q0=q0, v0=v0, method=method,
-                         tolerance=tolerance, max_step=max_step)
+        return call()
     except ValueError as e:
+        cap = args["max_output_bytes"]
         if cap < max_output_bytes and "max_output_bytes" in str(e):
             raise ValueError(f"{e} (max_output_bytes = {max_output_bytes:g} B was capped at this machine's memory, "
-                             f"{memory / 2**30:.3g} GiB)") from None
+                             f"{_physical_memory() / 2**30:.3g} GiB)") from None
         raise
-    stats = dict(raw["stats"])
-    report = stats.pop("settle", None)
-    if report is not None:
-        report["dofs"] = list(settle_dofs)
-    return Result(raw["names"], raw["dofs"], raw["data"], stats, raw["contact_loss"], report)
+
+
+#: simulate()'s keyword options and their defaults (simulate_many takes the same).
+_SIMULATE_OPTIONS = {name: p.default for name, p in inspect.signature(simulate).parameters.items()
+                     if p.kind is inspect.Parameter.KEYWORD_ONLY}
 
 
 def _physical_memory() -> float:

@@ -641,6 +641,57 @@ void bind_mechanism(py::module_& m) {
     bind_shoot<AnyMechanism>(m, [](const AnyMechanism& a, auto&&... args) {
         return a.visit([&](const auto& mech) { return shoot_system(mech, args...); });
     });
+
+    m.def(
+        "_run_many",
+        [](const py::list& cases, double time_step, std::size_t decimation, std::optional<double> gamma,
+           std::optional<double> beta, double hht_alpha, const std::string& linear_solver, double residual_tolerance,
+           double increment_tolerance, int max_iterations, int max_halvings, double max_output_bytes, unsigned threads,
+           const py::object& progress, double progress_interval, double settle_tolerance, int settle_min_revolutions,
+           int settle_max_revolutions, const std::string& method, std::optional<double> tolerance,
+           std::optional<double> max_step) {
+            const NewmarkSettings s = settings_from(time_step, gamma, beta, hht_alpha, linear_solver, residual_tolerance,
+                                                    increment_tolerance, max_iterations, max_halvings, method, tolerance,
+                                                    max_step);
+            std::vector<ManyCase> jobs;
+            jobs.reserve(cases.size());
+            for (std::size_t i = 0; i < cases.size(); ++i) {
+                const auto c = cases[i].cast<py::tuple>();
+                SettleOptions settle;
+                if (!c[3].is_none()) {
+                    settle.enabled = true;
+                    settle.period = c[3].cast<double>();
+                    settle.dofs = c[4].cast<std::vector<int>>();
+                    settle.tolerance = settle_tolerance;
+                    settle.min_revolutions = settle_min_revolutions;
+                    settle.max_revolutions = settle_max_revolutions;
+                }
+                ManyCase job;
+                job.options = run_options(c[1].cast<double>(), decimation, c[2].cast<double>(), max_output_bytes, settle);
+                // The system objects stay alive in `cases` (held by the caller) for the whole call.
+                if (py::isinstance<AnyMechanism>(c[0])) {
+                    const AnyMechanism* a = &c[0].cast<const AnyMechanism&>();
+                    job.run = [a, s, settle](const RunOptions& o) {
+                        return a->visit([&](const auto& mech) { return output_of(mech, simulate(mech, s, o), settle); });
+                    };
+                } else if (py::isinstance<CamFollowerModel>(c[0])) {
+                    const CamFollowerModel* model = &c[0].cast<const CamFollowerModel&>();
+                    job.run = [model, s, settle](const RunOptions& o) { return output_of(*model, simulate(*model, s, o), settle); };
+                } else {
+                    throw py::type_error(detail::concat("systems[", i, "] must be a Mechanism or a CamFollowerModel, got ",
+                                                        std::string(py::str(py::type::of(c[0]).attr("__name__")))));
+                }
+                jobs.push_back(std::move(job));
+            }
+            return run_many(jobs, threads, progress, progress_interval);
+        },
+        py::arg("cases"), py::arg("time_step"), py::arg("decimation"), py::arg("gamma"), py::arg("beta"),
+        py::arg("hht_alpha"), py::arg("linear_solver"), py::arg("residual_tolerance"), py::arg("increment_tolerance"),
+        py::arg("max_iterations"), py::arg("max_halvings"), py::arg("max_output_bytes"), py::arg("threads"),
+        py::arg("progress"), py::arg("progress_interval"), py::arg("settle_tolerance"), py::arg("settle_min_revolutions"),
+        py::arg("settle_max_revolutions"), py::arg("method"), py::arg("tolerance"), py::arg("max_step"),
+        "Internal: camfollower.simulate_many() calls this with (system, duration, record_from, settle_period,\n"
+        "settle_dofs) per case and wraps each output in a Result.");
 }
 
 }  // namespace camfollower::python

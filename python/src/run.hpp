@@ -3,7 +3,10 @@
 // that integrates any system with the GIL released, honours Ctrl-C and hands back NumPy views.
 #pragma once
 
+#include <atomic>
 #include <chrono>
+#include <functional>
+#include <mutex>
 #include <memory>
 #include <optional>
 #include <string>
@@ -16,6 +19,7 @@
 #include "camfollower/model/cam_follower_model.hpp"
 #include "camfollower/model/mechanism.hpp"
 #include "camfollower/solver/simulate.hpp"
+#include "camfollower/solver/simulate_many.hpp"
 
 namespace camfollower::python {
 
@@ -43,23 +47,50 @@ inline NewmarkSettings settings_from(double time_step, std::optional<double> gam
     return s;
 }
 
-// Contact-loss intervals per contact, {name: [(start, end), ...]}, for systems that track them.
-inline py::dict losses_of(const CamFollowerModel&, const State<CamFollowerModel>& s) {
-    py::list out;
-    for (const auto& [a, b] : CamFollowerModel::contact_loss(s.workspace, s.t)) out.append(py::make_tuple(a, b));
-    py::dict d;
-    d["cam"] = out;
-    return d;
+// Contact-loss intervals per contact, (name, [(start, end), ...]), for systems that track them.
+using ContactLosses = std::vector<std::pair<std::string, std::vector<std::pair<double, double>>>>;
+inline ContactLosses losses_of(const CamFollowerModel&, const State<CamFollowerModel>& s) {
+    return {{"cam", CamFollowerModel::contact_loss(s.workspace, s.t)}};
 }
 template <int N>
-py::dict losses_of(const Mechanism<N>& m, const State<Mechanism<N>>& s) {
-    py::dict d;
-    for (std::size_t i = 0; i < m.contacts().size(); ++i) {
-        py::list out;
-        for (const auto& [a, b] : Mechanism<N>::contact_loss(s.workspace, i, s.t)) out.append(py::make_tuple(a, b));
-        d[py::str(m.contacts()[i].name())] = out;
-    }
-    return d;
+ContactLosses losses_of(const Mechanism<N>& m, const State<Mechanism<N>>& s) {
+    ContactLosses out;
+    for (std::size_t i = 0; i < m.contacts().size(); ++i)
+        out.emplace_back(m.contacts()[i].name(), Mechanism<N>::contact_loss(s.workspace, i, s.t));
+    return out;
+}
+
+// What Python gets from a run, whatever the system's type: filled without the GIL, turned into a dict
+// with it (dict_of).
+struct RunOutput {
+    Recording recording;
+    IntegrationReport report;
+    double time_step = 0.0;
+    std::size_t decimation = 1;
+    SettleReport settle_report;
+    const char* backend = "";
+    const char* method = "";
+    double highest_mode_hz = 0.0;
+    double final_time = 0.0;
+    ContactLosses losses;
+    SettleOptions settle;
+};
+
+template <class System>
+std::shared_ptr<RunOutput> output_of(const System& system, RunResult<System>&& r, const SettleOptions& settle) {
+    auto out = std::make_shared<RunOutput>();
+    out->recording = std::move(r.recording);
+    out->report = r.report;
+    out->time_step = r.time_step;
+    out->decimation = r.decimation;
+    out->settle_report = std::move(r.settle);
+    out->backend = r.backend;
+    out->method = r.method;
+    out->highest_mode_hz = r.highest_mode_hz;
+    out->final_time = r.final_state.t;
+    out->losses = losses_of(system, r.final_state);
+    out->settle = settle;
+    return out;
 }
 
 // An initial q or v from Python, checked for size and finiteness.
@@ -74,6 +105,72 @@ std::optional<typename System::Vector> initial_vector(const System& system, cons
 
 // The raw output handed to camfollower.results.Result: channel names, DOF names, a channels x rows
 // view on the C++ buffer (kept alive by the view's base), statistics.
+inline py::dict dict_of(const std::shared_ptr<RunOutput>& out) {
+    const RunOutput& result = *out;
+    const Recording& rec = result.recording;
+    auto* keep = new std::shared_ptr<RunOutput>(out);
+    py::capsule base(keep, [](void* p) { delete static_cast<std::shared_ptr<RunOutput>*>(p); });
+    const auto channels = static_cast<py::ssize_t>(rec.names.size());
+    const auto rows = static_cast<py::ssize_t>(rec.rows);
+    const auto stride = static_cast<py::ssize_t>(sizeof(double));
+    py::array_t<double> data({channels, rows}, {stride * static_cast<py::ssize_t>(rec.capacity), stride},
+                             rec.data.data(), base);
+    py::dict d;
+    d["names"] = rec.names;
+    d["dofs"] = rec.dofs;
+    d["data"] = data;
+    const SolverStatistics& st = result.report.stats;
+    py::dict stats;
+    stats["steps"] = st.steps;
+    stats["newton_iterations"] = st.newton_iterations;
+    stats["mean_iterations"] = st.mean_iterations();
+    stats["max_iterations_in_a_step"] = st.max_iterations_in_a_step;
+    stats["halvings"] = st.halvings;
+    stats["time_step"] = result.time_step;
+    stats["decimation"] = result.decimation;
+    stats["cancelled"] = result.report.cancelled;
+    stats["backend"] = result.backend;
+    stats["method"] = result.method;
+    stats["evaluations"] = st.evaluations;
+    stats["rejected_steps"] = st.rejected_steps;
+    stats["stiff_steps"] = st.stiff_steps;
+    stats["highest_mode_hz"] = result.highest_mode_hz;
+    stats["steps_per_shortest_period"] = 1.0 / (result.highest_mode_hz * result.time_step);
+    const SettleReport& sr = result.settle_report;
+    if (sr.requested) {
+        py::dict st;
+        st["settled"] = sr.settled;
+        st["revolutions"] = sr.revolutions;
+        st["change"] = sr.change;
+        st["change_absolute"] = sr.change_absolute;
+        st["tolerance"] = out->settle.tolerance;
+        st["history"] = sr.history;
+        stats["settle"] = st;
+    }
+    d["stats"] = stats;
+    py::dict losses;
+    for (const auto& [name, intervals] : out->losses) {
+        py::list l;
+        for (const auto& [a, b] : intervals) l.append(py::make_tuple(a, b));
+        losses[py::str(name)] = l;
+    }
+    d["contact_loss"] = losses;
+    d["final_time"] = out->final_time;
+    return d;
+}
+
+inline RunOptions run_options(double duration, std::size_t decimation, double record_from, double max_output_bytes,
+                              const SettleOptions& settle) {
+    RunOptions options;
+    options.settle = settle;
+    options.duration = duration;
+    options.record.decimation = decimation;
+    options.record.from_time = record_from;
+    options.record.max_bytes = max_output_bytes;
+    return options;
+}
+
+// One run with the GIL released (Ctrl-C and the progress callback honoured), as dict_of.
 template <class System>
 py::dict run_system(const System& system, double duration, const NewmarkSettings& settings, std::size_t decimation,
                     double record_from, double max_output_bytes, const py::object& progress,
@@ -83,12 +180,7 @@ py::dict run_system(const System& system, double duration, const NewmarkSettings
     using Vector = typename System::Vector;
     const std::optional<Vector> q_start = initial_vector<System>(system, q0, "initial q");
     const std::optional<Vector> v_start = initial_vector<System>(system, v0, "initial v");
-    RunOptions options;
-    options.settle = settle;
-    options.duration = duration;
-    options.record.decimation = decimation;
-    options.record.from_time = record_from;
-    options.record.max_bytes = max_output_bytes;
+    RunOptions options = run_options(duration, decimation, record_from, max_output_bytes, settle);
     detail::require_positive(progress_interval, "progress_interval", "(s)");
     // Every few thousand steps: after progress_interval seconds take the GIL, honour Ctrl-C (a pending
     // KeyboardInterrupt cancels the run) and call the progress callback.
@@ -112,58 +204,99 @@ py::dict run_system(const System& system, double duration, const NewmarkSettings
         }
         return true;
     };
-    auto result = std::make_shared<RunResult<System>>();
+    std::shared_ptr<RunOutput> out;
     {
         py::gil_scoped_release release;
-        *result = simulate(system, settings, options, q_start, v_start);
+        out = output_of(system, simulate(system, settings, options, q_start, v_start), settle);
     }
     if (python_error) throw std::move(*python_error);
-    const Recording& rec = result->recording;
-    auto* keep = new std::shared_ptr<RunResult<System>>(result);
-    py::capsule base(keep, [](void* p) { delete static_cast<std::shared_ptr<RunResult<System>>*>(p); });
-    const auto channels = static_cast<py::ssize_t>(rec.names.size());
-    const auto rows = static_cast<py::ssize_t>(rec.rows);
-    const auto stride = static_cast<py::ssize_t>(sizeof(double));
-    py::array_t<double> data({channels, rows}, {stride * static_cast<py::ssize_t>(rec.capacity), stride},
-                             rec.data.data(), base);
-    py::dict d;
-    d["names"] = rec.names;
-    d["dofs"] = rec.dofs;
-    d["data"] = data;
-    const SolverStatistics& st = result->report.stats;
-    py::dict stats;
-    stats["steps"] = st.steps;
-    stats["newton_iterations"] = st.newton_iterations;
-    stats["mean_iterations"] = st.mean_iterations();
-    stats["max_iterations_in_a_step"] = st.max_iterations_in_a_step;
-    stats["halvings"] = st.halvings;
-    stats["time_step"] = result->time_step;
-    stats["decimation"] = result->decimation;
-    stats["cancelled"] = result->report.cancelled;
-    stats["backend"] = result->backend;
-    stats["method"] = result->method;
-    stats["evaluations"] = st.evaluations;
-    stats["rejected_steps"] = st.rejected_steps;
-    stats["stiff_steps"] = st.stiff_steps;
-    stats["highest_mode_hz"] = result->highest_mode_hz;
-    stats["steps_per_shortest_period"] = 1.0 / (result->highest_mode_hz * result->time_step);
-    const SettleReport& sr = result->settle;
-    if (sr.requested) {
-        py::dict st;
-        st["settled"] = sr.settled;
-        st["revolutions"] = sr.revolutions;
-        st["change"] = sr.change;
-        st["change_absolute"] = sr.change_absolute;
-        st["tolerance"] = settle.tolerance;
-        st["history"] = sr.history;
-        stats["settle"] = st;
-    }
-    d["stats"] = stats;
-    d["contact_loss"] = losses_of(system, result->final_state);
-    d["final_time"] = result->final_state.t;
-    return d;
+    return dict_of(out);
 }
 
+
+// One case of simulate_many: its run (called without the GIL) and its own options.
+struct ManyCase {
+    std::function<std::shared_ptr<RunOutput>(const RunOptions&)> run;
+    RunOptions options;
+};
+
+// The cases on `threads` threads (0: one per hardware thread) with the GIL released. Each entry of the
+// returned list: the run's dict, a (Python exception type name, message) pair for a case that failed,
+// or None for a case not started because the call was cancelled: the progress callback
+// (cases done, cases) returned False or raised, or Ctrl-C (KeyboardInterrupt raised once every
+// started case has stopped).
+inline py::list run_many(std::vector<ManyCase>& cases, unsigned threads, const py::object& progress,
+                         double progress_interval) {
+    detail::require_positive(progress_interval, "progress_interval", "(s)");
+    (void)worker_threads(threads, cases.size());
+    std::atomic<bool> stop{false};
+    std::atomic<std::size_t> finished{0};
+    std::mutex python_mutex;  // guards `last` and python_error
+    auto last = std::chrono::steady_clock::now();
+    std::optional<py::error_already_set> python_error;
+    // Polled by every run every 2048 steps: after progress_interval seconds one thread takes the GIL,
+    // honours Ctrl-C (on the main thread, which works on cases too) and calls progress.
+    auto poll = [&](std::uint64_t, std::uint64_t) {
+        if (stop.load()) return false;
+        std::unique_lock<std::mutex> lock(python_mutex, std::try_to_lock);
+        if (!lock.owns_lock()) return true;
+        const auto now = std::chrono::steady_clock::now();
+        if (std::chrono::duration<double>(now - last).count() < progress_interval) return true;
+        last = now;
+        py::gil_scoped_acquire acquire;
+        try {
+            if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+            if (!progress.is_none()) {
+                const py::object keep_going = progress(finished.load(), cases.size());
+                if (!keep_going.is_none() && !keep_going.cast<bool>()) stop = true;
+            }
+        } catch (py::error_already_set& e) {
+            python_error.emplace(std::move(e));
+            stop = true;
+        }
+        return !stop.load();
+    };
+    struct Outcome {
+        std::shared_ptr<RunOutput> output;
+        const char* error_type = nullptr;
+        std::string message;
+    };
+    std::vector<Outcome> outcomes(cases.size());
+    {
+        py::gil_scoped_release release;
+        parallel_for(cases.size(), threads, [&](std::size_t i) {
+            if (stop.load()) return;
+            ManyCase& c = cases[i];
+            c.options.progress = poll;
+            c.options.progress_every = 2048;
+            Outcome& o = outcomes[i];
+            try {
+                o.output = c.run(c.options);
+            } catch (const std::bad_alloc&) {
+                o.error_type = "MemoryError";
+                o.message = "out of memory";
+            } catch (const std::invalid_argument& e) {
+                o.error_type = "ValueError";
+                o.message = e.what();
+            } catch (const std::exception& e) {
+                o.error_type = "RuntimeError";
+                o.message = e.what();
+            } catch (...) {
+                o.error_type = "RuntimeError";
+                o.message = "unknown error";
+            }
+            finished.fetch_add(1);
+        });
+    }
+    if (python_error) throw std::move(*python_error);
+    py::list out;
+    for (const Outcome& o : outcomes) {
+        if (o.output) out.append(dict_of(o.output));
+        else if (o.error_type) out.append(py::make_tuple(o.error_type, o.message));
+        else out.append(py::none());
+    }
+    return out;
+}
 
 // Binds _run(system, ...) for one system type: camfollower.simulate() calls it and wraps the output in
 // a Result. `run` is run_system or a dispatcher over several system types.
