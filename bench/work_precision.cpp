@@ -327,5 +327,24 @@ int main(int argc, char** argv) {
                     relative_error(s.last.force, ref.force), relative_error(s.last.accel, ref.accel),
                     static_cast<unsigned long long>(s.last.steps), static_cast<unsigned long long>(s.last.evaluations));
     }
+    // The fastest run reaching each target in both channels, camfollower's and the peers', and the ratio.
+    std::printf("\n| target (force and accel.) | camfollower | fastest peer | peer / camfollower |\n|---|---|---|---|\n");
+    for (double target : {1e-4, 1e-6, 1e-8}) {
+        const Setting* best[2] = {nullptr, nullptr};  // [0] camfollower, [1] peer
+        double best_ms[2] = {INFINITY, INFINITY};
+        for (const Setting& s : settings) {
+            if (!(relative_error(s.last.force, ref.force) <= target && relative_error(s.last.accel, ref.accel) <= target)) continue;
+            const int peer = s.label.rfind("odeint", 0) == 0 || s.label.rfind("SUNDIALS", 0) == 0;
+            const double ms = s.times[s.times.size() / 2];
+            if (ms < best_ms[peer]) best_ms[peer] = ms, best[peer] = &s;
+        }
+        char cells[2][96];
+        for (int k = 0; k < 2; ++k) {
+            if (best[k]) std::snprintf(cells[k], sizeof cells[k], "%s: %.2f ms", best[k]->label.c_str(), best_ms[k]);
+            else std::snprintf(cells[k], sizeof cells[k], "not reached");
+        }
+        if (best[0] && best[1]) std::printf("| <= %.0e | %s | %s | %.2f |\n", target, cells[0], cells[1], best_ms[1] / best_ms[0]);
+        else std::printf("| <= %.0e | %s | %s | - |\n", target, cells[0], cells[1]);
+    }
     return 0;
 }

@@ -126,9 +126,10 @@ int run(const std::string& config, std::string output) {
                         static_cast<unsigned long long>(stats.rejected_steps), static_cast<unsigned long long>(stats.evaluations),
                         settings.time_step);
         else
-            std::printf("%zu rows, %zu channels (%llu steps, dt = %.4g s, %.3f Newton iterations/step)", result.recording.rows,
-                        result.recording.names.size(), static_cast<unsigned long long>(stats.steps), settings.time_step,
-                        stats.mean_iterations());
+            std::printf("%zu rows, %zu channels (%s%s: %llu steps, dt = %.4g s, %.3f Newton iterations/step)", result.recording.rows,
+                        result.recording.names.size(), result.method,
+                        settings.method == cf::Method::automatic ? ", chosen by auto" : "",
+                        static_cast<unsigned long long>(stats.steps), settings.time_step, stats.mean_iterations());
         if (c.solver.settle)
             std::printf(", %s after %d revolutions (change %.3g)", result.settle.settled ? "settled" : "NOT settled",
                         result.settle.revolutions, result.settle.change);

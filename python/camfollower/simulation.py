@@ -37,13 +37,15 @@ def simulate(system, *, duration: Optional[float] = None, revolutions: Optional[
 
     ``method``: "newmark" (the default: Newmark/HHT with ``gamma``, ``beta``, ``hht_alpha``, fixed step
     ``time_step``), "fox_goodwin" (Newmark with gamma = 1/2, beta = 1/12: fourth-order phase on
-    undamped linear modes, stable below dt = sqrt(6) / omega_max, refused beyond it) or
+    undamped linear modes, stable below dt = sqrt(6) / omega_max, refused beyond it),
     "dormand_prince" (explicit Runge-Kutta 5(4) with adaptive steps: each step's error, in
     displacements and velocities and in the forces it leaves, below ``tolerance`` (relative, default
     1e-6; steps no longer than ``max_step`` s if given); ``time_step`` is then the output interval, the
-    rows filled by dense output). The global error is typically a few tens of times the tolerance;
-    ``stats`` reports ``method``, ``evaluations``, ``rejected_steps`` and ``stiff_steps`` (steps bounded
-    by stability rather than accuracy: an implicit method would be cheaper there).
+    rows filled by dense output; the global error is typically a few tens of times the tolerance) or
+    "auto" (fox_goodwin when ``time_step`` is within its stability limit at the start, with a 10 %
+    margin, else average-acceleration newmark). ``stats`` reports ``method`` (the one that ran),
+    ``requested_method``, ``evaluations``, ``rejected_steps`` and ``stiff_steps`` (steps bounded by
+    stability rather than accuracy: an implicit method would be cheaper there).
 
     ``system`` is a Mechanism (camfollower.MechanismBuilder, camfollower.presets) or a CamFollowerModel.
     ``progress(steps_done, steps_planned)`` is called about every ``progress_interval`` seconds;

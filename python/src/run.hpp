@@ -70,6 +70,7 @@ struct RunOutput {
     SettleReport settle_report;
     const char* backend = "";
     const char* method = "";
+    const char* requested_method = "";
     double highest_mode_hz = 0.0;
     double final_time = 0.0;
     ContactLosses losses;
@@ -86,6 +87,7 @@ std::shared_ptr<RunOutput> output_of(const System& system, RunResult<System>&& r
     out->settle_report = std::move(r.settle);
     out->backend = r.backend;
     out->method = r.method;
+    out->requested_method = r.requested_method;
     out->highest_mode_hz = r.highest_mode_hz;
     out->final_time = r.final_state.t;
     out->losses = losses_of(system, r.final_state);
@@ -131,6 +133,7 @@ inline py::dict dict_of(const std::shared_ptr<RunOutput>& out) {
     stats["cancelled"] = result.report.cancelled;
     stats["backend"] = result.backend;
     stats["method"] = result.method;
+    stats["requested_method"] = result.requested_method;
     stats["evaluations"] = st.evaluations;
     stats["rejected_steps"] = st.rejected_steps;
     stats["stiff_steps"] = st.stiff_steps;

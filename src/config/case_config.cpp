@@ -618,14 +618,14 @@ SolverConfig read_solver(const Section& s) {
     if (s.has("time_step") && !(v.time_step > 0.0)) s.fail("time_step", "must be > 0 s");
     v.steps_per_revolution = s.integer("steps_per_revolution", v.steps_per_revolution, 16, 1LL << 26);
     const std::string scheme = s.choice("scheme", "average_acceleration",
-                                        {"average_acceleration", "hht", "newmark", "fox_goodwin", "dormand_prince"});
+                                        {"average_acceleration", "hht", "newmark", "fox_goodwin", "dormand_prince", "auto"});
     NewmarkSettings& n = v.newmark;
     if (scheme == "hht") {
         n = NewmarkSettings::hht(s.quantity("hht_alpha", "-", -0.05));
     } else if (scheme == "newmark") {
         n.gamma = s.quantity("gamma", "-");
         n.beta = s.quantity("beta", "-");
-    } else if (scheme == "fox_goodwin" || scheme == "dormand_prince") {
+    } else if (scheme == "fox_goodwin" || scheme == "dormand_prince" || scheme == "auto") {
         set_method(n, scheme);
     }
     if (scheme == "dormand_prince") {

@@ -171,7 +171,37 @@ TEST_CASE("Fox-Goodwin (beta = 1/12) is fourth order on an undamped oscillator, 
     CHECK(std::string(method_name(s)) == "fox_goodwin");
     s.time_step = 3.0 / w;  // beyond sqrt(6) / w
     CHECK_THROWS_WITH(run(system, s, 10 * T), Catch::Contains("exceeds the stability limit"));
-    CHECK_THROWS_WITH(set_method(s, "rk4"), Catch::Contains("method must be 'newmark', 'fox_goodwin' or 'dormand_prince', got 'rk4'"));
+    CHECK_THROWS_WITH(set_method(s, "rk4"), Catch::Contains("method must be 'newmark', 'fox_goodwin', 'dormand_prince' or 'auto', got 'rk4'"));
+}
+
+TEST_CASE("Method auto takes Fox-Goodwin within its stability limit sqrt(6) / w (10 % margin), else average acceleration") {
+    // Undamped oscillator, w = sqrt(k / m) = 20 rad/s: Fox-Goodwin's limit is 0.9 sqrt(6) / 20 = 0.1102 s.
+    DrivenSdof free;
+    free.c = 0.0, free.F = 0.0;
+    LinearSystem<1> system = free.system();
+    system.q0[0] = 0.01;
+    const double limit = 0.9 * std::sqrt(6.0) / 20.0;
+    for (auto [dt, chosen] : {std::pair{0.98 * limit, "fox_goodwin"}, std::pair{1.02 * limit, "newmark"}}) {
+        NewmarkSettings s;
+        set_method(s, "auto");
+        s.time_step = dt;
+        RunOptions o;
+        o.duration = 40 * dt;
+        const auto r = simulate(system, s, o);
+        CHECK(std::string(r.method) == chosen);
+        CHECK(std::string(r.requested_method) == "auto");
+        NewmarkSettings same;
+        set_method(same, chosen);
+        same.time_step = dt;
+        const auto direct = simulate(system, same, o);
+        REQUIRE(direct.recording.rows == r.recording.rows);
+        for (std::size_t i = 0; i < r.recording.rows; ++i) CHECK(r.recording.at("q.0", i) == direct.recording.at("q.0", i));
+    }
+    NewmarkSettings s;
+    set_method(s, "auto");
+    CHECK(std::string(method_name(s)) == "auto");
+    s.hht_alpha = -0.1, s.gamma = 0.6, s.beta = 0.3025;
+    CHECK_THROWS_WITH(s.validate(), Catch::Contains("method 'auto' chooses gamma and beta itself"));
 }
 
 TEST_CASE("Dormand-Prince reports steps bounded by stability on a stiff system, none on a soft one") {

@@ -68,7 +68,7 @@ def test_fox_goodwin_is_newmark_with_beta_one_twelfth(model):
 
 
 @pytest.mark.parametrize("kwargs, message", [
-    (dict(method="rk4"), r"method must be 'newmark', 'fox_goodwin' or 'dormand_prince', got 'rk4'"),
+    (dict(method="rk4"), r"method must be 'newmark', 'fox_goodwin', 'dormand_prince' or 'auto', got 'rk4'"),
     (dict(tolerance=1e-6), r"tolerance applies to method 'dormand_prince' only"),
     (dict(max_step=1e-5, method="fox_goodwin"), r"max_step applies to method 'dormand_prince' only"),
     (dict(method="dormand_prince", beta=0.3), r"gamma, beta and hht_alpha apply to method 'newmark' only"),
@@ -97,7 +97,7 @@ def test_method_must_be_a_string(model):
 def test_config_scheme_dormand_prince_reaches_simulate(tmp_path):
     text = (ROOT / "examples" / "translating_roller.toml").read_text()
     assert "[solver]" in text
-    lines = text.splitlines()
+    lines = [line for line in text.splitlines() if not line.startswith("scheme")]
     k = lines.index("[solver]")
     lines.insert(k + 1, 'scheme = "dormand_prince"\ntolerance = 1e-7')
     path = tmp_path / "dp.toml"
@@ -114,3 +114,27 @@ def test_config_scheme_dormand_prince_reaches_simulate(tmp_path):
     path.write_text("\n".join(bad) + "\n")
     with pytest.raises(ValueError, match=rf"dp.toml:{k + 2}: solver.tolerance: applies only with scheme = \"dormand_prince\""):
         cf.load_config(path)
+
+
+def test_auto_takes_fox_goodwin_within_its_stability_limit_else_average_acceleration():
+    m = cf.presets.paper()
+    limit = 0.9 * np.sqrt(6.0) / (2 * np.pi * cf.simulate(m, duration=m.period / 64, time_step=m.period / 4096)
+                                  .stats["highest_mode_hz"])
+    for dt, chosen in ((0.98 * limit, "fox_goodwin"), (1.02 * limit, "newmark")):
+        r = cf.simulate(m, duration=200 * dt, time_step=dt, method="auto")
+        assert (r.stats["method"], r.stats["requested_method"]) == (chosen, "auto")
+        direct = cf.simulate(m, duration=200 * dt, time_step=dt, method=chosen)
+        assert direct.stats["requested_method"] == chosen
+        np.testing.assert_array_equal(r["cam.force"], direct["cam.force"])
+    with pytest.raises(ValueError, match="gamma, beta and hht_alpha apply to method 'newmark' only"):
+        cf.simulate(m, revolutions=0.1, method="auto", hht_alpha=-0.05)
+    with pytest.raises(ValueError, match="tolerance applies to method 'dormand_prince' only"):
+        cf.simulate(m, revolutions=0.1, method="auto", tolerance=1e-6)
+
+
+def test_config_scheme_auto_reaches_simulate():
+    cfg = cf.load_config(ROOT / "examples" / "translating_roller.toml")  # the example asks for scheme = "auto"
+    assert cfg.simulate_kwargs()["method"] == "auto"
+    r = cfg.run(revolutions=0.2)
+    # Its highest mode (6.5 kHz) allows Fox-Goodwin up to 0.9 sqrt(6) / omega = 54 us; the step is 5 us.
+    assert (r.stats["requested_method"], r.stats["method"]) == ("auto", "fox_goodwin")

@@ -40,7 +40,8 @@ struct RunResult {
     std::size_t decimation = 1;
     SettleReport settle;
     const char* backend = "dense";  // the Newton algebra used: "dense" or "sparse"
-    const char* method = "newmark";  // method_name(settings)
+    const char* method = "newmark";  // method_name(settings) of the method that ran
+    const char* requested_method = "newmark";  // as asked: "auto" when choose_method picked `method`
     // Highest natural frequency at the start (Hz, contacts linearized), for reading the step against
     // the shortest period: dense backend up to 200 DOFs only, else NaN (an eigen solve too costly).
     double highest_mode_hz = std::numeric_limits<double>::quiet_NaN();
@@ -65,6 +66,7 @@ RunResult<System> run(const System& system, const NewmarkSettings& settings, con
     const Vector q = q0 ? *q0 : initial_displacement(system);
     const Vector v = v0 ? *v0 : initial_velocity(system);
     RunResult<System> result;
+    result.method = result.requested_method = method_name(settings);
     result.final_state = stepper.start(0.0, q, v);
     if constexpr (!std::is_same_v<Stepper, SparseNewmark<System>>)
         if (system.size() <= 200) result.highest_mode_hz = highest_angular_frequency(system, result.final_state) / (2.0 * pi);
@@ -100,7 +102,6 @@ RunResult<System> run(const System& system, const NewmarkSettings& settings, con
     result.time_step = settings.time_step;
     result.decimation = options.record.decimation;
     result.backend = std::is_same_v<Stepper, SparseNewmark<System>> ? "sparse" : "dense";
-    result.method = method_name(settings);
     return result;
 }
 
@@ -139,12 +140,29 @@ void check_time_step(const System& system, const NewmarkSettings& settings, doub
     }
 }
 
+// The settings with method "auto" made concrete for a run starting at (q0, v0) (choose_method).
 template <class System>
-RunResult<System> simulate(const System& system, const NewmarkSettings& settings, const RunOptions& options,
+NewmarkSettings concrete_settings(const System& system, const NewmarkSettings& settings,
+                                  const std::optional<typename System::Vector>& q0,
+                                  const std::optional<typename System::Vector>& v0) {
+    if (settings.method != Method::automatic) return settings;
+    const typename System::Vector q = q0 ? *q0 : initial_displacement(system);
+    const typename System::Vector v = v0 ? *v0 : initial_velocity(system);
+    return choose_method(system, settings, state_at(system, 0.0, q, v));
+}
+
+template <class System>
+RunResult<System> simulate(const System& system, const NewmarkSettings& requested, const RunOptions& options,
                            const std::optional<typename System::Vector>& q0 = std::nullopt,
                            const std::optional<typename System::Vector>& v0 = std::nullopt) {
     if (options.progress && options.progress_every < 1) detail::fail("progress_every must be >= 1");
-    check_time_step(system, settings, options.duration);
+    check_time_step(system, requested, options.duration);
+    if (requested.method == Method::automatic) {
+        RunResult<System> r = simulate(system, concrete_settings(system, requested, q0, v0), options, q0, v0);
+        r.requested_method = "auto";
+        return r;
+    }
+    const NewmarkSettings& settings = requested;
     if (settings.method == Method::dormand_prince) {
         if (settings.backend == Backend::sparse) detail::fail("linear_solver 'sparse' or 'klu' applies to Newmark; dormand_prince solves no linear system");
         return detail::run<DormandPrince<System>>(system, settings, options, q0, v0);
@@ -170,14 +188,15 @@ PeriodicOrbit shoot_with(const System& system, const NewmarkSettings& settings, 
 // (default: the system's initial state), on the backend simulate() would use. options.period
 // defaults to the system's period(). Check orbit.converged (or call require_converged).
 template <class System>
-PeriodicOrbit periodic_orbit(const System& system, const NewmarkSettings& settings, ShootingOptions options,
+PeriodicOrbit periodic_orbit(const System& system, const NewmarkSettings& requested, ShootingOptions options,
                              const std::optional<typename System::Vector>& q0 = std::nullopt,
                              const std::optional<typename System::Vector>& v0 = std::nullopt,
                              const std::function<bool()>& keep_going = {}) {
     if constexpr (detail::has_period<System>::value) {
         if (options.period == 0.0) options.period = system.period();
     }
-    check_time_step(system, settings, options.period);
+    check_time_step(system, requested, options.period);
+    const NewmarkSettings settings = concrete_settings(system, requested, q0, v0);
     const Eigen::VectorXd q = q0 ? Eigen::VectorXd(*q0) : Eigen::VectorXd(initial_displacement(system));
     const Eigen::VectorXd v = v0 ? Eigen::VectorXd(*v0) : Eigen::VectorXd(initial_velocity(system));
     if (settings.method == Method::dormand_prince)
