@@ -34,7 +34,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import CamEccentricity, CamFollowerModel, Defects, DiskCam, MotionProgram, Parameters, presets, simulate
+from . import CamEccentricity, CamFollowerModel, Defects, DiskCam, MotionProgram, Parameters, presets, simulate, simulate_many
 from . import _files
 from . import analysis as an
 
@@ -130,12 +130,16 @@ def _channel(r, *names):
     raise KeyError(names)
 
 
-def run_case(cfg: StudyConfig, follower: str, formulation: str, defect: str, p: Parameters | None = None) -> CaseResult:
-    model = build(cfg, follower, formulation, defect, p)
+def _run_options(cfg: StudyConfig, model) -> dict:
+    """simulate()'s options for a case: settle on the follower, then record the analysed revolutions."""
+    return dict(revolutions=cfg.analysed_revolutions, time_step=model.period / cfg.steps_per_revolution, settle=True,
+                settle_dofs=["y4"], settle_tolerance=cfg.settle_tolerance, settle_max_revolutions=cfg.max_revolutions)
+
+
+def _case_result(cfg: StudyConfig, key: str, model, r) -> CaseResult:
+    """A case's figures from its run."""
     program = MotionProgram.paper_default()
     n = cfg.steps_per_revolution
-    r = simulate(model, revolutions=cfg.analysed_revolutions, time_step=model.period / n, settle=True,
-                 settle_dofs=["y4"], settle_tolerance=cfg.settle_tolerance, settle_max_revolutions=cfg.max_revolutions)
     w = slice(-cfg.analysed_revolutions * n, None)  # whole revolutions (the first row is the settled start)
     theta = np.asarray(r["theta"])[w]
     a4 = np.asarray(r["a.y4"])[w]
@@ -150,12 +154,18 @@ def run_case(cfg: StudyConfig, follower: str, formulation: str, defect: str, p: 
     sample_rate = n / model.period
     guide = an.clearance_statistics(r, "guide", model.period) if "guide.side" in r else None
     return CaseResult(
-        key=f"{follower}/{formulation}/{defect}", model=model, program=program, omega=omega, period=model.period,
+        key=key, model=model, program=program, omega=omega, period=model.period,
         theta=theta, follower_disp=np.asarray(r["q.y4"])[w], follower_acc=a4, theory_acc=theory, shaft_acc=a1, contact_force=force,
         contact_stiffness_vertical=k_vertical, pressure_angle=pressure_angle, rod_lateral=np.asarray(r["q.x3"])[w],
         shaft_spectrum=an.spectrum(a1, sample_rate), stiffness_spectrum=an.spectrum(k_vertical, sample_rate),
         settle=dict(r.settle), contact_loss_time=float(sum(b - a for a, b in lost)) / cfg.analysed_revolutions,
         clearance=guide, stats=dict(r.stats))
+
+
+def run_case(cfg: StudyConfig, follower: str, formulation: str, defect: str, p: Parameters | None = None) -> CaseResult:
+    model = build(cfg, follower, formulation, defect, p)
+    r = simulate(model, **_run_options(cfg, model))
+    return _case_result(cfg, f"{follower}/{formulation}/{defect}", model, r)
 
 
 def deviation_figures(case: CaseResult) -> dict:
@@ -200,15 +210,22 @@ def defect_modulation(levels: dict, healthy_levels: dict) -> float:
 
 
 def run_cases(cfg: StudyConfig, progress=None) -> dict:
-    """Every follower x formulation x defect case, keyed follower/formulation/defect."""
-    cases = {}
+    """Every follower x formulation x defect case, keyed follower/formulation/defect, run together on
+    C++ threads (simulate_many; each case as simulate() runs it alone)."""
+    keys, models = [], []
     for follower in FOLLOWERS:
         for formulation in FORMULATIONS:
             for defect in DEFECTS:
-                c = run_case(cfg, follower, formulation, defect)
-                cases[c.key] = c
-                if progress:
-                    progress.step(f"{c.key}: settled={c.settle['settled']} ({c.settle['revolutions']} rev)")
+                keys.append(f"{follower}/{formulation}/{defect}")
+                models.append(build(cfg, follower, formulation, defect))
+    periods = {m.period for m in models}
+    if len(periods) != 1:
+        raise ValueError(f"the study's cases must share one camshaft speed, got periods {sorted(periods)} s")
+    cases = {}
+    for key, model, r in zip(keys, models, simulate_many(models, **_run_options(cfg, models[0]))):
+        c = cases[key] = _case_result(cfg, key, model, r)
+        if progress:
+            progress.step(f"{c.key}: settled={c.settle['settled']} ({c.settle['revolutions']} rev)")
     return cases
 
 
