@@ -162,6 +162,24 @@ inline py::dict dict_of(const std::shared_ptr<RunOutput>& out) {
     return d;
 }
 
+// Takes the GIL: false when Ctrl-C is pending (KeyboardInterrupt) or progress(done, total) raises or
+// returns False; a Python error is kept in `error`, to be raised once the run has stopped.
+inline bool python_says_go_on(const py::object& progress, std::uint64_t done, std::uint64_t total,
+                              std::optional<py::error_already_set>& error) {
+    py::gil_scoped_acquire acquire;
+    try {
+        if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+        if (!progress.is_none()) {
+            const py::object keep_going = progress(done, total);
+            if (!keep_going.is_none() && !keep_going.cast<bool>()) return false;
+        }
+    } catch (py::error_already_set& e) {
+        error.emplace(std::move(e));
+        return false;
+    }
+    return true;
+}
+
 inline RunOptions run_options(double duration, std::size_t decimation, double record_from, double max_output_bytes,
                               const SettleOptions& settle) {
     RunOptions options;
@@ -194,18 +212,7 @@ py::dict run_system(const System& system, double duration, const NewmarkSettings
         const auto now = std::chrono::steady_clock::now();
         if (std::chrono::duration<double>(now - last).count() < progress_interval) return true;
         last = now;
-        py::gil_scoped_acquire acquire;
-        try {
-            if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-            if (!progress.is_none()) {
-                const py::object keep_going = progress(done, planned);
-                if (!keep_going.is_none() && !keep_going.cast<bool>()) return false;
-            }
-        } catch (py::error_already_set& e) {
-            python_error.emplace(std::move(e));
-            return false;
-        }
-        return true;
+        return python_says_go_on(progress, done, planned, python_error);
     };
     std::shared_ptr<RunOutput> out;
     {
@@ -246,17 +253,7 @@ inline py::list run_many(std::vector<ManyCase>& cases, unsigned threads, const p
         const auto now = std::chrono::steady_clock::now();
         if (std::chrono::duration<double>(now - last).count() < progress_interval) return true;
         last = now;
-        py::gil_scoped_acquire acquire;
-        try {
-            if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-            if (!progress.is_none()) {
-                const py::object keep_going = progress(finished.load(), cases.size());
-                if (!keep_going.is_none() && !keep_going.cast<bool>()) stop = true;
-            }
-        } catch (py::error_already_set& e) {
-            python_error.emplace(std::move(e));
-            stop = true;
-        }
+        if (!python_says_go_on(progress, finished.load(), cases.size(), python_error)) stop = true;
         return !stop.load();
     };
     struct Outcome {

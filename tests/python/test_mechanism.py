@@ -29,6 +29,14 @@ def test_one_dof_residual_vibration_matches_the_closed_form(one_dof, tau):
     assert abs(simulated - exact) < 1e-5
 
 
+def test_one_dof_residual_vibrations_at_once_are_those_one_by_one(one_dof):
+    taus = [0.75, 2.5, 8.0]
+    together = one_dof["residual_amplitudes"](taus)
+    assert together == [one_dof["residual_amplitude"](tau) for tau in taus]  # bit for bit
+    for tau, a in zip(taus, together):
+        assert abs(a - one_dof["closed_form"](tau)) < 1e-5
+
+
 def test_the_residual_vibration_check_can_fail(one_dof):
     # A coarse step shifts the discrete natural frequency: the same comparison then misses.
     simulated = one_dof["residual_amplitude"](2.5, steps_per_period=20)
