@@ -5,6 +5,9 @@
 // (orders 5 and 8) driving the same model evaluation.
 //   cmake -S . -B build-bench -DCAMFOLLOWER_BUILD_BENCHMARKS=ON && cmake --build build-bench
 //   build-bench/bench/camfollower_work_precision [--stiff] [--rpm N] [--repeats N]
+// The contact-loss case is --rpm 2000 (above the preset's jump speed, 1329 rpm): camfollower's runs
+// report the contact losses and re-contacts they located, the reference the sign changes of its
+// penetration on the output grid.
 // Each setting runs `repeats` times, interleaved with the others; the CPU time reported is the median.
 // Errors: max |x - x_ref| / max |x_ref| over the output grid (2048 rows per revolution); the reference
 // is odeint's fehlberg78 at rtol 1e-13 when Boost is available, else Dormand-Prince at tolerance 1e-12.
@@ -44,8 +47,9 @@ constexpr int follower = 3;  // y4, the follower's DOF
 
 // The channels compared: contact force and follower acceleration on the output grid.
 struct Histories {
-    std::vector<double> force, accel;
+    std::vector<double> force, accel, gap;  // gap: the contact's penetration (m)
     double cpu_ms = 0.0;
+    long events = -1;  // located contact losses and re-contacts (-1: the method does not locate them)
     std::uint64_t steps = 0, evaluations = 0;
 };
 
@@ -64,6 +68,9 @@ Histories run_camfollower(const Model& m, const cf::NewmarkSettings& s) {
     const double* a = r.recording.channel(r.recording.block(2) + follower);
     h.force.assign(f, f + r.recording.rows);
     h.accel.assign(a, a + r.recording.rows);
+    const double* g = r.recording.channel("cam.penetration");
+    h.gap.assign(g, g + r.recording.rows);
+    h.events = long(r.events.size());
     h.steps = r.report.stats.steps;
     h.evaluations = r.report.stats.evaluations;
     return h;
@@ -104,6 +111,7 @@ struct GridObserver {
         std::vector<double> out(rhs.m.channel_names().size());
         rhs.m.observe(rhs.ws, q, v, out.data());
         h.force.push_back(out[force_channel(rhs.m)]);
+        h.gap.push_back(out[force_channel(rhs.m) + 1]);  // cam.penetration follows cam.force
         h.accel.push_back(a[follower]);
     }
     static std::size_t force_channel(const Model& m) {
@@ -241,6 +249,13 @@ double relative_error(const std::vector<double>& x, const std::vector<double>& r
     return x.size() == ref.size() ? err / peak : INFINITY;
 }
 
+// Sign changes of the penetration on the output grid: the contact losses and re-contacts a run shows.
+long sign_changes(const std::vector<double>& gap) {
+    long n = 0;
+    for (std::size_t i = 1; i < gap.size(); ++i) n += (gap[i] > 0.0) != (gap[i - 1] > 0.0);
+    return n;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -318,14 +333,18 @@ int main(int argc, char** argv) {
             s.last = s.run();
             s.times.push_back(s.last.cpu_ms);
         }
-    std::printf("# paper preset%s, %.0f rpm, one revolution, %d output rows; reference: %s; median CPU time of %d\n",
-                stiff ? " with contact stiffness x100" : "", rpm, grid, ref_name, repeats);
-    std::printf("| method | CPU ms | force error | follower accel. error | steps | force evaluations |\n|---|---|---|---|---|---|\n");
+    std::printf("# paper preset%s, %.0f rpm, one revolution, %d output rows; reference: %s (%ld contact losses and "
+                "re-contacts on its grid); median CPU time of %d\n",
+                stiff ? " with contact stiffness x100" : "", rpm, grid, ref_name, sign_changes(ref.gap), repeats);
+    std::printf("| method | CPU ms | force error | follower accel. error | steps | force evaluations | events located |\n"
+                "|---|---|---|---|---|---|---|\n");
     for (Setting& s : settings) {
         std::sort(s.times.begin(), s.times.end());
-        std::printf("| %s | %.2f | %.2e | %.2e | %llu | %llu |\n", s.label.c_str(), s.times[s.times.size() / 2],
+        const std::string events = s.last.events < 0 ? "-" : std::to_string(s.last.events);
+        std::printf("| %s | %.2f | %.2e | %.2e | %llu | %llu | %s |\n", s.label.c_str(), s.times[s.times.size() / 2],
                     relative_error(s.last.force, ref.force), relative_error(s.last.accel, ref.accel),
-                    static_cast<unsigned long long>(s.last.steps), static_cast<unsigned long long>(s.last.evaluations));
+                    static_cast<unsigned long long>(s.last.steps), static_cast<unsigned long long>(s.last.evaluations),
+                    events.c_str());
     }
     // The fastest run reaching each target in both channels, camfollower's and the peers', and the ratio.
     std::printf("\n| target (force and accel.) | camfollower | fastest peer | peer / camfollower |\n|---|---|---|---|\n");

@@ -138,6 +138,7 @@ int run(const std::string& config, std::string output) {
             for (const auto& [a, b] : std::decay_t<decltype(m)>::contact_loss(result.final_state.workspace, i, result.final_state.t)) lost += b - a;
             std::printf(", '%s' lost contact %.4g s", m.contacts()[i].name().c_str(), lost);
         }
+        std::printf(", %zu contact losses and re-contacts located", result.events.size());
         std::printf(" -> %s\n", output.c_str());
     });
     return 0;

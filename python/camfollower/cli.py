@@ -77,7 +77,8 @@ def figures(config: str, out: str) -> dict:
         rigid = omega**2 * np.asarray(program.evaluate(theta)["d2h"])
         summary["contacts"][name] = {
             "follower": type(follower).__name__, "max_force_N": float(force.max()), "min_force_N": float(force.min()),
-            "contact_lost_s": float(lost), "max_abs_acceleration": float(np.abs(np.asarray(result[f"a.{dof}"])).max()),
+            "contact_lost_s": float(lost),
+            "contact_events": sum(1 for _, event, _ in result.events if event == f"{name}.contact"), "max_abs_acceleration": float(np.abs(np.asarray(result[f"a.{dof}"])).max()),
             "max_abs_rigid_acceleration": float(np.abs(rigid).max()),
             "max_abs_pressure_angle_deg": float(np.degrees(abs(follower.max_pressure_angle(program)[1]))),
             "min_convex_surface_radius_mm": float(1e3 * follower.min_surface_radius(program)[1]),

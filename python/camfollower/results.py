@@ -24,7 +24,10 @@ class Result:
     ``t`` (s), ``q``, ``v``, ``a`` (rows x DOFs, SI units of each DOF: m or rad) and every channel of the
     system by name (``r["contact_force"]``, ``r.channel("contact_force")``; ``r.channels`` lists them).
     ``stats`` holds the solver statistics, ``contact_loss`` maps each contact's name to the (start, end)
-    times in s of its intervals without contact (checked at every step, not only at recorded rows). Arrays are read-only views on
+    times in s of its intervals without contact (checked at every step, not only at recorded rows).
+    ``events`` lists the contact losses and re-contacts located within the steps, in time order, as
+    ``(time in s, name, "lost" | "made")``; the name is the contact's ``<contact>.contact`` (a
+    clearance's ``<clearance>.wall``; ``"contact"`` on a CamFollowerModel). Arrays are read-only views on
     the run's buffer; ``save(path)`` / ``Result.load(path)`` round-trip through an NPZ file.
     ``settle`` is None, or (after ``simulate(..., settle=True)``) a dict: ``settled`` (bool),
     ``revolutions`` simulated to settle, ``change`` (the last revolution-to-revolution change of the
@@ -33,7 +36,8 @@ class Result:
     """
 
     def __init__(self, names: Sequence[str], dofs: Sequence[str], data: np.ndarray, stats: Dict[str, Any],
-                 contact_loss: Dict[str, Sequence[Tuple[float, float]]], settle: Optional[Dict[str, Any]] = None):
+                 contact_loss: Dict[str, Sequence[Tuple[float, float]]], settle: Optional[Dict[str, Any]] = None,
+                 events: Sequence[Tuple[float, str, str]] = ()):
         self._names: List[str] = list(names)
         self._index = {n: i for i, n in enumerate(self._names)}
         self.dof_names: List[str] = list(dofs)
@@ -46,6 +50,7 @@ class Result:
         self.contact_loss: Dict[str, List[Tuple[float, float]]] = {
             str(name): [(float(a), float(b)) for a, b in intervals] for name, intervals in dict(contact_loss).items()}
         self.settle: Optional[Dict[str, Any]] = None if settle is None else dict(settle)
+        self.events: List[Tuple[float, str, str]] = [(float(t), str(n), str(k)) for t, n, k in events]
 
     # --- channels ---
     @property
@@ -127,6 +132,7 @@ class Result:
                  stats_text=np.array(json.dumps(texts)),
                  contact_names=np.array(list(self.contact_loss), dtype=str),
                  settle=np.array(json.dumps(self.settle)),
+                 events=np.array(json.dumps(self.events)),
                  **{f"contact_loss_{i}": np.array(v, dtype=float).reshape(-1, 2)
                     for i, v in enumerate(self.contact_loss.values())})
         _files.write_bytes(path, buffer.getvalue())
@@ -144,7 +150,10 @@ class Result:
                 stats.update(json.loads(str(z["stats_text"])))
             losses = {str(n): [tuple(x) for x in z[f"contact_loss_{i}"]] for i, n in enumerate(z["contact_names"])}
             settle = json.loads(str(z["settle"])) if "settle" in z else None
-            return cls([str(n) for n in z["names"]], [str(d) for d in z["dofs"]], z["data"], stats, losses, settle)
+            events = json.loads(str(z["events"])) if "events" in z else []
+            return cls([str(n) for n in z["names"]], [str(d) for d in z["dofs"]], z["data"], stats, losses, settle,
+                       events)
 
     def __reduce__(self):
-        return (Result, (self._names, self.dof_names, np.array(self._data), self.stats, self.contact_loss, self.settle))
+        return (Result, (self._names, self.dof_names, np.array(self._data), self.stats, self.contact_loss, self.settle,
+                         self.events))

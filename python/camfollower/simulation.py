@@ -151,7 +151,7 @@ def _result(raw, settle_dofs) -> Result:
     report = stats.pop("settle", None)
     if report is not None:
         report["dofs"] = list(settle_dofs)
-    return Result(raw["names"], raw["dofs"], raw["data"], stats, raw["contact_loss"], report)
+    return Result(raw["names"], raw["dofs"], raw["data"], stats, raw["contact_loss"], report, raw["events"])
 
 
 def _run_arguments(system, *, duration, revolutions, time_step, decimation, record_from, record_last_revolutions,

@@ -10,6 +10,8 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <tuple>
+#include <vector>
 
 #include <pybind11/complex.h>
 #include <pybind11/eigen.h>
@@ -74,6 +76,8 @@ struct RunOutput {
     double highest_mode_hz = 0.0;
     double final_time = 0.0;
     ContactLosses losses;
+    // Located contact losses and re-contacts: (time, switching function's name, +1 made / -1 lost).
+    std::vector<std::tuple<double, std::string, int>> events;
     SettleOptions settle;
 };
 
@@ -91,6 +95,8 @@ std::shared_ptr<RunOutput> output_of(const System& system, RunResult<System>&& r
     out->highest_mode_hz = r.highest_mode_hz;
     out->final_time = r.final_state.t;
     out->losses = losses_of(system, r.final_state);
+    const std::vector<std::string> names = event_names(system);
+    for (const Event& e : r.events) out->events.emplace_back(e.time, names[std::size_t(e.index)], e.direction);
     out->settle = settle;
     return out;
 }
@@ -158,6 +164,10 @@ inline py::dict dict_of(const std::shared_ptr<RunOutput>& out) {
         losses[py::str(name)] = l;
     }
     d["contact_loss"] = losses;
+    py::list events;
+    for (const auto& [time, name, direction] : out->events)
+        events.append(py::make_tuple(time, name, direction > 0 ? "made" : "lost"));
+    d["events"] = events;
     d["final_time"] = out->final_time;
     return d;
 }

@@ -29,6 +29,13 @@
 //              std::vector<std::string> channel_names() const;
 //              void observe(const Workspace&, const Vector& q, const Vector& v, double* out) const;
 //                                                     the named output channels at an accepted state
+//              std::vector<std::string> event_names() const;
+//              void event_values(const Workspace&, const Vector& q, const Vector& v, double* g) const;
+//                                                     switching functions at the prepared time: one per
+//                                                     named event, > 0 in contact, <= 0 apart; where one
+//                                                     changes sign the force stops being smooth (a
+//                                                     contact's penetration, a clearance's wall gap), and
+//                                                     the integrators locate that instant (solver/events.hpp)
 //
 // A system the sparse backend (solver/sparse_newmark.hpp) can run also has
 //              const Eigen::SparseMatrix<double>& sparse_mass() const;   (and sparse_damping, sparse_stiffness)
@@ -141,6 +148,13 @@ CAMFOLLOWER_DETECT(has_initial_displacement,
                    std::declval<vector_t<S>&>() = std::declval<const S&>().initial_displacement())
 CAMFOLLOWER_DETECT(has_initial_velocity,
                    std::declval<vector_t<S>&>() = std::declval<const S&>().initial_velocity())
+CAMFOLLOWER_DETECT(has_event_names,
+                   std::declval<std::vector<std::string>&>() = std::declval<const S&>().event_names())
+CAMFOLLOWER_DETECT(has_event_values,
+                   std::declval<const S&>().event_values(std::declval<const typename S::Workspace&>(),
+                                                         std::declval<const vector_t<S>&>(),
+                                                         std::declval<const vector_t<S>&>(),
+                                                         std::declval<double*>()))
 CAMFOLLOWER_DETECT(has_observe, std::declval<const S&>().observe(std::declval<const typename S::Workspace&>(),
                                                                  std::declval<const vector_t<S>&>(),
                                                                  std::declval<const vector_t<S>&>(),
@@ -182,7 +196,11 @@ constexpr bool check_system() {
                       "Vector& v, double cq, double cv, LowRank<Vector>&) const`");
         static_assert(detail::has_channels<S>::value == detail::has_observe<S>::value,
                       "system: channel_names() and observe(...) go together");
+        static_assert(detail::has_event_names<S>::value == detail::has_event_values<S>::value,
+                      "system: event_names() and event_values(...) go together");
     } else {
+        static_assert(!detail::has_event_names<S>::value,
+                      "system: event_names() needs event_values(const Workspace&, ...), i.e. a Workspace");
         static_assert(!detail::has_channels<S>::value,
                       "system: channel_names() needs observe(const Workspace&, ...), i.e. a Workspace");
     }
@@ -284,6 +302,21 @@ template <class S, class V>
 void observe(const S& s, const workspace_t<S>& ws, const V& q, const V& v, double* out) {
     if constexpr (detail::has_observe<S>::value) s.observe(ws, q, v, out);
     else (void)s, (void)ws, (void)q, (void)v, (void)out;
+}
+
+template <class S>
+inline constexpr bool has_events_v = detail::has_event_names<S>::value && detail::has_event_values<S>::value;
+
+template <class S>
+std::vector<std::string> event_names(const S& s) {
+    if constexpr (has_events_v<S>) return s.event_names();
+    else return (void)s, std::vector<std::string>{};
+}
+
+template <class S, class V>
+void event_values(const S& s, const workspace_t<S>& ws, const V& q, const V& v, double* g) {
+    if constexpr (has_events_v<S>) s.event_values(ws, q, v, g);
+    else (void)s, (void)ws, (void)q, (void)v, (void)g;
 }
 
 }  // namespace camfollower

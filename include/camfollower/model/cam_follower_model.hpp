@@ -165,6 +165,11 @@ public:
     std::vector<std::string> channel_names() const {
         return {"theta", "contact_force", "contact_stiffness", "pressure_angle", "penetration", "in_contact"};
     }
+    // Switching function (solver/events.hpp): the cam-roller penetration (m), > 0 in contact.
+    std::vector<std::string> event_names() const { return {"contact"}; }
+    void event_values(const Workspace& w, const Vector& q, const Vector&, double* g) const {
+        g[0] = w.context.g.dot(q) + w.context.delta0;
+    }
     void observe(const Workspace& w, const Vector& q, const Vector& v, double* out) const {
         const Nonlinear n = nonlinear(w.context, q, v);
         out[0] = w.context.theta;

@@ -334,6 +334,21 @@ public:
             for (const char* s : {".force", ".side", ".gap", ".friction"}) names.push_back(c.name() + s);
         return names;
     }
+    // Switching functions (solver/events.hpp): per contact <name>.contact, its penetration (m); per
+    // clearance <name>.wall, |u| - c (m): > 0 while touching.
+    std::vector<std::string> event_names() const {
+        std::vector<std::string> names;
+        for (const ContactPair& c : contacts_) names.push_back(c.name() + ".contact");
+        for (const Clearance& c : clearances_) names.push_back(c.name() + ".wall");
+        return names;
+    }
+    void event_values(const Workspace& w, const Vector& q, const Vector& v, double* g) const {
+        for (std::size_t i = 0; i < contacts_.size(); ++i) {
+            if (contacts_[i].twist() >= 0) twist_terms(w.t, i, q, v[contacts_[i].twist()], w.terms[i]);
+            *g++ = ContactPair::penetration(w.terms[i], q);
+        }
+        for (const Clearance& cl : clearances_) *g++ = std::abs(cl.gap(q)) - cl.spec().clearance;
+    }
     void observe(const Workspace& w, const Vector& q, const Vector& v, double* out) const {
         *out++ = spec_.camshaft_speed * w.t;
         for (std::size_t i = 0; i < contacts_.size(); ++i) {

@@ -36,6 +36,7 @@
 #include "camfollower/core/system.hpp"
 #include "camfollower/constants.hpp"
 #include "camfollower/error.hpp"
+#include "camfollower/solver/events.hpp"
 #include "camfollower/solver/newmark.hpp"
 
 namespace camfollower {
@@ -115,6 +116,8 @@ public:
         h_ = initial_step(s.a);
         t_old_ = t_, h_last_ = 0.0, err_old_ = 1e-4;
         stiff_count_ = 0, non_stiff_count_ = 0;
+        event_retake_ = false;
+        events_.start(ws_, q_, v_);
         return s;
     }
 
@@ -132,6 +135,10 @@ public:
         acceleration(s.q, s.v, s.f, s.a);
         ++stats.evaluations;
     }
+
+    // Contact losses and re-contacts since start(); each ended an integration step (solver/events.hpp).
+    const std::vector<Event>& events() const { return events_.events(); }
+    std::vector<Event> take_events() { return events_.take_events(); }
 
     // Highest natural angular frequency at a state (rad/s), contacts linearized.
     double highest_angular_frequency(const StateType& s) const { return camfollower::highest_angular_frequency(system_, s); }
@@ -237,7 +244,10 @@ private:
             if (err <= 1.0) {
                 double fac = fac11 / std::pow(err_old_, 0.04) / 0.9;
                 fac = std::clamp(fac, 0.1, 5.0);  // grow at most x10, shrink at most x5
-                const double h_new = h / fac;
+                double h_new = h / fac;
+                if constexpr (has_events_v<System>) {
+                    if (end_at_crossing(h, h_new)) continue;
+                }
                 err_old_ = std::max(err, 1e-4);
                 stiffness_test(h, stats);
                 accept(h, stats);
@@ -247,8 +257,35 @@ private:
             }
             h_ = h / std::min(5.0, fac11 / 0.9);
             rejected_last_ = true;
+            event_retake_ = false;
             ++stats.rejected_steps;  // the next attempt's stages prepare the workspace again
         }
+    }
+
+    // Events of the trial step [t_, t_ + h] (error accepted): when a switching function changed sign
+    // inside it, sets up the retake ending just past the earliest crossing and returns true; else
+    // records the crossings found (a retake's own, at its end) and returns false. The step after a
+    // crossing starts from the size the controller had before it (the retake may be a sliver).
+    bool end_at_crossing(double h, double& h_new) {
+        if (events_.changed(ws_, qs_, vs_)) {
+            dense_coefficients(h);
+            auto path = [&](double t, Vector& q, Vector& v) { interpolate_on(t, t_, h, q, v); };
+            const Crossing first = events_.earliest(t_, t_ + h, path);
+            // A crossing within a millionth of the step from its start is left inside: its error,
+            // ~ (1e-6 h)^2 times the force's kink, is below any tolerance.
+            if (s_.adaptive && !event_retake_ && first.beyond < t_ + h && first.beyond - t_ > 1e-6 * h) {
+                event_retake_ = true;
+                h_before_event_ = h_new;
+                h_ = first.beyond - t_;
+                return true;
+            }
+            events_.record(first);
+            while (const Crossing c = events_.earliest(t_, t_ + h, path)) events_.record(c);
+        }
+        events_.accept_values();
+        if (event_retake_) h_new = std::max(h_new, h_before_event_), rejected_last_ = false;
+        event_retake_ = false;
+        return false;
     }
 
     // |K_t e_q + C_t e_v|_inf with the contacts' tangent at the new state (the last stage evaluated it).
@@ -276,8 +313,8 @@ private:
         }
     }
 
-    void accept(double h, SolverStatistics& stats) {
-        // Dense output coefficients (Hairer's CONTD5) on [t_, t_ + h].
+    // Dense output coefficients (Hairer's CONTD5) of the step [t_, t_ + h] just computed.
+    void dense_coefficients(double h) {
         rq_[0] = q_, rv_[0] = v_;
         rq_[1] = qs_ - q_, rv_[1] = vs_ - v_;
         rq_[2] = h * kq_[0] - rq_[1], rv_[2] = h * kv_[0] - rv_[1];
@@ -288,6 +325,10 @@ private:
             rq_[4].noalias() += (h * dopri5::d[std::size_t(i)]) * kq_[i];
             rv_[4].noalias() += (h * dopri5::d[std::size_t(i)]) * kv_[i];
         }
+    }
+
+    void accept(double h, SolverStatistics& stats) {
+        dense_coefficients(h);
         t_old_ = t_, h_last_ = h;
         // Fixed steps: time as t0 + n h (a sum drifts by ulps, off the output grid).
         t_ = s_.adaptive ? t_ + h : t_start_ + double(++fixed_steps_) * h;
@@ -300,8 +341,9 @@ private:
     }
 
     // The dense output at time t in [t_old_, t_] (the last accepted step).
-    void interpolate(double t, Vector& q, Vector& v) const {
-        const double th = h_last_ > 0.0 ? (t - t_old_) / h_last_ : 1.0, th1 = 1.0 - th;
+    void interpolate(double t, Vector& q, Vector& v) const { interpolate_on(t, t_old_, h_last_, q, v); }
+    void interpolate_on(double t, double t0, double h, Vector& q, Vector& v) const {
+        const double th = h > 0.0 ? (t - t0) / h : 1.0, th1 = 1.0 - th;
         q = rq_[0] + th * (rq_[1] + th1 * (rq_[2] + th * (rq_[3] + th1 * rq_[4])));
         v = rv_[0] + th * (rv_[1] + th1 * (rv_[2] + th * (rv_[3] + th1 * rv_[4])));
     }
@@ -317,6 +359,8 @@ private:
     double t_start_ = 0.0;
     std::uint64_t fixed_steps_ = 0;
     bool rejected_last_ = false;
+    bool event_retake_ = false;  // the step being taken ends at a located crossing
+    double h_before_event_ = 0.0;
     int stiff_count_ = 0, non_stiff_count_ = 0;
     workspace_t<System> ws_;
     // Scratch, sized once: nothing is allocated inside the time loop.
@@ -324,6 +368,7 @@ private:
     std::array<Vector, 7> kq_, kv_;
     std::array<Vector, 5> rq_, rv_;
     LowRank<Vector> uv_;
+    EventWatch<System> events_{system_};
 };
 
 }  // namespace camfollower

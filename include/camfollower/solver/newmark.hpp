@@ -33,6 +33,7 @@
 #include "camfollower/core/system.hpp"
 #include "camfollower/constants.hpp"
 #include "camfollower/error.hpp"
+#include "camfollower/solver/events.hpp"
 
 namespace camfollower {
 
@@ -454,12 +455,16 @@ public:
         force_scale_ = std::max({1.0, Kq.cwiseAbs().maxCoeff(), s.f.cwiseAbs().maxCoeff()});
         linear_.check_stability_limit(s);
         accepted(system_, s.workspace, s.q, s.v);  // path memory starts from the initial state
+        events_.start(s.workspace, s.q, s.v);
         return s;
     }
 
     // Highest undamped natural angular frequency (rad/s) at a state, contacts linearized (NaN when
     // the eigen solve fails): what the step has to resolve.
     double highest_angular_frequency(const StateType& s) { return linear_.highest_angular_frequency(s); }
+    // Contact losses and re-contacts since start(), located within their steps (solver/events.hpp).
+    const std::vector<Event>& events() const { return events_.events(); }
+    std::vector<Event> take_events() { return events_.take_events(); }
 
     // One step of the nominal size, halving (recursively, bounded) when Newton fails.
     void step(StateType& state, SolverStatistics& stats, int level = 0) {
@@ -571,6 +576,14 @@ private:
     }
 
     void accept(StateType& s, double t1, bool evaluate_force) {
+        if constexpr (has_events_v<System>) {
+            // Crossings in the step, in time order, located on the cubic through both ends.
+            if (events_.changed(s.workspace, q_, v_)) {
+                auto path = [&](double t, Vector& q, Vector& v) { EventWatch<System>::hermite(t, s.t, t1, s.q, s.v, q_, v_, q, v); };
+                while (const Crossing c = events_.earliest(s.t, t1, path)) events_.record(c);
+            }
+            events_.accept_values();
+        }
         s.t = t1;
         s.q = q_;
         s.v = v_;
@@ -595,6 +608,7 @@ private:
     double norm_M_ = 0.0, norm_C_ = 0.0, norm_K_ = 0.0;  // infinity norms, for the rounding floor
     // Scratch, sized once: nothing is allocated inside the time loop.
     Vector q_pred_, v_pred_, b_, a_, q_, v_, r_, dq_;
+    EventWatch<System> events_{system_};
 };
 
 }  // namespace camfollower

@@ -39,6 +39,9 @@ struct RunResult {
     double time_step = 0.0;
     std::size_t decimation = 1;
     SettleReport settle;
+    // Contact losses and re-contacts of the recorded run, in time order; Event::index names the
+    // switching function in event_names(system) (solver/events.hpp).
+    std::vector<Event> events;
     const char* backend = "dense";  // the Newton algebra used: "dense" or "sparse"
     const char* method = "newmark";  // method_name(settings) of the method that ran
     const char* requested_method = "newmark";  // as asked: "auto" when choose_method picked `method`
@@ -99,6 +102,7 @@ RunResult<System> run(const System& system, const NewmarkSettings& settings, con
                               });
     result.report.stats.add(settling);
     result.recording = recorder.take();
+    result.events = stepper.take_events();
     result.time_step = settings.time_step;
     result.decimation = options.record.decimation;
     result.backend = std::is_same_v<Stepper, SparseNewmark<System>> ? "sparse" : "dense";

@@ -1,0 +1,194 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Events (solver/events.hpp): contact made and lost located against the closed form of a mass
+// bouncing on a linear unilateral spring; Dormand-Prince ending its steps there keeps its accuracy
+// across the kinks (against the same system without switching functions); events on the paper preset
+// above its jump speed agree between methods and with the recorded penetration.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <vector>
+
+#include "camfollower/model/presets/paper.hpp"
+#include "camfollower/solver/simulate.hpp"
+
+using namespace camfollower;
+
+namespace {
+
+// A mass m dropped from height h0 at rest onto a linear spring k (no damping, gravity g): flight,
+// contact while x < 0 (force k (-x), a kink in the force at x = 0), flight again. Closed form:
+// contact at t1 = sqrt(2 h0 / g) with speed v1 = g t1; in contact x = -d + d cos(w s) - (v1 / w)
+// sin(w s), d = m g / k, w = sqrt(k / m), leaving at s = (2 pi - 2 phi) / w, tan phi = v1 / (w d),
+// with speed v1; the flight back lasts 2 v1 / g; and so on, periodically.
+template <bool WithEvents>
+struct Bouncer {
+    using Vector = Eigen::Matrix<double, 1, 1>;
+    using Matrix = Eigen::Matrix<double, 1, 1>;
+    struct Workspace {};
+    double m = 0.5, k = 2.0e5, g = 9.81, h0 = 0.02;
+    Matrix M = Matrix::Constant(0.5), zero = Matrix::Zero();
+
+    int size() const { return 1; }
+    const Matrix& mass() const { return M; }
+    const Matrix& damping() const { return zero; }
+    const Matrix& stiffness() const { return zero; }
+    Vector initial_displacement() const { return Vector::Constant(h0); }
+    Workspace workspace() const { return {}; }
+    void prepare(double, Workspace&) const {}
+    // f - p with p = -m g (gravity) and the spring's internal force -k (-x) when x < 0.
+    void force(const Workspace&, const Vector& q, const Vector&, Vector& f) const {
+        f[0] = m * g - (q[0] < 0.0 ? k * -q[0] : 0.0);
+    }
+    int max_rank() const { return 1; }
+    void tangent(const Workspace&, const Vector& q, const Vector&, double cq, double, LowRank<Vector>& uv) const {
+        if (q[0] < 0.0) uv.add(Vector::Ones(), Vector::Constant(cq * k));
+    }
+    template <bool E = WithEvents, std::enable_if_t<E, int> = 0>
+    std::vector<std::string> event_names() const { return {"ground"}; }
+    template <bool E = WithEvents, std::enable_if_t<E, int> = 0>
+    void event_values(const Workspace&, const Vector& q, const Vector&, double* out) const { out[0] = -q[0]; }
+
+    double flight() const { return 2.0 * std::sqrt(2.0 * h0 / g); }  // between two contacts
+    double impact_speed() const { return std::sqrt(2.0 * g * h0); }
+    double contact_time() const {
+        const double w = std::sqrt(k / m), d = m * g / k;
+        return (2.0 * pi - 2.0 * std::atan(impact_speed() / (w * d))) / w;
+    }
+    // Exact event times (made, lost, made, ...) up to t_end.
+    std::vector<double> event_times(double t_end) const {
+        std::vector<double> out;
+        double t = 0.5 * flight();
+        for (int i = 0; t <= t_end; ++i) {
+            out.push_back(t);
+            t += i % 2 == 0 ? contact_time() : flight();
+        }
+        return out;
+    }
+    // Exact height at t.
+    double height(double t) const {
+        const double v1 = impact_speed(), w = std::sqrt(k / m), d = m * g / k;
+        const double period = flight() + contact_time();
+        double s = std::fmod(t + 0.5 * flight(), period);  // time since the last lift-off (or start - t1)
+        if (s < flight()) return v1 * s - 0.5 * g * s * s;
+        s -= flight();
+        return -d + d * std::cos(w * s) - (v1 / w) * std::sin(w * s);
+    }
+};
+
+NewmarkSettings dopri(double tolerance, double output) {
+    NewmarkSettings s;
+    s.method = Method::dormand_prince;
+    s.tolerance = tolerance;
+    s.time_step = output;
+    return s;
+}
+
+RunOptions for_duration(double duration) {
+    RunOptions o;
+    o.duration = duration;
+    o.record.decimation = 1;
+    return o;
+}
+
+}  // namespace
+
+TEST_CASE("events: Dormand-Prince locates every contact made and lost at the closed-form times") {
+    const Bouncer<true> b;
+    const double duration = 3.2 * (b.flight() + b.contact_time());
+    const std::vector<double> exact = b.event_times(duration);
+    REQUIRE(exact.size() == 6);
+    const RunResult<Bouncer<true>> r = simulate(b, dopri(1e-10, 1e-3), for_duration(duration));
+    REQUIRE(r.events.size() == exact.size());
+    for (std::size_t i = 0; i < exact.size(); ++i) {
+        CAPTURE(i, r.events[i].time, exact[i]);
+        CHECK(r.events[i].index == 0);
+        CHECK(r.events[i].direction == (i % 2 == 0 ? 1 : -1));
+        CHECK(std::abs(r.events[i].time - exact[i]) < 1e-9 * duration);
+    }
+}
+
+TEST_CASE("events: ending steps at the kinks keeps Dormand-Prince accurate and cheaper") {
+    const Bouncer<true> with;
+    const Bouncer<false> without;
+    const double duration = 3.2 * (with.flight() + with.contact_time());
+    for (const double tol : {1e-6, 1e-9}) {
+        CAPTURE(tol);
+        const auto a = simulate(with, dopri(tol, 1e-4), for_duration(duration));
+        const auto b = simulate(without, dopri(tol, 1e-4), for_duration(duration));
+        double err_a = 0.0, err_b = 0.0;
+        const Recording& ra = a.recording;
+        const Recording& rb = b.recording;
+        REQUIRE(ra.rows == rb.rows);
+        for (std::size_t i = 0; i < ra.rows; ++i) {
+            const double exact = with.height(ra.at("t", i));
+            err_a = std::max(err_a, std::abs(ra.at("q.0", i) - exact));
+            err_b = std::max(err_b, std::abs(rb.at("q.0", i) - exact));
+        }
+        CAPTURE(err_a, err_b, a.report.stats.steps + a.report.stats.rejected_steps,
+                b.report.stats.steps + b.report.stats.rejected_steps);
+        // Relative to the drop height: within the tolerance with events, and better than without.
+        CHECK(err_a < 20.0 * tol * with.h0);
+        CHECK(err_a < err_b);
+        // (at about the same number of attempted steps: the retakes replace rejections at the kinks)
+        CHECK(double(a.report.stats.steps + a.report.stats.rejected_steps) <
+              1.2 * double(b.report.stats.steps + b.report.stats.rejected_steps));
+        CHECK(b.events.empty());
+    }
+}
+
+TEST_CASE("events: Newmark reports the crossings within its fixed steps, to its order") {
+    const Bouncer<true> b;
+    const double duration = 3.2 * (b.flight() + b.contact_time());
+    const std::vector<double> exact = b.event_times(duration);
+    double previous = 0.0;
+    for (const double dt : {2e-5, 5e-6}) {
+        NewmarkSettings s;
+        s.time_step = dt;
+        const auto r = simulate(b, s, for_duration(duration));
+        REQUIRE(r.events.size() == exact.size());
+        double worst = 0.0;
+        for (std::size_t i = 0; i < exact.size(); ++i) {
+            CHECK(r.events[i].direction == (i % 2 == 0 ? 1 : -1));
+            worst = std::max(worst, std::abs(r.events[i].time - exact[i]));
+        }
+        CAPTURE(dt, worst);
+        // The times follow the scheme's own (second-order) error of the motion: / 16 when dt / 4.
+        CHECK(worst < 0.5 * dt);
+        if (previous > 0.0) CHECK(worst < previous / 8.0);
+        previous = worst;
+    }
+}
+
+TEST_CASE("events: the paper preset above its jump speed loses and regains contact, alike in every method") {
+    CamFollowerParameters p;
+    p.camshaft_speed_rpm = 2000.0;  // jump speed 1329 rpm (docs/studies.md)
+    const Mechanism<presets::paper_dofs> m = presets::paper(p);
+    REQUIRE(event_names(m) == std::vector<std::string>{"cam.contact"});
+    RunOptions run;
+    run.duration = m.period();
+    run.record.decimation = 1;
+    NewmarkSettings fg;
+    fg.beta = 1.0 / 12.0;
+    fg.time_step = m.period() / 8192;
+    const auto a = simulate(m, fg, run);
+    const auto b = simulate(m, dopri(1e-9, m.period() / 8192), run);
+    REQUIRE(a.events.size() >= 2);
+    REQUIRE(a.events.size() == b.events.size());
+    for (std::size_t i = 0; i < a.events.size(); ++i) {
+        CAPTURE(i, a.events[i].time, b.events[i].time);
+        CHECK(a.events[i].direction == b.events[i].direction);
+        CHECK(std::abs(a.events[i].time - b.events[i].time) < 0.05 * fg.time_step);
+    }
+    // Every sign change of the recorded penetration lies next to a reported event.
+    const double* t = b.recording.channel("t");
+    const double* d = b.recording.channel("cam.penetration");
+    std::size_t changes = 0;
+    for (std::size_t i = 1; i < b.recording.rows; ++i) {
+        if ((d[i] > 0.0) == (d[i - 1] > 0.0)) continue;
+        ++changes;
+        bool near = false;
+        for (const Event& e : b.events) near = near || (e.time > t[i - 1] - 1e-12 && e.time <= t[i] + 1e-12);
+        CHECK(near);
+    }
+    CHECK(changes == b.events.size());
+}
