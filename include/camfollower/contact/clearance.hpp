@@ -96,7 +96,7 @@ struct GuideSpec {
 struct ClearanceResponse {
     double u = 0.0;        // gap coordinate, m
     int side = 0;          // -1, 0 (free), +1
-    ContactResponse wall{0.0, 0.0, 0.0, false};  // normal force magnitude and its derivatives
+    ContactResponse wall{0.0, 0.0, 0.0, false, 0.0};  // normal force magnitude and its derivatives
     double slip = 0.0;     // tanh(w' / v_slip)
     double dslip = 0.0;    // d slip / d w'
 };

@@ -14,6 +14,7 @@ struct ContactResponse {
     double stiffness;  // dF/d delta, N/m
     double damping;    // dF/d delta_dot, N s/m
     bool in_contact;   // delta > 0
+    double delta;      // the penetration it was evaluated at, m
 };
 
 struct HertzContact {
@@ -22,14 +23,14 @@ struct HertzContact {
     double damping_factor = 0.0;  // chi, s/m
 
     ContactResponse operator()(double delta, double delta_dot) const {
-        if (!(delta > 0.0)) return {0.0, 0.0, 0.0, false};
+        if (!(delta > 0.0)) return {0.0, 0.0, 0.0, false, delta};
         // delta^n and n delta^(n-1); pow only off the paper's linear law.
         const double dn = exponent == 1.0 ? delta : std::pow(delta, exponent);
         const double elastic = stiffness * dn;
         const double k_elastic = exponent == 1.0 ? stiffness : exponent * elastic / delta;
         const double factor = 1.0 + damping_factor * delta_dot;
-        if (factor <= 0.0) return {0.0, 0.0, 0.0, true};  // separating faster than the law can pull
-        return {elastic * factor, k_elastic * factor, elastic * damping_factor, true};
+        if (factor <= 0.0) return {0.0, 0.0, 0.0, true, delta};  // separating faster than the law can pull
+        return {elastic * factor, k_elastic * factor, elastic * damping_factor, true, delta};
     }
 };
 

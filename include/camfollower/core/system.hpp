@@ -31,7 +31,8 @@
 //                                                     the named output channels at an accepted state
 //              std::vector<std::string> event_names() const;
 //              void event_values(const Workspace&, const Vector& q, const Vector& v, double* g) const;
-//                                                     switching functions at the prepared time: one per
+//                                                     switching functions, called right after force() at
+//                                                     the same q, v (may reuse what it cached): one per
 //                                                     named event, > 0 in contact, <= 0 apart; where one
 //                                                     changes sign the force stops being smooth (a
 //                                                     contact's penetration, a clearance's wall gap), and

@@ -11,3 +11,13 @@
 #else
 #define CAMFOLLOWER_FORCE_INLINE inline
 #endif
+
+// CAMFOLLOWER_NOINLINE: for the rare branch of a hot function (an event to locate), kept out of line
+// so that it does not weigh on the inlining of the common path.
+#if defined(__GNUC__) || defined(__clang__)
+#define CAMFOLLOWER_NOINLINE __attribute__((noinline))
+#elif defined(_MSC_VER)
+#define CAMFOLLOWER_NOINLINE __declspec(noinline)
+#else
+#define CAMFOLLOWER_NOINLINE
+#endif

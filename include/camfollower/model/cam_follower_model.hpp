@@ -167,8 +167,8 @@ public:
     }
     // Switching function (solver/events.hpp): the cam-roller penetration (m), > 0 in contact.
     std::vector<std::string> event_names() const { return {"contact"}; }
-    void event_values(const Workspace& w, const Vector& q, const Vector&, double* g) const {
-        g[0] = w.context.g.dot(q) + w.context.delta0;
+    void event_values(const Workspace& w, const Vector&, const Vector&, double* g) const {
+        g[0] = w.last.delta;  // force() at the same q, v computed it
     }
     void observe(const Workspace& w, const Vector& q, const Vector& v, double* out) const {
         const Nonlinear n = nonlinear(w.context, q, v);

@@ -342,12 +342,11 @@ public:
         for (const Clearance& c : clearances_) names.push_back(c.name() + ".wall");
         return names;
     }
-    void event_values(const Workspace& w, const Vector& q, const Vector& v, double* g) const {
-        for (std::size_t i = 0; i < contacts_.size(); ++i) {
-            if (contacts_[i].twist() >= 0) twist_terms(w.t, i, q, v[contacts_[i].twist()], w.terms[i]);
-            *g++ = ContactPair::penetration(w.terms[i], q);
-        }
-        for (const Clearance& cl : clearances_) *g++ = std::abs(cl.gap(q)) - cl.spec().clearance;
+    // (force() at the same q, v computed them: its responses are reused)
+    CAMFOLLOWER_FORCE_INLINE void event_values(const Workspace& w, const Vector&, const Vector&, double* g) const {
+        for (const ContactResponse& r : w.last) *g++ = r.delta;
+        for (std::size_t i = 0; i < clearances_.size(); ++i)
+            *g++ = std::abs(w.last_clearance[i].u) - clearances_[i].spec().clearance;
     }
     void observe(const Workspace& w, const Vector& q, const Vector& v, double* out) const {
         *out++ = spec_.camshaft_speed * w.t;

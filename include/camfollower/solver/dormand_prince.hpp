@@ -282,7 +282,6 @@ private:
             events_.record(first);
             while (const Crossing c = events_.earliest(t_, t_ + h, path)) events_.record(c);
         }
-        events_.accept_values();
         if (event_retake_) h_new = std::max(h_new, h_before_event_), rejected_last_ = false;
         event_retake_ = false;
         return false;

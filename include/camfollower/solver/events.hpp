@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "camfollower/core/system.hpp"
+#include "camfollower/detail/force_inline.hpp"
 
 namespace camfollower {
 
@@ -46,8 +47,8 @@ public:
 
     explicit EventWatch(const System& system)
         : system_(system), count_(int(event_names(system).size())), g_(std::size_t(count_)),
-          g_old_(std::size_t(count_)), g_scan_(std::size_t(count_)), side_(std::size_t(count_)), scratch_(make_workspace(system)) {
-        q_.resize(system.size()), v_.resize(system.size());
+          g_scan_(std::size_t(count_)), side_(std::size_t(count_)), scratch_(make_workspace(system)) {
+        q_.resize(system.size()), v_.resize(system.size()), f_.resize(system.size());
         events_.reserve(64);
     }
 
@@ -59,18 +60,20 @@ public:
     void start(const workspace_t<System>& ws, const Vector& q, const Vector& v) {
         events_.clear();
         if (count_ == 0) return;
-        event_values(system_, ws, q, v, g_old_.data());
-        for (std::size_t k = 0; k < g_old_.size(); ++k) side_[k] = g_old_[k] > 0.0 ? 1 : -1;
+        event_values(system_, ws, q, v, g_.data());
+        for (std::size_t k = 0; k < g_.size(); ++k) side_[k] = g_[k] > 0.0 ? 1 : -1;
     }
 
-    // After a step from t0 to t1 ending at (q1, v1), `ws` prepared at t1: whether a switching function
-    // changed sign. Cheap: the functions at the new state only.
-    bool changed(const workspace_t<System>& ws, const Vector& q1, const Vector& v1) {
+    // After a step from t0 to t1 ending at (q1, v1), `ws` prepared at t1 with force() just evaluated
+    // there: whether a switching function changed sign. Cheap: the functions at the new state only.
+    CAMFOLLOWER_FORCE_INLINE bool changed(const workspace_t<System>& ws, const Vector& q1, const Vector& v1) {
         if (count_ == 0) return false;
-        event_values(system_, ws, q1, v1, g_.data());
-        for (std::size_t k = 0; k < g_.size(); ++k)
-            if ((g_[k] > 0.0 ? 1 : -1) != side_[k]) return true;
-        return false;
+        double* g = g_.data();
+        const int* side = side_.data();
+        event_values(system_, ws, q1, v1, g);
+        bool any = false;  // (no early exit: one predictable loop)
+        for (int k = 0; k < count_; ++k) any |= (g[k] > 0.0) != (side[k] > 0);
+        return any;
     }
 
     // The earliest crossing in (t0, t1] of the functions changed() saw change, located on
@@ -93,11 +96,6 @@ public:
         events_.push_back({c.time, c.index, side_[k]});
     }
 
-    // The step to (q1, v1) is accepted with every crossing recorded: its values become the old ones.
-    void accept_values() {
-        if (count_ == 0) return;
-        g_old_ = g_;
-    }
 
     // Newmark's path: the cubic Hermite interpolant through (q0, v0) at t0 and (q1, v1) at t1 (third-
     // order accurate in q, like the scheme), its derivative for v.
@@ -115,18 +113,21 @@ private:
     double value_at(int k, double t, Path& path) {
         path(t, q_, v_);
         prepare(system_, t, scratch_);
+        nonlinear_force(system_, scratch_, q_, v_, f_);  // event_values() follows force() (core/system.hpp)
         event_values(system_, scratch_, q_, v_, g_scan_.data());
         return g_scan_[std::size_t(k)];
     }
 
     // Illinois: regula falsi with the stale end's value halved, superlinear and always bracketed.
     // The old end's value is taken on its recorded side (a step that started at a located crossing
-    // may start a rounding error on the wrong side of zero).
+    // may start a rounding error on the wrong side of zero); evaluated here, on the rare path, so the
+    // common one keeps no old values.
     template <class Path>
     Crossing locate(int k, double t0, double t1, Path& path) {
         const int old_side = side_[std::size_t(k)];
         double a = t0, b = t1;
-        double fa = old_side > 0 ? std::max(g_old_[std::size_t(k)], tiny) : std::min(g_old_[std::size_t(k)], -tiny);
+        const double g0 = value_at(k, t0, path);
+        double fa = old_side > 0 ? std::max(g0, tiny) : std::min(g0, -tiny);
         double fb = g_[std::size_t(k)];
         const double width = std::max(1e-10 * (t1 - t0), 8.0 * std::numeric_limits<double>::epsilon() * std::abs(t1));
         int last = 0;  // +1: the old-side end moved last, -1: the new-side end
@@ -154,10 +155,10 @@ private:
     static constexpr double tiny = 1e-300;
     const System& system_;
     int count_;
-    std::vector<double> g_, g_old_, g_scan_;
+    std::vector<double> g_, g_scan_;
     std::vector<int> side_;
     workspace_t<System> scratch_;  // prepared at the interpolant's times (no path memory needed)
-    Vector q_, v_;
+    Vector q_, v_, f_;
     std::vector<Event> events_;
 };
 

@@ -575,21 +575,23 @@ private:
         return fail_step(s);
     }
 
-    void accept(StateType& s, double t1, bool evaluate_force) {
+    CAMFOLLOWER_FORCE_INLINE void accept(StateType& s, double t1, bool evaluate_force) {
+        if (evaluate_force) nonlinear_force(system_, s.workspace, q_, v_, s.f);
         if constexpr (has_events_v<System>) {
-            // Crossings in the step, in time order, located on the cubic through both ends.
-            if (events_.changed(s.workspace, q_, v_)) {
-                auto path = [&](double t, Vector& q, Vector& v) { EventWatch<System>::hermite(t, s.t, t1, s.q, s.v, q_, v_, q, v); };
-                while (const Crossing c = events_.earliest(s.t, t1, path)) events_.record(c);
-            }
-            events_.accept_values();
+            if (events_.changed(s.workspace, q_, v_)) record_crossings(s, t1);
         }
         s.t = t1;
         s.q = q_;
         s.v = v_;
         s.a = a_;
-        if (evaluate_force) nonlinear_force(system_, s.workspace, s.q, s.v, s.f);
         accepted(system_, s.workspace, s.q, s.v);
+    }
+
+    // The crossings in the step from s to (t1, q_, v_), in time order, located on the cubic through
+    // both ends (rare: out of line).
+    CAMFOLLOWER_NOINLINE void record_crossings(const StateType& s, double t1) {
+        auto path = [&](double t, Vector& q, Vector& v) { EventWatch<System>::hermite(t, s.t, t1, s.q, s.v, q_, v_, q, v); };
+        while (const Crossing c = events_.earliest(s.t, t1, path)) events_.record(c);
     }
 
     // A failed attempt leaves the state as it was, but for the force at the old state (HHT needs it)
