@@ -24,6 +24,7 @@ build-bench/bench/camfollower_bench --benchmark_out=bench-out/throughput.json --
 build-bench/bench/camfollower_bench_camshaft --benchmark_out=bench-out/camshaft.json --benchmark_out_format=json
 build-bench/bench/camfollower_work_precision | tee bench-out/work_precision.md
 build-bench/bench/camfollower_work_precision --stiff | tee bench-out/work_precision_stiff.md
+build-bench/bench/camfollower_work_precision --rpm 2000 | tee bench-out/work_precision_contact_loss.md
 .venv/bin/python bench/camshaft_scaling.py bench-out/camshaft.json | tee bench-out/camshaft_scaling.txt
 .venv/bin/python bench/valve_train_accuracy.py | tee bench-out/valve_train_accuracy.txt
 .venv/bin/python bench/compare.py --out bench-out
