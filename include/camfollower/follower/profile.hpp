@@ -12,6 +12,7 @@
 // face: rho_cam), so an extremum search on it is reliable where 1/kappa is not.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -43,6 +44,11 @@ namespace detail {
 // split further at a profile error's dents, which would otherwise fall between samples; kinks sit on
 // the piece ends). detail::maximize skips a NaN silently (NaN > x is false), so a non-finite sample
 // is recorded and refused here: an undefined geometry must not pass a check.
+[[noreturn]] inline void fail_not_finite(const char* what, double theta) {
+    fail(what, " is not finite at theta = ", radians_to_degrees(theta), " deg: the follower geometry is undefined "
+         "there (check the motion program's speed and the follower parameters)");
+}
+
 template <class F>
 AngleExtremum max_over_revolution(const MotionProgram& program, const F& f, const char* what) {
     bool finite = true;
@@ -53,10 +59,7 @@ AngleExtremum max_over_revolution(const MotionProgram& program, const F& f, cons
         return v;
     };
     const Extremum e = maximize_piecewise(guarded, program.breakpoints(), 600, program.sampling_step());
-    if (!finite)
-        fail(what, " is not finite at theta = ", radians_to_degrees(bad_theta),
-             " deg: the follower geometry is undefined there (check the motion program's speed "
-             "and the follower parameters)");
+    if (!finite) fail_not_finite(what, bad_theta);
     return {e.x, e.value};
 }
 
@@ -96,9 +99,23 @@ AngleExtremum min_surface_radius(const MotionProgram& program, const Follower& f
 // follower cannot trace the program: a roller undercuts (pitch-curve radius of curvature <= roller
 // radius on a convex stretch), a face meets a cusp (surface radius <= 0), the pressure angle reaches
 // 90 deg, or the geometry is not finite somewhere.
+// One sampling pass serves both checks (model construction runs them for every contact; a Monte-Carlo
+// study builds thousands of models).
 template <class Follower>
 void check_undercut(const MotionProgram& program, const Follower& follower) {
-    const AngleExtremum tightest = min_effective_radius(program, follower);
+    const char* bad = nullptr;  // the first quantity found not finite (NaN would pass the search)
+    double bad_theta = 0.0;
+    const auto both = [&](double theta) {
+        const FollowerProfilePoint p = follower.profile(theta, program.evaluate(theta));
+        const std::array<double, 2> v{-p.effective_radius, std::abs(p.pressure_angle)};
+        if (!bad && !std::isfinite(v[0])) bad = "the cam surface curvature", bad_theta = theta;
+        if (!bad && !std::isfinite(v[1])) bad = "the pressure angle", bad_theta = theta;
+        return v;
+    };
+    const std::array<detail::Extremum, 2> e =
+        detail::maximize_piecewise_together<2>(both, program.breakpoints(), 600, program.sampling_step());
+    if (bad) detail::fail_not_finite(bad, bad_theta);
+    const AngleExtremum tightest{e[0].x, -e[0].value};
     if (!(tightest.value > 0.0)) {
         const FollowerProfilePoint p = follower.profile(tightest.theta, program.evaluate(tightest.theta));
         const double rf = follower.follower_radius();
@@ -111,7 +128,8 @@ void check_undercut(const MotionProgram& program, const Follower& follower) {
                      " m must exceed roller_radius = ", rf,
                      " m (reduce roller_radius, enlarge base_radius or soften the motion law)");
     }
-    const AngleExtremum steepest = max_pressure_angle(program, follower);
+    const double steepest_theta = e[1].x;
+    const AngleExtremum steepest{steepest_theta, follower.profile(steepest_theta, program.evaluate(steepest_theta)).pressure_angle};
     if (std::abs(steepest.value) >= 0.5 * pi)
         detail::fail("the pressure angle reaches ", radians_to_degrees(steepest.value),
                      " deg at theta = ", radians_to_degrees(steepest.theta),
