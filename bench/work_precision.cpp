@@ -348,22 +348,25 @@ int main(int argc, char** argv) {
         std::snprintf(label, sizeof label, "dormand_prince tol %.0e", tol);
         settings.push_back({label, [&m, s] { return run_camfollower(m, s); }, {}, {}});
     }
+    // The peers: (library, method, its runner) at four tolerances each.
+    struct Peer {
+        const char* library;
+        const char* method;
+        Histories (*run)(const Model&, const std::string&, double);
+    };
+    std::vector<Peer> peers;
 #if CAMFOLLOWER_HAVE_ODEINT
-    for (const char* method : {"dopri5", "fehlberg78"})
-        for (double tol : {1e-4, 1e-6, 1e-8, 1e-10}) {
-            char label[64];
-            std::snprintf(label, sizeof label, "odeint %s rtol %.0e", method, tol);
-            settings.push_back({label, [&m, method, tol] { return run_odeint(m, method, tol); }, {}, {}});
-        }
+    for (const char* method : {"dopri5", "fehlberg78"}) peers.push_back({"odeint", method, run_odeint});
 #endif
 #if CAMFOLLOWER_HAVE_SUNDIALS
-    for (const char* method : {"bdf", "adams", "erk5", "erk8"})
+    for (const char* method : {"bdf", "adams", "erk5", "erk8"}) peers.push_back({"SUNDIALS", method, run_sundials});
+#endif
+    for (const Peer& peer : peers)
         for (double tol : {1e-4, 1e-6, 1e-8, 1e-10}) {
             char label[64];
-            std::snprintf(label, sizeof label, "SUNDIALS %s rtol %.0e", method, tol);
-            settings.push_back({label, [&m, method, tol] { return run_sundials(m, method, tol); }, {}, {}});
+            std::snprintf(label, sizeof label, "%s %s rtol %.0e", peer.library, peer.method, tol);
+            settings.push_back({label, [&m, peer, tol] { return peer.run(m, peer.method, tol); }, {}, {}});
         }
-#endif
 #if CAMFOLLOWER_HAVE_ODEINT
     // Where the contact opens and closes, the reference restarts at each event (run_odeint_piecewise).
     std::vector<double> breaks;
