@@ -103,6 +103,7 @@ public:
         // The integration state starts at the reported one.
         ws_ = s.workspace;
         t_ = t, q_ = q, v_ = v;
+        events_.start(ws_, q_, v_);  // before initial_step() moves the workspace's last force() elsewhere
         t_start_ = t, fixed_steps_ = 0;
         kq_[0] = v_, kv_[0] = s.a;
         if constexpr (detail::has_period<System>::value) {
@@ -117,7 +118,6 @@ public:
         t_old_ = t_, h_last_ = 0.0, err_old_ = 1e-4;
         stiff_count_ = 0, non_stiff_count_ = 0;
         event_retake_ = false;
-        events_.start(ws_, q_, v_);
         return s;
     }
 
