@@ -8,6 +8,7 @@
 #include "camfollower/camfollower.hpp"
 #include "camfollower/model/mechanism.hpp"
 #include "camfollower/model/presets/paper.hpp"
+#include "tight_newmark.hpp"
 
 namespace cf = camfollower;
 using Model = cf::CamFollowerModel;
@@ -69,6 +70,24 @@ void BM_PresetSteps(benchmark::State& state) {
     }
 }
 BENCHMARK(BM_PresetSteps)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+// The yardstick of the stepper's own overhead: a minimal hand-written Newmark (tight_newmark.hpp) on
+// the same model evaluation and step as BM_PresetSteps/0, producing the same states.
+void BM_TightSteps(benchmark::State& state) {
+    const auto model = cf::presets::paper();
+    using M = std::decay_t<decltype(model)>;
+    bench::TightNewmark<M> stepper(model, 3e-6, 0.25);
+    const auto steps = static_cast<std::int64_t>(model.period() / 3e-6);
+    for (auto _ : state) {
+        stepper.start(0.0, model.initial_displacement(), M::Vector::Zero());
+        for (std::int64_t n = 0; n < steps; ++n)
+            if (!stepper.step()) state.SkipWithError("tight Newmark: Newton did not converge");
+        benchmark::DoNotOptimize(stepper.q().data());
+    }
+    state.SetItemsProcessed(state.iterations() * steps);
+    state.SetLabel("paper preset, Mechanism<7>, hand-written");
+}
+BENCHMARK(BM_TightSteps)->Unit(benchmark::kMillisecond);
 
 // A whole run with every step recorded (what simulate() does).
 void BM_RunRecorded(benchmark::State& state) {

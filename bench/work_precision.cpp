@@ -25,6 +25,7 @@
 
 #include "camfollower/model/presets/paper.hpp"
 #include "camfollower/solver/simulate.hpp"
+#include "tight_newmark.hpp"
 
 #if CAMFOLLOWER_HAVE_ODEINT
 #include <boost/numeric/odeint.hpp>
@@ -120,6 +121,33 @@ struct GridObserver {
         return std::size_t(std::find(names.begin(), names.end(), "cam.force") - names.begin());
     }
 };
+
+// The hand-written tight Newmark (tight_newmark.hpp) on the same model evaluation: the yardstick of
+// camfollower's per-step overhead (same scheme, same states), not a peer.
+Histories run_tight(const Model& m, long steps, double beta) {
+    const long decimation = steps / grid;
+    bench::TightNewmark<Model> stepper(m, m.period() / double(steps), beta);
+    std::vector<double> out(m.channel_names().size());
+    const std::size_t force = GridObserver::force_channel(m);
+    Histories h;
+    h.force.reserve(grid + 1), h.accel.reserve(grid + 1), h.gap.reserve(grid + 1);
+    const double t0 = cpu_seconds();
+    auto record = [&] {
+        m.observe(stepper.workspace(), stepper.q(), stepper.v(), out.data());
+        h.force.push_back(out[force]);
+        h.gap.push_back(out[force + 1]);
+        h.accel.push_back(stepper.a()[follower]);
+    };
+    stepper.start(0.0, m.initial_displacement(), Model::Vector::Zero());
+    record();
+    for (long n = 1; n <= steps; ++n) {
+        if (!stepper.step()) throw std::runtime_error("tight Newmark: Newton did not converge");
+        if (n % decimation == 0) record();
+    }
+    h.cpu_ms = 1e3 * (cpu_seconds() - t0);
+    h.steps = std::uint64_t(steps);
+    return h;
+}
 
 // Absolute tolerance of the peers: at the scale of the smallest meaningful displacement (1e-3 of the
 // 10 mm lift).
@@ -325,18 +353,25 @@ int main(int argc, char** argv) {
     const double T = m.period();
 
     std::vector<Setting> settings;
+    // Fixed steps: 2^k and 1.5 x 2^k per revolution (a step size between the powers of two).
     for (int k : {13, 14, 15, 16, 17, 18}) {
-        for (const char* method : {"newmark", "fox_goodwin"}) {
-            cf::NewmarkSettings s;
-            s.time_step = T / double(1 << k);
-            cf::set_method(s, method);
-            try {
-                cf::Newmark<Model> probe(m, s);
-                (void)probe.start(0.0, m.initial_displacement(), Model::Vector::Zero());
-            } catch (const std::exception&) {
-                continue;  // beyond the stability limit
+        for (const long steps : {1L << k, 3L << (k - 1)}) {
+            if (steps > (1L << 18)) continue;
+            const std::string per = steps == (1L << k) ? "T/2^" + std::to_string(k) : "T/" + std::to_string(steps);
+            for (const char* method : {"newmark", "fox_goodwin"}) {
+                cf::NewmarkSettings s;
+                s.time_step = T / double(steps);
+                cf::set_method(s, method);
+                try {
+                    cf::Newmark<Model> probe(m, s);
+                    (void)probe.start(0.0, m.initial_displacement(), Model::Vector::Zero());
+                } catch (const std::exception&) {
+                    continue;  // beyond the stability limit
+                }
+                settings.push_back({std::string(method) + " " + per, [&m, s] { return run_camfollower(m, s); }, {}, {}});
+                if (s.beta == 1.0 / 12.0)
+                    settings.push_back({"hand tight_newmark fox_goodwin " + per, [&m, steps] { return run_tight(m, steps, 1.0 / 12.0); }, {}, {}});
             }
-            settings.push_back({std::string(method) + " T/2^" + std::to_string(k), [&m, s] { return run_camfollower(m, s); }, {}, {}});
         }
     }
     for (double tol : {1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10}) {

@@ -8,8 +8,9 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh test
-# boost::numeric::odeint (header-only) and SUNDIALS for the work-precision peers and reference.
-for pkg in libboost-dev libsundials-dev; do
+# boost::numeric::odeint (header-only) and SUNDIALS for the work-precision peers and reference;
+# valgrind (callgrind) for the instructions per step.
+for pkg in libboost-dev libsundials-dev valgrind; do
   if ! dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed"; then
     sudo=""; [ "$(id -u)" -eq 0 ] || sudo="sudo"
     $sudo apt-get update -qq && DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "$pkg" >/dev/null
@@ -22,6 +23,7 @@ cmake -S . -B build-bench -G Ninja -DCMAKE_BUILD_TYPE=Release -DCAMFOLLOWER_BUIL
 cmake --build build-bench
 build-bench/bench/camfollower_bench --benchmark_out=bench-out/throughput.json --benchmark_out_format=json
 build-bench/bench/camfollower_bench_camshaft --benchmark_out=bench-out/camshaft.json --benchmark_out_format=json
+bash bench/step_cost.sh | tee bench-out/step_cost.md
 build-bench/bench/camfollower_work_precision | tee bench-out/work_precision.md
 build-bench/bench/camfollower_work_precision --stiff | tee bench-out/work_precision_stiff.md
 build-bench/bench/camfollower_work_precision --rpm 2000 | tee bench-out/work_precision_contact_loss.md

@@ -547,14 +547,8 @@ private:
             residual = r_.cwiseAbs().maxCoeff();
             if (!std::isfinite(residual)) return fail_step(s);
             linear_.fill_tangent(s.workspace, q_, v_, 1.0, v_factor);
-            // Rounding floor of the residual: a few ulps of its largest terms, the contacts' included
-            // (a stiff contact turns the rounding of q into k eps |q| of force: preloads that balance
-            // each other leave no large term in the residual to hide it).
             const double q_max = q_.cwiseAbs().maxCoeff();
-            const double floor = 64.0 * std::numeric_limits<double>::epsilon() *
-                                 (norm_M_ * a_.cwiseAbs().maxCoeff() + norm_C_ * v_.cwiseAbs().maxCoeff() +
-                                  (norm_K_ + linear_.tangent_norm()) * q_max);
-            const bool residual_ok = residual <= std::max(r_tol, floor);
+            const bool residual_ok = residual <= r_tol || residual <= rounding_floor(q_max);
             const double q_tol = s_.increment_tolerance * (q_max + 1e-9);
             // Skip the confirming solve when the next increment is bounded below tolerance.
             if (iterations > 0 && residual_ok && linear_.inverse_bound(level) > 0.0 &&
@@ -573,6 +567,16 @@ private:
             }
         }
         return fail_step(s);
+    }
+
+    // Rounding floor of the residual at the iterate (q_, v_, a_): a few ulps of its largest terms, the
+    // contacts' included (a stiff contact turns the rounding of q into k eps |q| of force: preloads
+    // that balance each other leave no large term in the residual to hide it). Needed only when the
+    // residual is above tolerance.
+    double rounding_floor(double q_max) const {
+        return 64.0 * std::numeric_limits<double>::epsilon() *
+               (norm_M_ * a_.cwiseAbs().maxCoeff() + norm_C_ * v_.cwiseAbs().maxCoeff() +
+                (norm_K_ + linear_.tangent_norm()) * q_max);
     }
 
     CAMFOLLOWER_FORCE_INLINE void accept(StateType& s, double t1, bool evaluate_force) {
