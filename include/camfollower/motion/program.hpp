@@ -243,6 +243,10 @@ public:
     }
 
     static double wrap(double theta) {
+        // The first two turns without fmod (a library call per evaluation): theta - 2 pi is exact there
+        // (Sterbenz), so the result is fmod's bit for bit.
+        if (theta >= 0.0 && theta < two_pi) return theta;
+        if (theta >= two_pi && theta < 2.0 * two_pi) return theta - two_pi;
         double t = std::fmod(theta, two_pi);
         if (t < 0.0) t += two_pi;
         return t >= two_pi ? 0.0 : t;
