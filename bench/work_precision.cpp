@@ -10,8 +10,9 @@
 // penetration on the output grid.
 // Each setting runs `repeats` times, interleaved with the others; the CPU time reported is the median.
 // Errors: max |x - x_ref| / max |x_ref| over the output grid (2048 rows per revolution); the reference
-// is odeint's fehlberg78 at rtol 1e-13 when Boost is available (restarted at each contact event when the
-// contact opens: run_odeint_piecewise), else Dormand-Prince at tolerance 1e-12.
+// is odeint's fehlberg78 on a long double state at rtol 1e-13 when Boost is available (restarted at each
+// contact event when the contact opens: run_reference), checked against itself at rtol 1e-15, else
+// Dormand-Prince at tolerance 1e-12.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -79,6 +80,11 @@ Histories run_camfollower(const Model& m, const cf::NewmarkSettings& s) {
 }
 
 using Y = std::array<double, 2 * cf::presets::paper_dofs>;
+// The reference integrates in long double: over the millions of steps of rtol 1e-13, rounding the
+// double state (~1e-18 m on a 1e-2 m coordinate, times the contact stiffness) drives the lightly damped
+// contact mode by a random walk: a double reference at 1e-13 is itself off by 1e-6 in force with the
+// contact stiffness x100 (against 4e-9 for a long double one; docs/benchmarks.md).
+using YL = std::array<long double, 2 * cf::presets::paper_dofs>;
 
 // y' = (v, M^-1 (-(C v + K q + f))) through the system contract: the same evaluation camfollower uses.
 struct Rhs {
@@ -100,6 +106,13 @@ struct Rhs {
         acceleration(t, q, v, a);
         for (int i = 0; i < 7; ++i) dy[std::size_t(i)] = v[i], dy[std::size_t(7 + i)] = a[i];
     }
+    // The reference's long double state, the model's double evaluation.
+    void operator()(const YL& y, YL& dy, long double t) const {
+        Y yd, dyd;
+        for (std::size_t i = 0; i < y.size(); ++i) yd[i] = double(y[i]);
+        (*this)(yd, dyd, double(t));
+        for (std::size_t i = 0; i < y.size(); ++i) dy[i] = dyd[i];
+    }
 };
 
 // Observer on the grid: contact force (the model's channel) and follower acceleration at each row.
@@ -115,6 +128,11 @@ struct GridObserver {
         h.force.push_back(out[force_channel(rhs.m)]);
         h.gap.push_back(out[force_channel(rhs.m) + 1]);  // cam.penetration follows cam.force
         h.accel.push_back(a[follower]);
+    }
+    void operator()(const YL& y, long double t) const {
+        Y yd;
+        for (std::size_t i = 0; i < y.size(); ++i) yd[i] = double(y[i]);
+        (*this)(yd, double(t));
     }
     static std::size_t force_channel(const Model& m) {
         const auto names = m.channel_names();
@@ -183,10 +201,10 @@ Histories run_odeint(const Model& m, const std::string& method, double tol) {
 // kinks of the force), so that no step straddles one; the event times are camfollower's, located at
 // Dormand-Prince tolerance 1e-12, and checked here: the penetration of this solution at each must be
 // ~0 (printed). Without the restarts a controlled step across a kink leaves ~1e-7 behind.
-Histories run_odeint_piecewise(const Model& m, double tol, const std::vector<double>& breaks) {
+Histories run_reference(const Model& m, double tol, const std::vector<double>& breaks) {
     namespace odeint = boost::numeric::odeint;
     Rhs rhs(m);
-    Y y{};
+    YL y{};
     const Model::Vector q0 = m.initial_displacement();
     for (int i = 0; i < 7; ++i) y[std::size_t(i)] = q0[i];
     Histories h;
@@ -198,19 +216,20 @@ Histories run_odeint_piecewise(const Model& m, double tol, const std::vector<dou
     int next_row = 0;
     for (const double end : ends) {
         // This piece's output rows, with its start and end as the first and last times.
-        std::vector<double> times{start};
+        std::vector<long double> times{start};
         const int first_row = next_row;
         while (next_row <= grid && T * next_row / grid <= end) times.push_back(T * next_row++ / grid);
         if (times.back() != end) times.push_back(end);
         int wanted = first_row;  // the next row to record (the start may repeat a row's time)
-        auto record = [&](const Y& state, double t) {
-            if (wanted < next_row && t == T * wanted / grid) obs(state, t), ++wanted;
+        auto record = [&](const YL& state, long double t) {
+            if (wanted < next_row && double(t) == T * wanted / grid) obs(state, t), ++wanted;
         };
-        odeint::integrate_times(odeint::make_controlled(peer_atol(tol), tol, odeint::runge_kutta_fehlberg78<Y>()),
-                                std::ref(rhs), y, times.begin(), times.end(), T / grid, record);
+        using Stepper = odeint::runge_kutta_fehlberg78<YL, long double, YL, long double>;
+        odeint::integrate_times(odeint::make_controlled((long double)peer_atol(tol), (long double)tol, Stepper()),
+                                std::ref(rhs), y, times.begin(), times.end(), (long double)(T / grid), record);
         if (end < T) {
             Model::Vector q, v, f;
-            for (int i = 0; i < 7; ++i) q[i] = y[std::size_t(i)], v[i] = y[std::size_t(7 + i)];
+            for (int i = 0; i < 7; ++i) q[i] = double(y[std::size_t(i)]), v[i] = double(y[std::size_t(7 + i)]);
             m.prepare(end, rhs.ws);
             m.force(rhs.ws, q, v, f);
             double gap[1];
@@ -219,8 +238,9 @@ Histories run_odeint_piecewise(const Model& m, double tol, const std::vector<dou
         }
         start = end;
     }
-    std::printf("# piecewise reference: %zu restarts at contact events, largest |penetration| there %.2e m\n",
-                breaks.size(), worst_gap);
+    if (!breaks.empty())
+        std::printf("# reference: %zu restarts at contact events, largest |penetration| there %.2e m\n",
+                    breaks.size(), worst_gap);
     h.evaluations = rhs.evaluations;
     return h;
 }
@@ -369,20 +389,23 @@ int main(int argc, char** argv) {
                     continue;  // beyond the stability limit
                 }
                 settings.push_back({std::string(method) + " " + per, [&m, s] { return run_camfollower(m, s); }, {}, {}});
-                if (s.beta == 1.0 / 12.0)
+                // (not on the stiff variant: without camfollower's rounding floor of the residual its
+                // Newton iteration stalls there at the tolerance)
+                if (s.beta == 1.0 / 12.0 && !stiff)
                     settings.push_back({"hand tight_newmark fox_goodwin " + per, [&m, steps] { return run_tight(m, steps, 1.0 / 12.0); }, {}, {}});
             }
         }
     }
-    for (double tol : {1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10}) {
-        cf::NewmarkSettings s;
-        cf::set_method(s, "dormand_prince");
-        s.tolerance = tol;
-        s.time_step = T / grid;
-        char label[64];
-        std::snprintf(label, sizeof label, "dormand_prince tol %.0e", tol);
-        settings.push_back({label, [&m, s] { return run_camfollower(m, s); }, {}, {}});
-    }
+    for (const char* method : {"dormand_prince", "dop853"})
+        for (double tol : {1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10}) {
+            cf::NewmarkSettings s;
+            cf::set_method(s, method);
+            s.tolerance = tol;
+            s.time_step = T / grid;
+            char label[64];
+            std::snprintf(label, sizeof label, "%s tol %.0e", method, tol);
+            settings.push_back({label, [&m, s] { return run_camfollower(m, s); }, {}, {}});
+        }
     // The peers: (library, method, its runner) at four tolerances each.
     struct Peer {
         const char* library;
@@ -414,9 +437,13 @@ int main(int argc, char** argv) {
         eo.duration = T;
         for (const cf::Event& e : cf::simulate(m, es, eo).events) breaks.push_back(e.time);
     }
-    const Histories ref = breaks.empty() ? run_odeint(m, "fehlberg78", 1e-13) : run_odeint_piecewise(m, 1e-13, breaks);
-    const char* ref_name = breaks.empty() ? "odeint fehlberg78 at rtol 1e-13"
-                                          : "odeint fehlberg78 at rtol 1e-13 restarted at each contact event";
+    const Histories ref = run_reference(m, 1e-13, breaks);
+    // Its own accuracy: the same at rtol 1e-15 (printed; the floor below which errors mean nothing).
+    const Histories ref_check = run_reference(m, 1e-15, breaks);
+    std::printf("# the reference against itself at rtol 1e-15: force %.1e, follower acceleration %.1e\n",
+                relative_error(ref.force, ref_check.force), relative_error(ref.accel, ref_check.accel));
+    const char* ref_name = breaks.empty() ? "odeint fehlberg78 in long double at rtol 1e-13"
+                                          : "odeint fehlberg78 in long double at rtol 1e-13, restarted at each contact event";
 #else
     cf::NewmarkSettings rs;
     cf::set_method(rs, "dormand_prince");

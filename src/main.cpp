@@ -120,9 +120,9 @@ int run(const std::string& config, std::string output) {
         const auto result = cf::simulate(m, settings, options);
         cf::cli::write_recording_csv(output, result.recording, config);
         const cf::SolverStatistics& stats = result.report.stats;
-        if (settings.method == cf::Method::dormand_prince)
-            std::printf("%zu rows, %zu channels (dormand_prince: %llu steps, %llu rejected, %llu force evaluations, output every %.4g s)",
-                        result.recording.rows, result.recording.names.size(), static_cast<unsigned long long>(stats.steps),
+        if (cf::is_runge_kutta(settings.method))
+            std::printf("%zu rows, %zu channels (%s: %llu steps, %llu rejected, %llu force evaluations, output every %.4g s)",
+                        result.recording.rows, result.recording.names.size(), result.method, static_cast<unsigned long long>(stats.steps),
                         static_cast<unsigned long long>(stats.rejected_steps), static_cast<unsigned long long>(stats.evaluations),
                         settings.time_step);
         else

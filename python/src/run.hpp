@@ -33,9 +33,10 @@ inline NewmarkSettings settings_from(double time_step, std::optional<double> gam
     NewmarkSettings s = NewmarkSettings::hht(hht_alpha, time_step);
     if (method != "newmark" && (gamma || beta || hht_alpha != 0.0))
         detail::fail("gamma, beta and hht_alpha apply to method 'newmark' only (method '", method, "' sets its own)");
-    if (method != "dormand_prince" && (tolerance || max_step))
-        detail::fail(tolerance ? "tolerance" : "max_step", " applies to method 'dormand_prince' only, got method '", method, "'");
     set_method(s, method);
+    if (!is_runge_kutta(s.method) && (tolerance || max_step))
+        detail::fail(tolerance ? "tolerance" : "max_step", " applies to methods 'dormand_prince' and 'dop853' only, got method '",
+                     method, "'");
     if (tolerance) s.tolerance = *tolerance;
     if (max_step) s.max_step = *max_step;
     if (gamma) s.gamma = *gamma;

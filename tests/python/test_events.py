@@ -35,11 +35,11 @@ def scipy_events(fast_model):
     return times, kinds
 
 
-def test_dormand_prince_events_against_scipy(fast_model, scipy_events):
+@pytest.mark.parametrize("method", ["dormand_prince", "dop853"])
+def test_explicit_events_against_scipy(fast_model, scipy_events, method):
     times, kinds = scipy_events
     assert len(times) >= 2
-    r = cf.simulate(fast_model, revolutions=1, method="dormand_prince", tolerance=1e-10,
-                    time_step=fast_model.period / 4096)
+    r = cf.simulate(fast_model, revolutions=1, method=method, tolerance=1e-10, time_step=fast_model.period / 4096)
     assert [e[1] for e in r.events] == ["contact"] * len(times)
     assert [e[2] for e in r.events] == kinds
     located = np.array([e[0] for e in r.events])

@@ -1,11 +1,17 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Explicit Dormand-Prince 5(4) with adaptive steps and dense output, for any system of the contract in
-// core/system.hpp, written as the first-order system y = (q, v), y' = (v, a(t, q, v)) with
-// M a = -(C v + K q + f(t, q, v) - p(t)).
+// Explicit embedded Runge-Kutta methods with adaptive steps and dense output, for any system of the
+// contract in core/system.hpp, written as the first-order system y = (q, v), y' = (v, a(t, q, v)) with
+// M a = -(C v + K q + f(t, q, v) - p(t)). One stepper, EmbeddedRungeKutta<System, Scheme>, runs two
+// schemes (Hairer, Norsett & Wanner, Solving ODE I, II.4-II.6 and II.10, and Hairer's codes DOPRI5 and
+// DOP853):
+//   DormandPrince<System>  Dormand-Prince 5(4): 6 force evaluations a step, 4th-order dense output;
+//   Dop853<System>         Dormand-Prince 8(5,3): 12 a step, 7th-order dense output from 3 more,
+//                          evaluated only for the steps that are interpolated (an output time or a
+//                          located event inside them).
 //
 // Why beside Newmark: at the accuracy users read contact forces and accelerations (1e-4 ... 1e-8) a
 // lumped cam-follower model is not stiff (the explicit stability limit allows larger steps than the
-// accuracy does), and a fifth-order method needs far fewer steps than a second-order one.
+// accuracy does), and a fifth- or eighth-order method needs far fewer steps than a second-order one.
 //
 // Error control: a step is accepted when both
 //   - the mixed displacement/velocity norm sqrt(mean((e_i / (tol (|y_i| + y_ref)))^2)) <= 1, q_ref the
@@ -16,18 +22,22 @@
 //     damping with the contacts' tangent at the new state: the error in the forces (and, through M^-1,
 //     the accelerations) the step leaves behind. A stiff contact turns nanometres into newtons; a
 //     displacement norm alone lets the contact force drift far beyond the tolerance.
-// Step size by Hairer's PI controller (Hairer, Norsett & Wanner, Solving ODE I, II.4 and code DOPRI5),
-// stiffness detection by the same code's test (h |lambda| beyond the stability boundary for 15 steps).
+// e is the scheme's error estimate: DOP853 has two (5th- and 3rd-order) and combines their norms
+// (Scheme::combine), the force-weighted ones the same way.
+// Step size by Hairer's PI controller (the scheme's exponent, beta and step-ratio limits), stiffness
+// detection by the same codes' test (h |lambda| beyond the stability boundary for 15 steps).
 //
 // The stepper keeps its own integration state ahead of the reported one: step() moves the reported
-// state by exactly one output interval (time_step) and fills it by the fourth-order dense output, so
-// the output grid never shortens the integration steps.
+// state by exactly one output interval (time_step) and fills it by the dense output, so the output
+// grid never shortens the integration steps.
 #pragma once
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
+#include <iterator>
 #include <limits>
 
 #include <Eigen/Core>
@@ -36,6 +46,7 @@
 #include "camfollower/core/system.hpp"
 #include "camfollower/constants.hpp"
 #include "camfollower/error.hpp"
+#include "camfollower/solver/dop853_tableau.hpp"
 #include "camfollower/solver/events.hpp"
 #include "camfollower/solver/newmark.hpp"
 
@@ -59,35 +70,84 @@ inline constexpr std::array<double, 7> e{71.0 / 57600.0, 0.0, -71.0 / 16695.0, 7
 inline constexpr std::array<double, 7> d{-12715105075.0 / 11282082432.0, 0.0, 87487479700.0 / 32700410799.0,
                                          -10690763975.0 / 1880347072.0, 701980252875.0 / 199316789632.0,
                                          -1453857185.0 / 822651844.0, 69997945.0 / 29380423.0};
+
+// What EmbeddedRungeKutta needs of a scheme. The stages are numbered from 0; the last of a step's
+// `stages` is f at the solution (its input row of `a` holds the weights b), the next step's first
+// (FSAL), and the one before it also ends at c = 1 (the stiffness test compares the two).
+struct Scheme {
+    static constexpr const char* name = "Dormand-Prince";  // in error messages
+    static constexpr int order = 5;                         // of the solution
+    static constexpr int stages = 7;                        // evaluated each step (the first reused)
+    static constexpr int dense_stages = 0;                  // more, for the dense output
+    static constexpr auto& c = dopri5::c;
+    static constexpr auto& a = dopri5::a;
+    // The error estimates, h sum_i e[k][i] k_i, and their norms' combination.
+    static constexpr std::array<std::array<double, 7>, 1> e{{dopri5::e}};
+    static double combine(const std::array<double, 1>& norm) { return norm[0]; }
+    // Dense output: y0 + th (y1 - y0 + (1 - th) (... )) with rows d (Hairer's CONTD5, below).
+    static constexpr std::array<std::array<double, 7>, 1> d{{dopri5::d}};
+    // PI controller: h_new = h / clamp(err^exponent / err_old^beta / 0.9, 1 / grow_max, shrink_max).
+    static constexpr double exponent = 0.17, beta = 0.04, grow_max = 10.0, shrink_max = 5.0;
+    // The stability boundary on the negative real axis is ~3.3.
+    static constexpr double stiffness_bound = 3.25;
+};
 }  // namespace dopri5
 
-template <class System>
-class DormandPrince {
+// Dormand-Prince 8(5,3) (solver/dop853_tableau.hpp), as in Hairer's DOP853.
+namespace dop853 {
+struct Scheme {
+    static constexpr const char* name = "DOP853";
+    static constexpr int order = 8;
+    static constexpr int stages = step_stages;  // 12 and f at the solution (FSAL)
+    static constexpr int dense_stages = all_stages - step_stages;
+    static constexpr auto& c = dop853::c;
+    static constexpr auto& a = dop853::a;
+    static constexpr std::array<std::array<double, step_stages>, 2> e{{e5, e3}};
+    // Hairer's estimate err5^2 / sqrt(err5^2 + 0.01 err3^2): ~h^8 as h -> 0 like the method's own
+    // error (err5 alone is ~h^6, err3 ~h^4), yet never above err5.
+    static double combine(const std::array<double, 2>& norm) {
+        const double den = norm[0] * norm[0] + 0.01 * norm[1] * norm[1];
+        return den == 0.0 ? 0.0 : norm[0] * norm[0] / std::sqrt(den);  // (NaN stays NaN: a blow-up)
+    }
+    static constexpr auto& d = dop853::d;
+    static constexpr double exponent = 1.0 / 8.0, beta = 0.0, grow_max = 6.0, shrink_max = 1.0 / 0.333;
+    // The stability boundary on the negative real axis is ~6.4; 6.1 is Hairer's threshold.
+    static constexpr double stiffness_bound = 6.1;
+};
+}  // namespace dop853
+
+template <class System, class Scheme>
+class EmbeddedRungeKutta {
     static_assert(check_system<System>());
+    static constexpr std::size_t S = std::size_t(Scheme::stages);            // a step's stages
+    static constexpr std::size_t K = S + std::size_t(Scheme::dense_stages);  // with the dense output's
+    static constexpr std::size_t E = std::size(Scheme::e);                  // error estimates
+    static constexpr std::size_t R = 4 + std::size(Scheme::d);              // dense-output coefficients
 
 public:
     using Vector = typename System::Vector;
     using Matrix = typename System::Matrix;
     using StateType = State<System>;
-    // h |lambda| beyond this (the method's stability boundary on the negative real axis is ~3.3) on
+    // h |lambda| beyond this (the scheme's stability boundary on the negative real axis) on
     // `stiff_run` successive steps: the step is bounded by stability, not by accuracy.
-    static constexpr double stiffness_bound = 3.25;
+    static constexpr double stiffness_bound = Scheme::stiffness_bound;
     static constexpr int stiff_run = 15;
 
-    DormandPrince(const System& system, const NewmarkSettings& settings)
-        : system_(system), s_(validated(settings)), n_(system.size()), uv_(n_, std::max(1, max_rank(system))) {
+    EmbeddedRungeKutta(const System& system, const NewmarkSettings& settings)
+        : system_(system), s_(validated(settings)), n_(system.size()), uvq_(n_, std::max(1, max_rank(system))),
+          uvv_(n_, std::max(1, max_rank(system))) {
         const Matrix& M = system.mass();
         if (M.rows() != n_ || M.cols() != n_ || system.damping().rows() != n_ || system.stiffness().rows() != n_)
             detail::fail("system: mass, damping and stiffness must be ", n_, " x ", n_, " (size())");
         for (int k = 0; k < n_; ++k)
             if (!(M(k, k) > 0.0)) detail::fail("system: mass matrix diagonal must be > 0, got M(", k, ", ", k, ") = ", M(k, k));
         M_inv_ = M.partialPivLu().inverse();
-        for (Vector* x : {&q_, &v_, &qs_, &vs_, &q6_, &v6_, &eq_, &ev_, &ef_, &f_, &rhs_})
+        for (Vector* x : {&q_, &v_, &qs_, &vs_, &ql_, &vl_, &qd_, &vd_, &ef_, &f_, &rhs_})
             x->resize(n_);
-        for (int i = 0; i < 7; ++i) kq_[i].resize(n_), kv_[i].resize(n_);
-        for (int i = 0; i < 5; ++i) rq_[i].resize(n_), rv_[i].resize(n_);
+        auto resize = [this](auto&... sets) { (..., [this](auto& set) { for (Vector& x : set) x.resize(n_); }(sets)); };
+        resize(eq_, ev_, kq_, kv_, rq_, rv_);
     }
-    DormandPrince(System&&, const NewmarkSettings&) = delete;
+    EmbeddedRungeKutta(System&&, const NewmarkSettings&) = delete;
 
     const NewmarkSettings& settings() const { return s_; }
     const System& system() const { return system_; }
@@ -117,15 +177,15 @@ public:
         h_ = initial_step(s.a);
         t_old_ = t_, h_last_ = 0.0, err_old_ = 1e-4;
         stiff_count_ = 0, non_stiff_count_ = 0;
-        event_retake_ = false;
+        event_retake_ = false, dense_ready_ = false;
+        if constexpr (K > S) dense_ws_ = ws_;  // (its copies in the loop then reuse this one's storage)
         return s;
     }
 
     // Moves the reported state one output interval on (dense output between integration steps).
     void step(StateType& s, SolverStatistics& stats) {
         const double target = s.t + s_.time_step;
-        // (a step ending within rounding of the target reaches it: no sliver of a step)
-        while (target - t_ > 1e-9 * s_.time_step) take_step(stats);
+        while (!reaches(t_, target)) take_step(target, stats);
         interpolate(target, s.q, s.v);
         s.t = target;
         // The reported state carries the integration's path memory (e.g. contact losses so far).
@@ -149,6 +209,10 @@ private:
         return s;
     }
 
+    // Whether a step ending at t_end reaches the output time `target` (a step ending within rounding
+    // of it does: no sliver of a step).
+    bool reaches(double t_end, double target) const { return target - t_end <= 1e-9 * s_.time_step; }
+
     // a = M^-1 (-(C v + K q + f)).
     void acceleration(const Vector& q, const Vector& v, const Vector& f, Vector& out) {
         rhs_.noalias() = system_.damping() * v;
@@ -158,12 +222,26 @@ private:
     }
 
     // Stage derivative at (t, q, v): kq = v, kv = a.
-    void derivative(double t, const Vector& q, const Vector& v, Vector& kq, Vector& kv, SolverStatistics& stats) {
-        prepare(system_, t, ws_);
-        nonlinear_force(system_, ws_, q, v, f_);
+    void derivative(double t, const Vector& q, const Vector& v, Vector& kq, Vector& kv, workspace_t<System>& ws,
+                    SolverStatistics& stats) {
+        prepare(system_, t, ws);
+        nonlinear_force(system_, ws, q, v, f_);
         kq = v;
         acceleration(q, v, f_, kv);
         ++stats.evaluations;
+    }
+
+    // Stage i of the step [t_, t_ + h]: its input (q, v) = y + h sum_j a_ij k_j, then k_i.
+    void stage(std::size_t i, double h, Vector& q, Vector& v, workspace_t<System>& ws, SolverStatistics& stats) {
+        q = q_;
+        v = v_;
+        for (std::size_t j = 0; j < i; ++j) {
+            const double w = h * Scheme::a[i][j];
+            if (w == 0.0) continue;
+            q.noalias() += w * kq_[j];
+            v.noalias() += w * kv_[j];
+        }
+        derivative(t_ + Scheme::c[i] * h, q, v, kq_[i], kv_[i], ws, stats);
     }
 
     double error_norm_qv(const Vector& eq, const Vector& ev, const Vector& q0, const Vector& v0, const Vector& q1,
@@ -188,74 +266,74 @@ private:
         h0 = std::min(h0, s_.time_step * 100.0);
         qs_ = q_ + h0 * v_;
         vs_ = v_ + h0 * a0;
-        derivative(t_ + h0, qs_, vs_, kq_[1], kv_[1], scratch);
-        eq_ = (kq_[1] - v_) / h0;
-        ev_ = (kv_[1] - a0) / h0;
-        const double d2 = error_norm_qv(eq_, ev_, zero, zero, zero, zero);
+        derivative(t_ + h0, qs_, vs_, kq_[1], kv_[1], ws_, scratch);
+        eq_[0] = (kq_[1] - v_) / h0;
+        ev_[0] = (kv_[1] - a0) / h0;
+        const double d2 = error_norm_qv(eq_[0], ev_[0], zero, zero, zero, zero);
         const double dm = std::max(d1, d2);
-        const double h1 = dm <= 1e-15 ? std::max(1e-6, h0 * 1e-3) : std::pow(0.01 / dm, 1.0 / 5.0);
+        const double h1 = dm <= 1e-15 ? std::max(1e-6, h0 * 1e-3) : std::pow(0.01 / dm, 1.0 / Scheme::order);
         prepare(system_, t_, ws_);  // the workspace back at the integration time
         return std::min(100.0 * h0, h1);
     }
 
-    // One accepted step of the integration state (rejected attempts retried with a smaller step).
-    void take_step(SolverStatistics& stats) {
+    // One accepted step of the integration state (rejected attempts retried with a smaller step);
+    // `target`: the next output time (the step reaching it prepares the dense output).
+    void take_step(double target, SolverStatistics& stats) {
         const double min_step = 1e-14 * std::max(1.0, std::abs(t_));
         for (;;) {
             double h = h_;
             if (s_.max_step > 0.0) h = std::min(h, s_.max_step);
             if (!s_.adaptive) h = s_.max_step > 0.0 ? s_.max_step : s_.time_step;
             if (!(h >= min_step))
-                throw ConvergenceError(detail::concat("Dormand-Prince: the step fell to ", h, " s at t = ", t_,
+                throw ConvergenceError(detail::concat(Scheme::name, ": the step fell to ", h, " s at t = ", t_,
                                                       " s without meeting tolerance = ", s_.tolerance,
                                                       " (the response is not smooth there, or the tolerance is below rounding)"));
-            // Stages 2..7 (stage 1 is the previous step's last: FSAL).
-            for (int i = 1; i < 7; ++i) {
-                qs_ = q_;
-                vs_ = v_;
-                for (int j = 0; j < i; ++j) {
-                    const double w = h * dopri5::a[i][j];
+            dense_ready_ = false;
+            // Stages 1 ... S - 1 (stage 0 is the previous step's last: FSAL); the one before the last
+            // is kept for the stiffness test, the last's input is the solution.
+            for (std::size_t i = 1; i < S; ++i) {
+                stage(i, h, qs_, vs_, ws_, stats);
+                if (i == S - 2) ql_ = qs_, vl_ = vs_;
+            }
+            // Embedded errors, in the mixed norm and weighted by the forces.
+            std::array<double, E> mixed{}, force{};
+            for (std::size_t k = 0; k < E; ++k) {
+                eq_[k].setZero();
+                ev_[k].setZero();
+                for (std::size_t i = 0; i < S; ++i) {
+                    const double w = h * Scheme::e[k][i];
                     if (w == 0.0) continue;
-                    qs_.noalias() += w * kq_[j];
-                    vs_.noalias() += w * kv_[j];
+                    eq_[k].noalias() += w * kq_[i];
+                    ev_[k].noalias() += w * kv_[i];
                 }
-                if (i == 5) q6_ = qs_, v6_ = vs_;  // for the stiffness test
-                derivative(t_ + dopri5::c[std::size_t(i)] * h, qs_, vs_, kq_[i], kv_[i], stats);
+                mixed[k] = error_norm_qv(eq_[k], ev_[k], q_, v_, qs_, vs_);
             }
-            // qs_, vs_ now hold the fifth-order solution (stage 7's input). Embedded error:
-            eq_.setZero();
-            ev_.setZero();
-            for (int i = 0; i < 7; ++i) {
-                if (dopri5::e[std::size_t(i)] == 0.0) continue;
-                eq_.noalias() += (h * dopri5::e[std::size_t(i)]) * kq_[i];
-                ev_.noalias() += (h * dopri5::e[std::size_t(i)]) * kv_[i];
-            }
-            double err = error_norm_qv(eq_, ev_, q_, v_, qs_, vs_);
-            err = std::max(err, force_error(qs_, vs_) / (s_.tolerance * force_scale_));
+            force_errors(qs_, vs_, force);
+            double err = std::max(Scheme::combine(mixed), Scheme::combine(force) / (s_.tolerance * force_scale_));
             if (!std::isfinite(err)) err = 1e10;
             if (!s_.adaptive) {
                 if (err == 1e10)
-                    throw ConvergenceError(detail::concat("Dormand-Prince: the state became non-finite at t = ", t_,
+                    throw ConvergenceError(detail::concat(Scheme::name, ": the state became non-finite at t = ", t_,
                                                           " s with the fixed step ", h, " s: the step is beyond the stability limit"));
                 err = 0.5;
             }
             // Hairer's PI step-size controller.
-            const double fac11 = std::pow(err, 0.17);
+            const double fac11 = std::pow(err, Scheme::exponent);
             if (err <= 1.0) {
-                double fac = fac11 / std::pow(err_old_, 0.04) / 0.9;
-                fac = std::clamp(fac, 0.1, 5.0);  // grow at most x10, shrink at most x5
+                double fac = fac11 / std::pow(err_old_, Scheme::beta) / 0.9;
+                fac = std::clamp(fac, 1.0 / Scheme::grow_max, Scheme::shrink_max);
                 double h_new = h / fac;
                 if constexpr (has_events_v<System>) {
-                    if (end_at_crossing(h, h_new)) continue;
+                    if (end_at_crossing(h, h_new, stats)) continue;
                 }
                 err_old_ = std::max(err, 1e-4);
                 stiffness_test(h, stats);
-                accept(h, stats);
+                accept(h, target, stats);
                 h_ = rejected_last_ ? std::min(h_new, h) : h_new;
                 rejected_last_ = false;
                 return;
             }
-            h_ = h / std::min(5.0, fac11 / 0.9);
+            h_ = h / std::min(Scheme::shrink_max, fac11 / 0.9);
             rejected_last_ = true;
             event_retake_ = false;
             ++stats.rejected_steps;  // the next attempt's stages prepare the workspace again
@@ -266,9 +344,9 @@ private:
     // inside it, sets up the retake ending just past the earliest crossing and returns true; else
     // records the crossings found (a retake's own, at its end) and returns false. The step after a
     // crossing starts from the size the controller had before it (the retake may be a sliver).
-    bool end_at_crossing(double h, double& h_new) {
+    bool end_at_crossing(double h, double& h_new, SolverStatistics& stats) {
         if (events_.changed(ws_, qs_, vs_)) {
-            dense_coefficients(h);
+            dense_coefficients(h, stats);
             auto path = [&](double t, Vector& q, Vector& v) { interpolate_on(t, t_, h, q, v); };
             const Crossing first = events_.earliest(t_, t_ + h, path);
             // A crossing within a millionth of the step from its start is left inside: its error,
@@ -287,23 +365,28 @@ private:
         return false;
     }
 
-    // |K_t e_q + C_t e_v|_inf with the contacts' tangent at the new state (the last stage evaluated it).
-    double force_error(const Vector& q1, const Vector& v1) {
-        ef_.noalias() = system_.stiffness() * eq_;
-        ef_.noalias() += system_.damping() * ev_;
-        uv_.clear();
-        tangent(system_, ws_, q1, v1, 1.0, 0.0, uv_);
-        for (int k = 0; k < uv_.rank; ++k) ef_ += uv_.U.col(k) * uv_.V.col(k).dot(eq_);
-        uv_.clear();
-        tangent(system_, ws_, q1, v1, 0.0, 1.0, uv_);
-        for (int k = 0; k < uv_.rank; ++k) ef_ += uv_.U.col(k) * uv_.V.col(k).dot(ev_);
-        return ef_.cwiseAbs().maxCoeff();
+    // |K_t e_q + C_t e_v|_inf of each error estimate, with the contacts' tangent at the new state (the
+    // last stage evaluated it). DOP853 weighs both its estimates and combines them like their mixed
+    // norms: the force test then also scales like the method's error (~h^8), as the controller's
+    // exponent 1/8 assumes; its 5th-order estimate alone (~h^6) would hold the steps far below what
+    // the tolerance asks wherever the force test decides.
+    void force_errors(const Vector& q1, const Vector& v1, std::array<double, E>& out) {
+        tangent(system_, ws_, q1, v1, 1.0, 0.0, uvq_);
+        tangent(system_, ws_, q1, v1, 0.0, 1.0, uvv_);
+        for (std::size_t k = 0; k < E; ++k) {
+            ef_.noalias() = system_.stiffness() * eq_[k];
+            ef_.noalias() += system_.damping() * ev_[k];
+            for (int r = 0; r < uvq_.rank; ++r) ef_ += uvq_.U.col(r) * uvq_.V.col(r).dot(eq_[k]);
+            for (int r = 0; r < uvv_.rank; ++r) ef_ += uvv_.U.col(r) * uvv_.V.col(r).dot(ev_[k]);
+            out[k] = ef_.cwiseAbs().maxCoeff();
+        }
     }
 
-    // Hairer's test: h |lambda| ~ h |k7 - k6| / |y7 - y6| beyond the stability boundary.
+    // Hairer's test: h |lambda| ~ h |k_S-1 - k_S-2| / |y_S-1 - y_S-2| (both stages at c = 1) beyond
+    // the stability boundary.
     void stiffness_test(double h, SolverStatistics& stats) {
-        const double num = (kq_[6] - kq_[5]).squaredNorm() + (kv_[6] - kv_[5]).squaredNorm();
-        const double den = (qs_ - q6_).squaredNorm() + (vs_ - v6_).squaredNorm();
+        const double num = (kq_[S - 1] - kq_[S - 2]).squaredNorm() + (kv_[S - 1] - kv_[S - 2]).squaredNorm();
+        const double den = (qs_ - ql_).squaredNorm() + (vs_ - vl_).squaredNorm();
         if (den > 0.0 && h * std::sqrt(num / den) > stiffness_bound) {
             non_stiff_count_ = 0;
             if (++stiff_count_ >= stiff_run) ++stats.stiff_steps;
@@ -312,27 +395,39 @@ private:
         }
     }
 
-    // Dense output coefficients (Hairer's CONTD5) of the step [t_, t_ + h] just computed.
-    void dense_coefficients(double h) {
+    // Dense output coefficients (Hairer's CONTD5 / CONTD8) of the step [t_, t_ + h] just computed,
+    // once per step. DOP853's three extra stages run on a copy of the workspace: the step's own keeps
+    // the force at the new state, which accepted() and the event watch read.
+    void dense_coefficients(double h, SolverStatistics& stats) {
+        if (dense_ready_) return;
+        if constexpr (K > S) {
+            dense_ws_ = ws_;
+            for (std::size_t i = S; i < K; ++i) stage(i, h, qd_, vd_, dense_ws_, stats);
+        }
         rq_[0] = q_, rv_[0] = v_;
         rq_[1] = qs_ - q_, rv_[1] = vs_ - v_;
         rq_[2] = h * kq_[0] - rq_[1], rv_[2] = h * kv_[0] - rv_[1];
-        rq_[3] = rq_[1] - h * kq_[6] - rq_[2], rv_[3] = rv_[1] - h * kv_[6] - rv_[2];
-        rq_[4].setZero(), rv_[4].setZero();
-        for (int i = 0; i < 7; ++i) {
-            if (dopri5::d[std::size_t(i)] == 0.0) continue;
-            rq_[4].noalias() += (h * dopri5::d[std::size_t(i)]) * kq_[i];
-            rv_[4].noalias() += (h * dopri5::d[std::size_t(i)]) * kv_[i];
+        rq_[3] = rq_[1] - h * kq_[S - 1] - rq_[2], rv_[3] = rv_[1] - h * kv_[S - 1] - rv_[2];
+        for (std::size_t r = 4; r < R; ++r) {
+            rq_[r].setZero(), rv_[r].setZero();
+            for (std::size_t i = 0; i < K; ++i) {
+                const double w = h * Scheme::d[r - 4][i];
+                if (w == 0.0) continue;
+                rq_[r].noalias() += w * kq_[i];
+                rv_[r].noalias() += w * kv_[i];
+            }
         }
+        dense_ready_ = true;
     }
 
-    void accept(double h, SolverStatistics& stats) {
-        dense_coefficients(h);
-        t_old_ = t_, h_last_ = h;
+    void accept(double h, double target, SolverStatistics& stats) {
         // Fixed steps: time as t0 + n h (a sum drifts by ulps, off the output grid).
-        t_ = s_.adaptive ? t_ + h : t_start_ + double(++fixed_steps_) * h;
+        const double t_new = s_.adaptive ? t_ + h : t_start_ + double(fixed_steps_ + 1) * h;
+        if (reaches(t_new, target)) dense_coefficients(h, stats);  // step() interpolates in this step
+        t_old_ = t_, h_last_ = h, t_ = t_new;
+        if (!s_.adaptive) ++fixed_steps_;
         q_ = qs_, v_ = vs_;
-        kq_[0] = kq_[6], kv_[0] = kv_[6];  // FSAL; the workspace holds the force at the new state
+        kq_[0] = kq_[S - 1], kv_[0] = kv_[S - 1];  // FSAL; the workspace holds the force at the new state
         q_ref_ = std::max(q_ref_, q_.cwiseAbs().maxCoeff());
         v_ref_ = std::max({v_ref_, v_.cwiseAbs().maxCoeff(), omega_ref_ * q_ref_});
         accepted(system_, ws_, q_, v_);
@@ -341,10 +436,15 @@ private:
 
     // The dense output at time t in [t_old_, t_] (the last accepted step).
     void interpolate(double t, Vector& q, Vector& v) const { interpolate_on(t, t_old_, h_last_, q, v); }
+    // y0 + th (r1 + (1 - th) (r2 + th (r3 + (1 - th) (r4 + ...)))), th = (t - t0) / h.
     void interpolate_on(double t, double t0, double h, Vector& q, Vector& v) const {
         const double th = h > 0.0 ? (t - t0) / h : 1.0, th1 = 1.0 - th;
-        q = rq_[0] + th * (rq_[1] + th1 * (rq_[2] + th * (rq_[3] + th1 * rq_[4])));
-        v = rv_[0] + th * (rv_[1] + th1 * (rv_[2] + th * (rv_[3] + th1 * rv_[4])));
+        q = rq_[R - 1], v = rv_[R - 1];
+        for (std::size_t j = R - 1; j-- > 0;) {
+            const double w = j % 2 == 0 ? th : th1;
+            q *= w, v *= w;
+            q += rq_[j], v += rv_[j];
+        }
     }
 
     const System& system_;
@@ -359,15 +459,22 @@ private:
     std::uint64_t fixed_steps_ = 0;
     bool rejected_last_ = false;
     bool event_retake_ = false;  // the step being taken ends at a located crossing
+    bool dense_ready_ = false;   // rq_, rv_ hold the dense output of the step last computed
     double h_before_event_ = 0.0;
     int stiff_count_ = 0, non_stiff_count_ = 0;
-    workspace_t<System> ws_;
+    workspace_t<System> ws_, dense_ws_;
     // Scratch, sized once: nothing is allocated inside the time loop.
-    Vector q_, v_, qs_, vs_, q6_, v6_, eq_, ev_, ef_, f_, rhs_;
-    std::array<Vector, 7> kq_, kv_;
-    std::array<Vector, 5> rq_, rv_;
-    LowRank<Vector> uv_;
+    Vector q_, v_, qs_, vs_, ql_, vl_, qd_, vd_, ef_, f_, rhs_;
+    std::array<Vector, E> eq_, ev_;
+    std::array<Vector, K> kq_, kv_;
+    std::array<Vector, R> rq_, rv_;
+    LowRank<Vector> uvq_, uvv_;
     EventWatch<System> events_{system_};
 };
+
+template <class System>
+using DormandPrince = EmbeddedRungeKutta<System, dopri5::Scheme>;
+template <class System>
+using Dop853 = EmbeddedRungeKutta<System, dop853::Scheme>;
 
 }  // namespace camfollower

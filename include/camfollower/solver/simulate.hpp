@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// One call for the common case: start a system in its initial state (or a given
-// state), integrate with Newmark/HHT or Dormand-Prince (settings.method) for a duration, record named channels, report progress and
-// honour cancellation.
+// One call for the common case: start a system in its initial state (or a given state), integrate
+// with Newmark/HHT or Dormand-Prince 5(4) / 8(5,3) (settings.method) for a duration, record named
+// channels, report progress and honour cancellation.
 #pragma once
 
 #include <cstdint>
@@ -133,7 +133,7 @@ void check_time_step(const System& system, const NewmarkSettings& settings, doub
     if (settings.time_step > duration)
         detail::fail("time_step = ", settings.time_step, " s is longer than the duration ", duration, " s");
     // A run whose steps are bounded by max_step is bounded like a fixed-step run (1e10 steps).
-    if (settings.method == Method::dormand_prince && settings.max_step > 0.0 && !(duration / settings.max_step <= 1e10))
+    if (is_runge_kutta(settings.method) && settings.max_step > 0.0 && !(duration / settings.max_step <= 1e10))
         detail::fail("duration / max_step = ", duration / settings.max_step, " steps is too many (limit 1e10); raise "
                      "max_step or shorten the run");
     if constexpr (detail::has_period<System>::value) {
@@ -167,8 +167,10 @@ RunResult<System> simulate(const System& system, const NewmarkSettings& requeste
         return r;
     }
     const NewmarkSettings& settings = requested;
-    if (settings.method == Method::dormand_prince) {
-        if (settings.backend == Backend::sparse) detail::fail("linear_solver 'sparse' or 'klu' applies to Newmark; dormand_prince solves no linear system");
+    if (is_runge_kutta(settings.method)) {
+        if (settings.backend == Backend::sparse)
+            detail::fail("linear_solver 'sparse' or 'klu' applies to Newmark; ", method_name(settings), " solves no linear system");
+        if (settings.method == Method::dop853) return detail::run<Dop853<System>>(system, settings, options, q0, v0);
         return detail::run<DormandPrince<System>>(system, settings, options, q0, v0);
     }
     if constexpr (detail::has_sparse_matrices<System>::value) {
@@ -203,6 +205,8 @@ PeriodicOrbit periodic_orbit(const System& system, const NewmarkSettings& reques
     const NewmarkSettings settings = concrete_settings(system, requested, q0, v0);
     const Eigen::VectorXd q = q0 ? Eigen::VectorXd(*q0) : Eigen::VectorXd(initial_displacement(system));
     const Eigen::VectorXd v = v0 ? Eigen::VectorXd(*v0) : Eigen::VectorXd(initial_velocity(system));
+    if (settings.method == Method::dop853)
+        return detail::shoot_with<Dop853<System>>(system, settings, options, q, v, keep_going);
     if (settings.method == Method::dormand_prince)
         return detail::shoot_with<DormandPrince<System>>(system, settings, options, q, v, keep_going);
     if constexpr (detail::has_sparse_matrices<System>::value) {
