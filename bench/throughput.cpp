@@ -5,6 +5,9 @@
 // items_per_second = time steps per second; iterations_per_step = Newton linear solves per step.
 #include <benchmark/benchmark.h>
 
+#include <cmath>
+#include <vector>
+
 #include "camfollower/camfollower.hpp"
 #include "camfollower/model/mechanism.hpp"
 #include "camfollower/model/presets/paper.hpp"
@@ -120,6 +123,22 @@ void BM_ProfileEvaluation(benchmark::State& state) {
     state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_ProfileEvaluation)->Arg(0)->Arg(1)->Arg(2);
+
+// A user's lift table of 10 000 points: interpolating (arg 0) or smoothing (arg 1) quintic spline.
+void BM_LiftTable(benchmark::State& state) {
+    const int n = 10000;
+    std::vector<double> theta(n), h(n);
+    for (int i = 0; i < n; ++i) {
+        theta[std::size_t(i)] = 2.0 * cf::pi * i / n;
+        h[std::size_t(i)] = 0.004 * (1.0 - std::cos(theta[std::size_t(i)])) + 0.001 * std::sin(2.0 * theta[std::size_t(i)]);
+    }
+    for (auto _ : state) {
+        const cf::MotionProgram p = state.range(0) ? cf::MotionProgram::from_table(theta, h, {5, 1e-12})
+                                                   : cf::MotionProgram::from_table(theta, h);
+        benchmark::DoNotOptimize(p.max_lift());
+    }
+}
+BENCHMARK(BM_LiftTable)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -19,6 +19,7 @@
 #include "camfollower/geometry/export.hpp"
 #include "config/case_config.hpp"
 #include "output_file.hpp"
+#include "simulate_instances.hpp"  // simulate() for the library's systems, compiled once
 
 namespace cf = camfollower;
 

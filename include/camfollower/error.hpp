@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <initializer_list>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -25,12 +26,28 @@ public:
 
 namespace detail {
 
-template <class... Parts>
-std::string concat(const Parts&... parts) {
+// One part of a message as text: strings as they are, anything else as `std::ostream <<` prints it,
+// numbers with 10 significant digits. Text parts go through the two plain overloads, so the templates
+// below are instantiated once per part type, not once per string length and combination of parts
+// (each a resolution of `<<` among every overload in scope: minutes of compile time over the library).
+inline std::string part_text(const char* s) { return s; }
+inline std::string part_text(std::string_view s) { return std::string(s); }
+template <class T, std::enable_if_t<!std::is_convertible_v<const T&, std::string_view>, int> = 0>
+std::string part_text(const T& part) {
     std::ostringstream out;
     out.precision(10);
-    (out << ... << parts);
+    out << part;
     return out.str();
+}
+inline std::string join(std::initializer_list<std::string> parts) {
+    std::string out;
+    for (const std::string& p : parts) out += p;
+    return out;
+}
+
+template <class... Parts>
+std::string concat(const Parts&... parts) {
+    return join({part_text(parts)...});
 }
 
 // Text parts of an error message as they are shown: control characters (terminal escapes, bells,
@@ -44,15 +61,17 @@ inline std::string message_text(std::string_view s) {
     if (s.size() > max) out += "... (" + std::to_string(s.size()) + " bytes)";
     return out;
 }
-template <class T>
-decltype(auto) message_part(const T& part) {
-    if constexpr (std::is_convertible_v<const T&, std::string_view>) return message_text(std::string_view(part));
-    else return (part);
+// A part of an error message: text sanitized (message_text), anything else as concat() shows it.
+inline std::string message_part(const char* s) { return message_text(s); }
+inline std::string message_part(std::string_view s) { return message_text(s); }
+template <class T, std::enable_if_t<!std::is_convertible_v<const T&, std::string_view>, int> = 0>
+std::string message_part(const T& part) {
+    return part_text(part);
 }
 
 template <class... Parts>
 [[noreturn]] void fail(const Parts&... parts) {
-    throw std::invalid_argument(concat(message_part(parts)...));
+    throw std::invalid_argument(join({message_part(parts)...}));
 }
 
 inline void require_finite(double value, const char* name) {

@@ -10,7 +10,7 @@
 
 #include "camfollower/model/presets/paper.hpp"
 #include "camfollower/solver/simulate.hpp"
-#include "linear_system.hpp"
+#include "linear_system_instances.hpp"
 #include "run.hpp"
 
 using namespace camfollower;

@@ -10,6 +10,7 @@
 
 #include "camfollower/model/presets/paper.hpp"
 #include "camfollower/solver/simulate.hpp"
+#include "simulate_instances.hpp"  // simulate() for the library's systems, compiled once
 
 using namespace camfollower;
 

@@ -6,7 +6,7 @@
 
 #include "camfollower/motion/laws.hpp"
 #include "camfollower/solver/newmark.hpp"
-#include "linear_system.hpp"
+#include "linear_system_instances.hpp"
 #include "run.hpp"
 
 using namespace camfollower;

@@ -13,7 +13,7 @@
 
 #include "camfollower/model/presets/paper.hpp"
 #include "camfollower/solver/simulate.hpp"
-#include "linear_system.hpp"
+#include "linear_system_instances.hpp"
 
 using namespace camfollower;
 using cd = std::complex<double>;

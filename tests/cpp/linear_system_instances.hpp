@@ -1,0 +1,11 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// simulate() and periodic_orbit() for the linear test systems, compiled once (linear_system_instances_N.cpp)
+// rather than in each test that runs them; with the library's system types (simulate_instances.hpp).
+#pragma once
+
+#include "linear_system.hpp"
+#include "simulate_instances.hpp"
+
+CAMFOLLOWER_SIMULATE_INSTANCES(extern, LinearSystem<1>)
+CAMFOLLOWER_SIMULATE_INSTANCES(extern, LinearSystem<2>)
+CAMFOLLOWER_SIMULATE_INSTANCES(extern, LinearSystem<3>)
