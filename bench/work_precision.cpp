@@ -357,14 +357,21 @@ int main(int argc, char** argv) {
     bool stiff = false;
     double rpm = 750.0;
     int repeats = 5;
+    std::string only;  // empty: every row
     for (int i = 1; i < argc; ++i) {
         if (!std::strcmp(argv[i], "--stiff")) stiff = true;
         else if (!std::strcmp(argv[i], "--rpm") && i + 1 < argc) rpm = std::atof(argv[++i]);
         else if (!std::strcmp(argv[i], "--repeats") && i + 1 < argc) repeats = std::atoi(argv[++i]);
+        else if (!std::strcmp(argv[i], "--only") && i + 1 < argc) only = argv[++i];
         else {
-            std::fprintf(stderr, "usage: %s [--stiff] [--rpm N] [--repeats N]\n", argv[0]);
+            std::fprintf(stderr, "usage: %s [--stiff] [--rpm N] [--repeats N] [--only TEXT]\n"
+                                 "  --only TEXT: run the rows whose label contains TEXT (e.g. dop853)\n", argv[0]);
             return 2;
         }
+    }
+    if (repeats < 1 || !(rpm > 0.0)) {
+        std::fprintf(stderr, "--repeats must be >= 1 and --rpm > 0\n");
+        return 2;
     }
     cf::CamFollowerParameters p;
     p.camshaft_speed_rpm = rpm;
@@ -397,7 +404,7 @@ int main(int argc, char** argv) {
         }
     }
     for (const char* method : {"dormand_prince", "dop853"})
-        for (double tol : {1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10}) {
+        for (double tol : {1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12}) {
             cf::NewmarkSettings s;
             cf::set_method(s, method);
             s.tolerance = tol;
@@ -425,6 +432,9 @@ int main(int argc, char** argv) {
             std::snprintf(label, sizeof label, "%s %s rtol %.0e", peer.library, peer.method, tol);
             settings.push_back({label, [&m, peer, tol] { return peer.run(m, peer.method, tol); }, {}, {}});
         }
+    settings.erase(std::remove_if(settings.begin(), settings.end(),
+                                  [&only](const Setting& s) { return s.label.find(only) == std::string::npos; }),
+                   settings.end());
 #if CAMFOLLOWER_HAVE_ODEINT
     // Where the contact opens and closes, the reference restarts at each event (run_odeint_piecewise).
     std::vector<double> breaks;

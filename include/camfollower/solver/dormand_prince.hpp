@@ -142,7 +142,8 @@ public:
         for (int k = 0; k < n_; ++k)
             if (!(M(k, k) > 0.0)) detail::fail("system: mass matrix diagonal must be > 0, got M(", k, ", ", k, ") = ", M(k, k));
         M_inv_ = M.partialPivLu().inverse();
-        for (Vector* x : {&q_, &v_, &qs_, &vs_, &ql_, &vl_, &qd_, &vd_, &ef_, &f_, &rhs_})
+        for (Vector* x : {&q_, &v_, &qs_, &vs_, &ql_, &vl_, &qd_, &vd_, &ef_, &f_, &rhs_, &dq_, &dv_, &cq_, &cv_,
+                          &cq_trial_, &cv_trial_})
             x->resize(n_);
         auto resize = [this](auto&... sets) { (..., [this](auto& set) { for (Vector& x : set) x.resize(n_); }(sets)); };
         resize(eq_, ev_, kq_, kv_, rq_, rv_);
@@ -163,6 +164,7 @@ public:
         // The integration state starts at the reported one.
         ws_ = s.workspace;
         t_ = t, q_ = q, v_ = v;
+        cq_.setZero(), cv_.setZero(), ct_ = 0.0;
         events_.start(ws_, q_, v_);  // before initial_step() moves the workspace's last force() elsewhere
         t_start_ = t, fixed_steps_ = 0;
         kq_[0] = v_, kv_[0] = s.a;
@@ -231,8 +233,14 @@ private:
         ++stats.evaluations;
     }
 
-    // Stage i of the step [t_, t_ + h]: its input (q, v) = y + h sum_j a_ij k_j, then k_i.
+    // Stage i of the step [t_, t_ + h]: its input (q, v) = y + h sum_j a_ij k_j, then k_i. The last
+    // step stage's input is the solution, summed with compensation (solution_with_compensation).
     void stage(std::size_t i, double h, Vector& q, Vector& v, workspace_t<System>& ws, SolverStatistics& stats) {
+        if (i + 1 == S) {
+            solution_with_compensation(h, q, v);
+            derivative(t_ + Scheme::c[i] * h, q, v, kq_[i], kv_[i], ws, stats);
+            return;
+        }
         q = q_;
         v = v_;
         for (std::size_t j = 0; j < i; ++j) {
@@ -242,6 +250,35 @@ private:
             v.noalias() += w * kv_[j];
         }
         derivative(t_ + Scheme::c[i] * h, q, v, kq_[i], kv_[i], ws, stats);
+    }
+
+    // y1 = y0 + (h sum_j b_j k_j + c0) by compensated summation (Kahan; Hairer, Lubich & Wanner,
+    // Geometric Numerical Integration, VIII.5): c1 = the part of the sum rounding dropped, carried
+    // into the next step. Plain y0 + increment loses ~eps |y0| per step, and over 10^5 steps that walk
+    // drives a stiff, barely damped contact mode far above the tolerance (docs/benchmarks.md): the
+    // rounding of a 1e-2 m coordinate is ~1e-10 of the peak force through a 1.9e10 N/m contact.
+    // TwoSum (any magnitudes), so it holds while a coordinate passes through zero.
+    void solution_with_compensation(double h, Vector& q, Vector& v) {
+        dq_ = cq_;
+        dv_ = cv_;
+        for (std::size_t j = 0; j + 1 < S; ++j) {
+            const double w = h * Scheme::a[S - 1][j];
+            if (w == 0.0) continue;
+            dq_.noalias() += w * kq_[j];
+            dv_.noalias() += w * kv_[j];
+        }
+        two_sum(q_, dq_, q, cq_trial_);
+        two_sum(v_, dv_, v, cv_trial_);
+    }
+    // rounded(x + y), error = x + y - rounded(x + y) exactly (Knuth's TwoSum, six operations).
+    static double two_sum(double x, double y, double& error) {
+        const double sum = x + y;
+        const double y_part = sum - x;
+        error = (x - (sum - y_part)) + (y - y_part);
+        return sum;
+    }
+    static void two_sum(const Vector& x, const Vector& y, Vector& sum, Vector& error) {
+        for (int k = 0; k < x.size(); ++k) sum[k] = two_sum(x[k], y[k], error[k]);
     }
 
     double error_norm_qv(const Vector& eq, const Vector& ev, const Vector& q0, const Vector& v0, const Vector& q1,
@@ -421,12 +458,15 @@ private:
     }
 
     void accept(double h, double target, SolverStatistics& stats) {
-        // Fixed steps: time as t0 + n h (a sum drifts by ulps, off the output grid).
-        const double t_new = s_.adaptive ? t_ + h : t_start_ + double(fixed_steps_ + 1) * h;
+        // Fixed steps: time as t0 + n h (a sum drifts by ulps, off the output grid); adaptive ones
+        // compensated like the state (the cam's motion turns a drifting time into a drifting input).
+        double t_new = t_start_ + double(fixed_steps_ + 1) * h;
+        if (s_.adaptive) t_new = two_sum(t_, h + ct_, ct_);
         if (reaches(t_new, target)) dense_coefficients(h, stats);  // step() interpolates in this step
         t_old_ = t_, h_last_ = h, t_ = t_new;
         if (!s_.adaptive) ++fixed_steps_;
         q_ = qs_, v_ = vs_;
+        cq_ = cq_trial_, cv_ = cv_trial_;
         kq_[0] = kq_[S - 1], kv_[0] = kv_[S - 1];  // FSAL; the workspace holds the force at the new state
         q_ref_ = std::max(q_ref_, q_.cwiseAbs().maxCoeff());
         v_ref_ = std::max({v_ref_, v_.cwiseAbs().maxCoeff(), omega_ref_ * q_ref_});
@@ -455,7 +495,7 @@ private:
     // The integration state (ahead of the reported one) and its workspace.
     double t_ = 0.0, t_old_ = 0.0, h_ = 0.0, h_last_ = 0.0, err_old_ = 1e-4;
     double q_ref_ = 0.0, v_ref_ = 0.0, omega_ref_ = 0.0;
-    double t_start_ = 0.0;
+    double t_start_ = 0.0, ct_ = 0.0;  // ct_: the time's compensation (adaptive steps)
     std::uint64_t fixed_steps_ = 0;
     bool rejected_last_ = false;
     bool event_retake_ = false;  // the step being taken ends at a located crossing
@@ -465,6 +505,7 @@ private:
     workspace_t<System> ws_, dense_ws_;
     // Scratch, sized once: nothing is allocated inside the time loop.
     Vector q_, v_, qs_, vs_, ql_, vl_, qd_, vd_, ef_, f_, rhs_;
+    Vector dq_, dv_, cq_, cv_, cq_trial_, cv_trial_;  // the solution's increment and compensation
     std::array<Vector, E> eq_, ev_;
     std::array<Vector, K> kq_, kv_;
     std::array<Vector, R> rq_, rv_;
