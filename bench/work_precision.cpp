@@ -365,7 +365,8 @@ int main(int argc, char** argv) {
         else if (!std::strcmp(argv[i], "--only") && i + 1 < argc) only = argv[++i];
         else {
             std::fprintf(stderr, "usage: %s [--stiff] [--rpm N] [--repeats N] [--only TEXT]\n"
-                                 "  --only TEXT: run the rows whose label contains TEXT (e.g. dop853)\n", argv[0]);
+                                 "  --only TEXT: run the rows whose label contains TEXT, or any of its comma-separated parts\n"
+                                 "               (e.g. dop853, or \"radau,fox_goodwin T/2^15\")\n", argv[0]);
             return 2;
         }
     }
@@ -403,7 +404,7 @@ int main(int argc, char** argv) {
             }
         }
     }
-    for (const char* method : {"dormand_prince", "dop853"})
+    for (const char* method : {"dormand_prince", "dop853", "radau"})
         for (double tol : {1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12}) {
             cf::NewmarkSettings s;
             cf::set_method(s, method);
@@ -433,7 +434,15 @@ int main(int argc, char** argv) {
             settings.push_back({label, [&m, peer, tol] { return peer.run(m, peer.method, tol); }, {}, {}});
         }
     settings.erase(std::remove_if(settings.begin(), settings.end(),
-                                  [&only](const Setting& s) { return s.label.find(only) == std::string::npos; }),
+                                  [&only](const Setting& s) {
+                                      // Any of the comma-separated parts of TEXT.
+                                      for (std::size_t from = 0; from <= only.size();) {
+                                          const std::size_t comma = std::min(only.find(',', from), only.size());
+                                          if (s.label.find(only.substr(from, comma - from)) != std::string::npos) return false;
+                                          from = comma + 1;
+                                      }
+                                      return true;
+                                  }),
                    settings.end());
 #if CAMFOLLOWER_HAVE_ODEINT
     // Where the contact opens and closes, the reference restarts at each event (run_odeint_piecewise).

@@ -30,6 +30,7 @@
 #include "camfollower/solver/integrate.hpp"
 #include "camfollower/solver/newmark.hpp"
 #include "camfollower/solver/observers.hpp"
+#include "camfollower/solver/radau.hpp"
 #include "camfollower/solver/simulate.hpp"
 #include "camfollower/solver/simulate_many.hpp"
 #include "camfollower/solver/sparse_newton.hpp"

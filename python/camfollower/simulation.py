@@ -45,10 +45,14 @@ def simulate(system, *, duration: Optional[float] = None, revolutions: Optional[
     "dop853" (explicit Runge-Kutta 8(5,3), Hairer's DOP853, with the same error control, ``tolerance``
     and ``max_step``: half the steps of dormand_prince at twice the force evaluations each, several
     times more accurate at the same tolerance, 7th-order dense output; for errors of 1e-8 and runs with
-    contact losses, not for very stiff contacts at tight tolerances) or "auto" (fox_goodwin when ``time_step`` is within its stability limit at the start, with a 10 %
-    margin, else average-acceleration newmark). ``stats`` reports ``method`` (the one that ran),
-    ``requested_method``, ``evaluations``, ``rejected_steps`` and ``stiff_steps`` (steps bounded by
-    stability rather than accuracy: an implicit method would be cheaper there).
+    contact losses, not for very stiff contacts at tight tolerances), "radau" (implicit Radau IIA of
+    order 5, L-stable, with the same error control, ``tolerance`` and ``max_step``, simplified Newton
+    on the stages (``newton_iterations``): for models stiff at the accuracy wanted, where the explicit
+    methods report ``stiff_steps``; dense backend only) or "auto" (fox_goodwin when ``time_step`` is
+    within its stability limit at the start, with a 10 % margin, else average-acceleration newmark).
+    ``stats`` reports ``method`` (the one that ran), ``requested_method``, ``evaluations``,
+    ``rejected_steps`` and ``stiff_steps`` (steps bounded by stability rather than accuracy: an
+    implicit method would be cheaper there).
 
     ``system`` is a Mechanism (camfollower.MechanismBuilder, camfollower.presets) or a CamFollowerModel.
     ``progress(steps_done, steps_planned)`` is called about every ``progress_interval`` seconds;

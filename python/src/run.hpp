@@ -35,7 +35,7 @@ inline NewmarkSettings settings_from(double time_step, std::optional<double> gam
         detail::fail("gamma, beta and hht_alpha apply to method 'newmark' only (method '", method, "' sets its own)");
     set_method(s, method);
     if (!is_runge_kutta(s.method) && (tolerance || max_step))
-        detail::fail(tolerance ? "tolerance" : "max_step", " applies to methods 'dormand_prince' and 'dop853' only, got method '",
+        detail::fail(tolerance ? "tolerance" : "max_step", " applies to methods 'dormand_prince', 'dop853' and 'radau' only, got method '",
                      method, "'");
     if (tolerance) s.tolerance = *tolerance;
     if (max_step) s.max_step = *max_step;

@@ -618,7 +618,7 @@ SolverConfig read_solver(const Section& s) {
     if (s.has("time_step") && !(v.time_step > 0.0)) s.fail("time_step", "must be > 0 s");
     v.steps_per_revolution = s.integer("steps_per_revolution", v.steps_per_revolution, 16, 1LL << 26);
     const std::string scheme = s.choice("scheme", "average_acceleration",
-                                        {"average_acceleration", "hht", "newmark", "fox_goodwin", "dormand_prince", "dop853", "auto"});
+                                        {"average_acceleration", "hht", "newmark", "fox_goodwin", "dormand_prince", "dop853", "radau", "auto"});
     NewmarkSettings& n = v.newmark;
     if (scheme == "hht") {
         n = NewmarkSettings::hht(s.quantity("hht_alpha", "-", -0.05));
@@ -626,14 +626,14 @@ SolverConfig read_solver(const Section& s) {
         n.gamma = s.quantity("gamma", "-");
         n.beta = s.quantity("beta", "-");
     } else if (scheme != "average_acceleration") {
-        set_method(n, scheme);  // fox_goodwin, dormand_prince, dop853, auto
+        set_method(n, scheme);  // fox_goodwin, dormand_prince, dop853, radau, auto
     }
     if (is_runge_kutta(n.method)) {
         n.tolerance = s.quantity("tolerance", "-", n.tolerance);
         n.max_step = s.quantity("max_step", "s", n.max_step);
     } else {
         for (const char* k : {"tolerance", "max_step"})
-            if (s.has(k)) s.fail(k, "applies only with scheme = \"dormand_prince\" or \"dop853\"");
+            if (s.has(k)) s.fail(k, "applies only with scheme = \"dormand_prince\", \"dop853\" or \"radau\"");
     }
     n.residual_tolerance = s.quantity("residual_tolerance", "-", n.residual_tolerance);
     n.increment_tolerance = s.quantity("increment_tolerance", "-", n.increment_tolerance);

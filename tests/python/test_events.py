@@ -35,7 +35,7 @@ def scipy_events(fast_model):
     return times, kinds
 
 
-@pytest.mark.parametrize("method", ["dormand_prince", "dop853"])
+@pytest.mark.parametrize("method", ["dormand_prince", "dop853", "radau"])
 def test_explicit_events_against_scipy(fast_model, scipy_events, method):
     times, kinds = scipy_events
     assert len(times) >= 2

@@ -54,6 +54,26 @@ def test_explicit_contact_force_against_scipy_on_independent_equations(model, re
     assert low < err < high
 
 
+# Radau IIA: implicit, so Newton iterations (three force evaluations each, and one at the solution per
+# step); its global error is 10-20x the tolerance on this model (measured 1.7e-6 at 1e-7, 1.3e-7 at 1e-8).
+@pytest.mark.parametrize("tolerance", [1e-7, 1e-8])
+def test_radau_contact_force_against_scipy_on_independent_equations(model, reference, tolerance):
+    r = cf.simulate(model, revolutions=1, time_step=model.period / 512, method="radau", tolerance=tolerance)
+    assert (r.stats["method"], r.stats["requested_method"]) == ("radau", "radau")
+    assert r.stats["newton_iterations"] >= r.stats["steps"] > 0
+    assert r.stats["evaluations"] >= 4 * r.stats["steps"]
+    assert len(r["t"]) == 513 and r["t"][-1] == pytest.approx(model.period, rel=1e-12)
+    err = force_error(model, reference, r)
+    print(f"radau tolerance {tolerance:g}: contact force error {err:.2e} of the peak, {r.stats['steps']} steps")
+    assert 0.5 * tolerance < err < 200 * tolerance
+
+
+def test_radau_refuses_the_sparse_backend(model):
+    with pytest.raises(ValueError, match="linear_solver 'sparse' or 'klu' applies to Newmark; radau runs on the dense "
+                                         "backend only"):
+        cf.simulate(cf.presets.valve_train(), revolutions=0.01, method="radau", linear_solver="sparse")
+
+
 def test_dormand_prince_converges_to_newmark_at_fine_steps(model):
     """Two methods, one model: the force histories approach each other as both are refined."""
     dp = cf.simulate(model, revolutions=1, time_step=model.period / 256, method="dormand_prince", tolerance=1e-9)
@@ -74,9 +94,9 @@ def test_fox_goodwin_is_newmark_with_beta_one_twelfth(model):
 
 
 @pytest.mark.parametrize("kwargs, message", [
-    (dict(method="rk4"), r"method must be 'newmark', 'fox_goodwin', 'dormand_prince', 'dop853' or 'auto', got 'rk4'"),
-    (dict(tolerance=1e-6), r"tolerance applies to methods 'dormand_prince' and 'dop853' only"),
-    (dict(max_step=1e-5, method="fox_goodwin"), r"max_step applies to methods 'dormand_prince' and 'dop853' only"),
+    (dict(method="rk4"), r"method must be 'newmark', 'fox_goodwin', 'dormand_prince', 'dop853', 'radau' or 'auto', got 'rk4'"),
+    (dict(tolerance=1e-6), r"tolerance applies to methods 'dormand_prince', 'dop853' and 'radau' only"),
+    (dict(max_step=1e-5, method="fox_goodwin"), r"max_step applies to methods 'dormand_prince', 'dop853' and 'radau' only"),
     (dict(method="dormand_prince", beta=0.3), r"gamma, beta and hht_alpha apply to method 'newmark' only"),
     (dict(method="dormand_prince", tolerance=0.0), r"tolerance must be in \[1e-13, 0.1\], got 0"),
     (dict(method="dormand_prince", tolerance=float("nan")), r"tolerance must be in \[1e-13, 0.1\], got nan"),
@@ -105,7 +125,7 @@ def test_method_must_be_a_string(model):
         cf.simulate(model, revolutions=0.1, method="dormand_prince", tolerance="1e-6")
 
 
-@pytest.mark.parametrize("scheme", ["dormand_prince", "dop853"])
+@pytest.mark.parametrize("scheme", ["dormand_prince", "dop853", "radau"])
 def test_config_scheme_explicit_reaches_simulate(tmp_path, scheme):
     text = (ROOT / "examples" / "translating_roller.toml").read_text()
     assert "[solver]" in text
@@ -125,7 +145,7 @@ def test_config_scheme_explicit_reaches_simulate(tmp_path, scheme):
     bad[k + 1] = 'tolerance = 1e-7'
     path.write_text("\n".join(bad) + "\n")
     with pytest.raises(ValueError, match=rf"dp.toml:{k + 2}: solver.tolerance: applies only with scheme = "
-                                         r"\"dormand_prince\" or \"dop853\""):
+                                         r"\"dormand_prince\", \"dop853\" or \"radau\""):
         cf.load_config(path)
 
 
@@ -141,7 +161,7 @@ def test_auto_takes_fox_goodwin_within_its_stability_limit_else_average_accelera
         np.testing.assert_array_equal(r["cam.force"], direct["cam.force"])
     with pytest.raises(ValueError, match="gamma, beta and hht_alpha apply to method 'newmark' only"):
         cf.simulate(m, revolutions=0.1, method="auto", hht_alpha=-0.05)
-    with pytest.raises(ValueError, match="tolerance applies to methods 'dormand_prince' and 'dop853' only"):
+    with pytest.raises(ValueError, match="tolerance applies to methods 'dormand_prince', 'dop853' and 'radau' only"):
         cf.simulate(m, revolutions=0.1, method="auto", tolerance=1e-6)
 
 

@@ -46,21 +46,24 @@ enum class Backend { automatic, dense, sparse };
 // positive definite, KLU otherwise; klu always uses KLU.
 enum class SparseFactorization { automatic, klu };
 inline constexpr int sparse_backend_threshold = 100;  // DOFs; measured crossover: bench/camshaft.cpp
-// The integration method: implicit Newmark/HHT at the fixed time_step (this file), or explicit
+// The integration method: implicit Newmark/HHT at the fixed time_step (this file), explicit
 // Dormand-Prince 5(4) or 8(5,3) (dop853) with adaptive steps under `tolerance` (solver/
-// dormand_prince.hpp), time_step then being the output interval only.
+// dormand_prince.hpp), or implicit Radau IIA of order 5 with adaptive steps (solver/radau.hpp),
+// time_step then being the output interval only.
 // automatic: chosen at the start of a run from the model's highest mode (choose_method, below).
-enum class Method { newmark, dormand_prince, automatic, dop853 };
-// The explicit Runge-Kutta methods: tolerance, max_step and adaptive apply to them.
-inline constexpr bool is_runge_kutta(Method m) { return m == Method::dormand_prince || m == Method::dop853; }
+enum class Method { newmark, dormand_prince, automatic, dop853, radau };
+// The adaptive Runge-Kutta methods (explicit and Radau IIA): tolerance, max_step and adaptive apply to them.
+inline constexpr bool is_runge_kutta(Method m) {
+    return m == Method::dormand_prince || m == Method::dop853 || m == Method::radau;
+}
 
 // The solver's settings (named for its first method; `method` picks another).
 struct NewmarkSettings {
     Method method = Method::newmark;
-    double time_step = 3e-6;            // s (dormand_prince, dop853: the output interval)
-    double tolerance = 1e-6;            // dormand_prince, dop853: relative error per step, displacements and forces
-    double max_step = 0.0;              // dormand_prince, dop853: largest step, s (0: unbounded)
-    bool adaptive = true;               // dormand_prince, dop853: false = fixed steps of max_step (or time_step), no error control
+    double time_step = 3e-6;            // s (dormand_prince, dop853, radau: the output interval)
+    double tolerance = 1e-6;            // dormand_prince, dop853, radau: relative error per step, displacements and forces
+    double max_step = 0.0;              // dormand_prince, dop853, radau: largest step, s (0: unbounded)
+    bool adaptive = true;               // dormand_prince, dop853, radau: false = fixed steps of max_step (or time_step), no error control
     double gamma = 0.5;
     double beta = 0.25;
     double hht_alpha = 0.0;             // in [-1/3, 0]
@@ -143,6 +146,8 @@ inline const char* linear_solver_name(const NewmarkSettings& s) {
 //   "dormand_prince"  explicit Runge-Kutta 5(4), adaptive steps under `tolerance`, dense output
 //   "dop853"          explicit Runge-Kutta 8(5,3), adaptive steps under `tolerance`, 7th-order dense
 //                     output: half dormand_prince's steps, twice its evaluations per step
+//   "radau"           implicit Radau IIA of order 5 (L-stable), adaptive steps under `tolerance`,
+//                     dense output by its collocation polynomial: for models stiff at that accuracy
 //   "auto"            fox_goodwin when time_step is within its stability limit, else newmark's
 //                     average acceleration (choose_method)
 inline void set_method(NewmarkSettings& s, const std::string& name) {
@@ -155,15 +160,18 @@ inline void set_method(NewmarkSettings& s, const std::string& name) {
         s.method = Method::dormand_prince;
     } else if (name == "dop853") {
         s.method = Method::dop853;
+    } else if (name == "radau") {
+        s.method = Method::radau;
     } else if (name == "auto") {
         s.method = Method::automatic;
     } else {
-        detail::fail("method must be 'newmark', 'fox_goodwin', 'dormand_prince', 'dop853' or 'auto', got '", name, "'");
+        detail::fail("method must be 'newmark', 'fox_goodwin', 'dormand_prince', 'dop853', 'radau' or 'auto', got '", name, "'");
     }
 }
 inline const char* method_name(const NewmarkSettings& s) {
     if (s.method == Method::dormand_prince) return "dormand_prince";
     if (s.method == Method::dop853) return "dop853";
+    if (s.method == Method::radau) return "radau";
     if (s.method == Method::automatic) return "auto";
     return s.gamma == 0.5 && s.beta == 1.0 / 12.0 && s.hht_alpha == 0.0 ? "fox_goodwin" : "newmark";
 }
@@ -172,7 +180,7 @@ struct SolverStatistics {
     std::uint64_t steps = 0;              // accepted steps, substeps included
     std::uint64_t newton_iterations = 0;  // linear solves
     std::uint64_t halvings = 0;
-    std::uint64_t evaluations = 0;        // explicit methods: force evaluations
+    std::uint64_t evaluations = 0;        // adaptive methods: force evaluations
     std::uint64_t rejected_steps = 0;     // adaptive methods: steps retried smaller
     std::uint64_t stiff_steps = 0;        // explicit methods: steps bounded by stability, not accuracy
     int max_iterations_in_a_step = 0;

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // One call for the common case: start a system in its initial state (or a given state), integrate
-// with Newmark/HHT or Dormand-Prince 5(4) / 8(5,3) (settings.method) for a duration, record named
+// with Newmark/HHT, Dormand-Prince 5(4) / 8(5,3) or Radau IIA (settings.method) for a duration, record named
 // channels, report progress and honour cancellation.
 #pragma once
 
@@ -14,6 +14,7 @@
 #include "camfollower/solver/integrate.hpp"
 #include "camfollower/solver/newmark.hpp"
 #include "camfollower/solver/observers.hpp"
+#include "camfollower/solver/radau.hpp"
 #include "camfollower/solver/settle.hpp"
 #include "camfollower/solver/shooting.hpp"
 #include "camfollower/solver/sparse_newton.hpp"
@@ -169,8 +170,10 @@ RunResult<System> simulate(const System& system, const NewmarkSettings& requeste
     const NewmarkSettings& settings = requested;
     if (is_runge_kutta(settings.method)) {
         if (settings.backend == Backend::sparse)
-            detail::fail("linear_solver 'sparse' or 'klu' applies to Newmark; ", method_name(settings), " solves no linear system");
+            detail::fail("linear_solver 'sparse' or 'klu' applies to Newmark; ", method_name(settings),
+                         settings.method == Method::radau ? " runs on the dense backend only" : " solves no linear system");
         if (settings.method == Method::dop853) return detail::run<Dop853<System>>(system, settings, options, q0, v0);
+        if (settings.method == Method::radau) return detail::run<Radau<System>>(system, settings, options, q0, v0);
         return detail::run<DormandPrince<System>>(system, settings, options, q0, v0);
     }
     if constexpr (detail::has_sparse_matrices<System>::value) {
@@ -207,6 +210,8 @@ PeriodicOrbit periodic_orbit(const System& system, const NewmarkSettings& reques
     const Eigen::VectorXd v = v0 ? Eigen::VectorXd(*v0) : Eigen::VectorXd(initial_velocity(system));
     if (settings.method == Method::dop853)
         return detail::shoot_with<Dop853<System>>(system, settings, options, q, v, keep_going);
+    if (settings.method == Method::radau)
+        return detail::shoot_with<Radau<System>>(system, settings, options, q, v, keep_going);
     if (settings.method == Method::dormand_prince)
         return detail::shoot_with<DormandPrince<System>>(system, settings, options, q, v, keep_going);
     if constexpr (detail::has_sparse_matrices<System>::value) {
