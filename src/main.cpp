@@ -121,15 +121,16 @@ int run(const std::string& config, std::string output) {
         const auto result = cf::simulate(m, settings, options);
         cf::cli::write_recording_csv(output, result.recording, config);
         const cf::SolverStatistics& stats = result.report.stats;
-        if (cf::is_runge_kutta(settings.method))
-            std::printf("%zu rows, %zu channels (%s: %llu steps, %llu rejected, %llu force evaluations, output every %.4g s)",
-                        result.recording.rows, result.recording.names.size(), result.method, static_cast<unsigned long long>(stats.steps),
+        if (cf::uses_tolerance(settings.method))
+            std::printf("%zu rows, %zu channels (%s%s: %llu steps, %llu rejected, %llu force evaluations, output every %.4g s)",
+                        result.recording.rows, result.recording.names.size(), result.method,
+                        cf::is_automatic(settings.method) ? ", chosen by auto" : "", static_cast<unsigned long long>(stats.steps),
                         static_cast<unsigned long long>(stats.rejected_steps), static_cast<unsigned long long>(stats.evaluations),
                         settings.time_step);
         else
             std::printf("%zu rows, %zu channels (%s%s: %llu steps, dt = %.4g s, %.3f Newton iterations/step)", result.recording.rows,
                         result.recording.names.size(), result.method,
-                        settings.method == cf::Method::automatic ? ", chosen by auto" : "",
+                        cf::is_automatic(settings.method) ? ", chosen by auto" : "",
                         static_cast<unsigned long long>(stats.steps), settings.time_step, stats.mean_iterations());
         if (c.solver.settle)
             std::printf(", %s after %d revolutions (change %.3g)", result.settle.settled ? "settled" : "NOT settled",

@@ -27,6 +27,7 @@
 #include "camfollower/motion/laws.hpp"
 #include "camfollower/motion/program.hpp"
 #include "camfollower/motion/smoothness.hpp"
+#include "camfollower/solver/choose_method.hpp"
 #include "camfollower/solver/integrate.hpp"
 #include "camfollower/solver/newmark.hpp"
 #include "camfollower/solver/observers.hpp"

@@ -48,11 +48,14 @@ def simulate(system, *, duration: Optional[float] = None, revolutions: Optional[
     contact losses, not for very stiff contacts at tight tolerances), "radau" (implicit Radau IIA of
     order 5, L-stable, with the same error control, ``tolerance`` and ``max_step``, simplified Newton
     on the stages (``newton_iterations``): for models stiff at the accuracy wanted, where the explicit
-    methods report ``stiff_steps``; dense backend only) or "auto" (fox_goodwin when ``time_step`` is
-    within its stability limit at the start, with a 10 % margin, else average-acceleration newmark).
-    ``stats`` reports ``method`` (the one that ran), ``requested_method``, ``evaluations``,
-    ``rejected_steps`` and ``stiff_steps`` (steps bounded by stability rather than accuracy: an
-    implicit method would be cheaper there).
+    methods report ``stiff_steps``; dense backend only) or "auto": without ``tolerance``, fox_goodwin
+    when ``time_step`` is within its stability limit at the start, with a 10 % margin, else
+    average-acceleration newmark; with ``tolerance`` (and optionally ``max_step``), radau when the
+    model's fastest modes, linearized at the start, are damped (a mode at damping ratio 0.3 or more at
+    least half as fast as the fastest ringing one), else dop853 (above 200 DOFs: dop853).
+    ``stats`` reports ``method`` (the one that ran), ``requested_method``, ``method_choice`` (with
+    "auto": what it took and why, in words), ``evaluations``, ``rejected_steps`` and ``stiff_steps``
+    (steps bounded by stability rather than accuracy: an implicit method would be cheaper there).
 
     ``system`` is a Mechanism (camfollower.MechanismBuilder, camfollower.presets) or a CamFollowerModel.
     ``progress(steps_done, steps_planned)`` is called about every ``progress_interval`` seconds;

@@ -63,7 +63,7 @@ py::dict to_python(const config::CaseConfig& c) {
     } else {
         solver["method"] = method;
     }
-    if (is_runge_kutta(s.newmark.method)) {
+    if (uses_tolerance(s.newmark.method)) {
         solver["tolerance"] = s.newmark.tolerance;
         solver["max_step"] = s.newmark.max_step;
     }

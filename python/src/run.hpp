@@ -34,9 +34,11 @@ inline NewmarkSettings settings_from(double time_step, std::optional<double> gam
     if (method != "newmark" && (gamma || beta || hht_alpha != 0.0))
         detail::fail("gamma, beta and hht_alpha apply to method 'newmark' only (method '", method, "' sets its own)");
     set_method(s, method);
-    if (!is_runge_kutta(s.method) && (tolerance || max_step))
-        detail::fail(tolerance ? "tolerance" : "max_step", " applies to methods 'dormand_prince', 'dop853' and 'radau' only, got method '",
-                     method, "'");
+    // method "auto" with a tolerance chooses among the adaptive methods.
+    if (s.method == Method::automatic && tolerance) set_auto_tolerance(s, *tolerance);
+    if (!uses_tolerance(s.method) && (tolerance || max_step))
+        detail::fail(tolerance ? "tolerance" : "max_step", " applies to methods 'dormand_prince', 'dop853', 'radau' and "
+                     "'auto' with a tolerance only, got method '", method, "'");
     if (tolerance) s.tolerance = *tolerance;
     if (max_step) s.max_step = *max_step;
     if (gamma) s.gamma = *gamma;
@@ -74,6 +76,7 @@ struct RunOutput {
     const char* backend = "";
     const char* method = "";
     const char* requested_method = "";
+    std::string method_choice;
     double highest_mode_hz = 0.0;
     double final_time = 0.0;
     ContactLosses losses;
@@ -93,6 +96,7 @@ std::shared_ptr<RunOutput> output_of(const System& system, RunResult<System>&& r
     out->backend = r.backend;
     out->method = r.method;
     out->requested_method = r.requested_method;
+    out->method_choice = std::move(r.method_choice);
     out->highest_mode_hz = r.highest_mode_hz;
     out->final_time = r.final_state.t;
     out->losses = losses_of(system, r.final_state);
@@ -141,6 +145,7 @@ inline py::dict dict_of(const std::shared_ptr<RunOutput>& out) {
     stats["backend"] = result.backend;
     stats["method"] = result.method;
     stats["requested_method"] = result.requested_method;
+    if (!result.method_choice.empty()) stats["method_choice"] = result.method_choice;
     stats["evaluations"] = st.evaluations;
     stats["rejected_steps"] = st.rejected_steps;
     stats["stiff_steps"] = st.stiff_steps;

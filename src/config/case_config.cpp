@@ -628,12 +628,14 @@ SolverConfig read_solver(const Section& s) {
     } else if (scheme != "average_acceleration") {
         set_method(n, scheme);  // fox_goodwin, dormand_prince, dop853, radau, auto
     }
-    if (is_runge_kutta(n.method)) {
+    // scheme = "auto" with a tolerance chooses among the adaptive methods.
+    if (n.method == Method::automatic && s.has("tolerance")) n.method = Method::automatic_adaptive;
+    if (uses_tolerance(n.method)) {
         n.tolerance = s.quantity("tolerance", "-", n.tolerance);
         n.max_step = s.quantity("max_step", "s", n.max_step);
     } else {
         for (const char* k : {"tolerance", "max_step"})
-            if (s.has(k)) s.fail(k, "applies only with scheme = \"dormand_prince\", \"dop853\" or \"radau\"");
+            if (s.has(k)) s.fail(k, "applies only with scheme = \"dormand_prince\", \"dop853\", \"radau\" or \"auto\" with a tolerance");
     }
     n.residual_tolerance = s.quantity("residual_tolerance", "-", n.residual_tolerance);
     n.increment_tolerance = s.quantity("increment_tolerance", "-", n.increment_tolerance);

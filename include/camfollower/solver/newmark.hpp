@@ -50,19 +50,24 @@ inline constexpr int sparse_backend_threshold = 100;  // DOFs; measured crossove
 // Dormand-Prince 5(4) or 8(5,3) (dop853) with adaptive steps under `tolerance` (solver/
 // dormand_prince.hpp), or implicit Radau IIA of order 5 with adaptive steps (solver/radau.hpp),
 // time_step then being the output interval only.
-// automatic: chosen at the start of a run from the model's highest mode (choose_method, below).
-enum class Method { newmark, dormand_prince, automatic, dop853, radau };
+// automatic: Fox-Goodwin or average-acceleration Newmark at time_step, chosen at the start of a run
+// from the model's highest mode; automatic_adaptive: dop853 or radau under `tolerance`, chosen from
+// the damping of the model's fastest modes (choose_method, below).
+enum class Method { newmark, dormand_prince, automatic, dop853, radau, automatic_adaptive };
 // The adaptive Runge-Kutta methods (explicit and Radau IIA): tolerance, max_step and adaptive apply to them.
 inline constexpr bool is_runge_kutta(Method m) {
     return m == Method::dormand_prince || m == Method::dop853 || m == Method::radau;
 }
+// The methods that read `tolerance` and `max_step`: the adaptive ones and the choice among them.
+inline constexpr bool uses_tolerance(Method m) { return is_runge_kutta(m) || m == Method::automatic_adaptive; }
+inline constexpr bool is_automatic(Method m) { return m == Method::automatic || m == Method::automatic_adaptive; }
 
 // The solver's settings (named for its first method; `method` picks another).
 struct NewmarkSettings {
     Method method = Method::newmark;
     double time_step = 3e-6;            // s (dormand_prince, dop853, radau: the output interval)
-    double tolerance = 1e-6;            // dormand_prince, dop853, radau: relative error per step, displacements and forces
-    double max_step = 0.0;              // dormand_prince, dop853, radau: largest step, s (0: unbounded)
+    double tolerance = 1e-6;            // dormand_prince, dop853, radau, automatic_adaptive: relative error per step, displacements and forces
+    double max_step = 0.0;              // dormand_prince, dop853, radau, automatic_adaptive: largest step, s (0: unbounded)
     bool adaptive = true;               // dormand_prince, dop853, radau: false = fixed steps of max_step (or time_step), no error control
     double gamma = 0.5;
     double beta = 0.25;
@@ -109,7 +114,10 @@ struct NewmarkSettings {
         // As for time_step: below a picosecond no mechanical model needs a step.
         if (!(std::isfinite(max_step) && (max_step == 0.0 || max_step >= 1e-12)))
             detail::fail("max_step must be 0 (unbounded) or finite and >= 1e-12 s, got ", max_step);
-        if (method == Method::automatic && (gamma != 0.5 || beta != 0.25 || hht_alpha != 0.0))
+        if (method == Method::automatic_adaptive && !adaptive)
+            detail::fail("method 'auto' with a tolerance chooses an adaptive method: adaptive = false needs a named "
+                         "method ('dormand_prince', 'dop853' or 'radau')");
+        if (is_automatic(method) && (gamma != 0.5 || beta != 0.25 || hht_alpha != 0.0))
             detail::fail("method 'auto' chooses gamma and beta itself: leave gamma = 1/2, beta = 1/4, hht_alpha = 0 "
                          "(got ", gamma, ", ", beta, ", ", hht_alpha, ")");
     }
@@ -149,7 +157,8 @@ inline const char* linear_solver_name(const NewmarkSettings& s) {
 //   "radau"           implicit Radau IIA of order 5 (L-stable), adaptive steps under `tolerance`,
 //                     dense output by its collocation polynomial: for models stiff at that accuracy
 //   "auto"            fox_goodwin when time_step is within its stability limit, else newmark's
-//                     average acceleration (choose_method)
+//                     average acceleration (choose_method); given a tolerance (set_auto_tolerance),
+//                     radau when the model's fastest modes are damped, else dop853
 inline void set_method(NewmarkSettings& s, const std::string& name) {
     if (name == "newmark") {
         s.method = Method::newmark;
@@ -172,8 +181,15 @@ inline const char* method_name(const NewmarkSettings& s) {
     if (s.method == Method::dormand_prince) return "dormand_prince";
     if (s.method == Method::dop853) return "dop853";
     if (s.method == Method::radau) return "radau";
-    if (s.method == Method::automatic) return "auto";
+    if (is_automatic(s.method)) return "auto";
     return s.gamma == 0.5 && s.beta == 1.0 / 12.0 && s.hht_alpha == 0.0 ? "fox_goodwin" : "newmark";
+}
+// Method "auto" under `tolerance` (relative error per step, as for the adaptive methods): the choice
+// between dop853 and radau, time_step being the output interval.
+inline void set_auto_tolerance(NewmarkSettings& s, double tolerance) {
+    if (!is_automatic(s.method)) detail::fail("set_auto_tolerance: the method must be 'auto', got '", method_name(s), "'");
+    s.method = Method::automatic_adaptive;
+    s.tolerance = tolerance;
 }
 
 struct SolverStatistics {
@@ -258,22 +274,6 @@ double highest_angular_frequency(const System& system, const State<System>& s) {
 inline double newmark_step_limit(double gamma, double beta, double omega_max) {
     if (beta >= 0.5 * gamma) return std::numeric_limits<double>::infinity();
     return 0.9 / (omega_max * std::sqrt(0.5 * gamma - beta));
-}
-
-// Method "auto" made concrete for a run starting at `start`: Fox-Goodwin when time_step is within its
-// stability limit there (at equal cost per step it is 50x to 1000x more accurate in contact force than
-// average acceleration on the paper preset, docs/benchmarks.md), else average-acceleration Newmark
-// (unconditionally stable). Above 200 DOFs the highest mode is not computed: average acceleration.
-// Other methods are returned as they are.
-template <class System>
-NewmarkSettings choose_method(const System& system, NewmarkSettings s, const State<System>& start) {
-    if (s.method != Method::automatic) return s;
-    s.method = Method::newmark;
-    s.gamma = 0.5, s.beta = 0.25, s.hht_alpha = 0.0;
-    if (system.size() > 200) return s;
-    const double omega = highest_angular_frequency(system, start);
-    if (omega >= 0.0 && s.time_step <= newmark_step_limit(0.5, 1.0 / 12.0, omega)) s.beta = 1.0 / 12.0;
-    return s;
 }
 
 // The Newton matrix's algebra for dense systems: A0 = M / (beta dt^2) + (1 + alpha)(gamma / (beta dt) C

@@ -8,8 +8,11 @@
 #include <functional>
 #include <limits>
 #include <optional>
+#include <string>
 #include <type_traits>
+#include <utility>
 
+#include "camfollower/solver/choose_method.hpp"
 #include "camfollower/solver/dormand_prince.hpp"
 #include "camfollower/solver/integrate.hpp"
 #include "camfollower/solver/newmark.hpp"
@@ -46,6 +49,7 @@ struct RunResult {
     const char* backend = "dense";  // the Newton algebra used: "dense" or "sparse"
     const char* method = "newmark";  // method_name(settings) of the method that ran
     const char* requested_method = "newmark";  // as asked: "auto" when choose_method picked `method`
+    std::string method_choice;  // with "auto": what choose_method picked and why, in words; else empty
     // Highest natural frequency at the start (Hz, contacts linearized), for reading the step against
     // the shortest period: dense backend up to 200 DOFs only, else NaN (an eigen solve too costly).
     double highest_mode_hz = std::numeric_limits<double>::quiet_NaN();
@@ -134,7 +138,7 @@ void check_time_step(const System& system, const NewmarkSettings& settings, doub
     if (settings.time_step > duration)
         detail::fail("time_step = ", settings.time_step, " s is longer than the duration ", duration, " s");
     // A run whose steps are bounded by max_step is bounded like a fixed-step run (1e10 steps).
-    if (is_runge_kutta(settings.method) && settings.max_step > 0.0 && !(duration / settings.max_step <= 1e10))
+    if (uses_tolerance(settings.method) && settings.max_step > 0.0 && !(duration / settings.max_step <= 1e10))
         detail::fail("duration / max_step = ", duration / settings.max_step, " steps is too many (limit 1e10); raise "
                      "max_step or shorten the run");
     if constexpr (detail::has_period<System>::value) {
@@ -145,12 +149,12 @@ void check_time_step(const System& system, const NewmarkSettings& settings, doub
     }
 }
 
-// The settings with method "auto" made concrete for a run starting at (q0, v0) (choose_method).
+// The settings with method "auto" made concrete for a run starting at (q0, v0), and why (choose_method).
 template <class System>
-NewmarkSettings concrete_settings(const System& system, const NewmarkSettings& settings,
-                                  const std::optional<typename System::Vector>& q0,
-                                  const std::optional<typename System::Vector>& v0) {
-    if (settings.method != Method::automatic) return settings;
+MethodChoice concrete_settings(const System& system, const NewmarkSettings& settings,
+                               const std::optional<typename System::Vector>& q0,
+                               const std::optional<typename System::Vector>& v0) {
+    if (!is_automatic(settings.method)) return {settings, ""};
     const typename System::Vector q = q0 ? *q0 : initial_displacement(system);
     const typename System::Vector v = v0 ? *v0 : initial_velocity(system);
     return choose_method(system, settings, state_at(system, 0.0, q, v));
@@ -162,9 +166,11 @@ RunResult<System> simulate(const System& system, const NewmarkSettings& requeste
                            const std::optional<typename System::Vector>& v0 = std::nullopt) {
     if (options.progress && options.progress_every < 1) detail::fail("progress_every must be >= 1");
     check_time_step(system, requested, options.duration);
-    if (requested.method == Method::automatic) {
-        RunResult<System> r = simulate(system, concrete_settings(system, requested, q0, v0), options, q0, v0);
+    if (is_automatic(requested.method)) {
+        MethodChoice choice = concrete_settings(system, requested, q0, v0);
+        RunResult<System> r = simulate(system, choice.settings, options, q0, v0);
         r.requested_method = "auto";
+        r.method_choice = std::move(choice.reason);
         return r;
     }
     const NewmarkSettings& settings = requested;
@@ -205,7 +211,7 @@ PeriodicOrbit periodic_orbit(const System& system, const NewmarkSettings& reques
         if (options.period == 0.0) options.period = system.period();
     }
     check_time_step(system, requested, options.period);
-    const NewmarkSettings settings = concrete_settings(system, requested, q0, v0);
+    const NewmarkSettings settings = concrete_settings(system, requested, q0, v0).settings;
     const Eigen::VectorXd q = q0 ? Eigen::VectorXd(*q0) : Eigen::VectorXd(initial_displacement(system));
     const Eigen::VectorXd v = v0 ? Eigen::VectorXd(*v0) : Eigen::VectorXd(initial_velocity(system));
     if (settings.method == Method::dop853)

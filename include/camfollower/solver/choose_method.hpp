@@ -1,0 +1,153 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Method "auto" made concrete at the start of a run, with the reason in words:
+//   at a fixed time_step (Method::automatic): Fox-Goodwin within its stability limit, else
+//   average-acceleration Newmark;
+//   under a tolerance (Method::automatic_adaptive): radau when the model's fastest modes are damped,
+//   dop853 when they ring.
+#pragma once
+
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <string>
+
+#include <Eigen/Eigenvalues>
+
+#include "camfollower/error.hpp"
+#include "camfollower/solver/newmark.hpp"
+
+namespace camfollower {
+
+// A mode of the linearized first-order system x' = J x, x = (q, v), J = [0 I; -M^-1 K_t  -M^-1 C_t]:
+// rate |lambda| (rad/s) and damping ratio -Re(lambda) / |lambda| (1 for a real, decaying root).
+struct ModeRate {
+    double rate = 0.0, damping_ratio = 0.0;
+};
+// Above this damping ratio a mode decays within about a period instead of ringing.
+inline constexpr double ringing_damping_ratio = 0.3;
+// A fastest ringing mode this many times faster than the next is a stiff spring the motion loads
+// quasi-statically (a stiff contact); at tolerances down to isolated_mode_tolerance its oscillation
+// need not be resolved (measured: docs/solvers.md).
+inline constexpr double isolated_mode_ratio = 3.0;
+inline constexpr double isolated_mode_tolerance = 1e-7;
+
+// The two fastest ringing modes (damping ratio below ringing_damping_ratio) and the fastest damped
+// one (at or above it) of `system` with its contacts' tangent (stiffness and damping) at state s,
+// each complex pair counted once; a rate of 0 where there is none. Allocates (a 2n x 2n eigenvalue
+// problem); call once per run.
+struct FastestModes {
+    ModeRate ringing, next_ringing, damped;
+};
+template <class System>
+FastestModes fastest_modes(const System& system, const State<System>& s) {
+    const int n = system.size();
+    LowRank<typename System::Vector> uvq(n, std::max(1, max_rank(system))), uvv(n, std::max(1, max_rank(system)));
+    uvq.clear(), uvv.clear();
+    tangent(system, s.workspace, s.q, s.v, 1.0, 0.0, uvq);
+    tangent(system, s.workspace, s.q, s.v, 0.0, 1.0, uvv);
+    Eigen::MatrixXd Kt = system.stiffness(), Ct = system.damping();
+    for (int r = 0; r < uvq.rank; ++r) Kt += uvq.U.col(r) * uvq.V.col(r).transpose();
+    for (int r = 0; r < uvv.rank; ++r) Ct += uvv.U.col(r) * uvv.V.col(r).transpose();
+    const Eigen::PartialPivLU<Eigen::MatrixXd> mass(Eigen::MatrixXd(system.mass()));
+    Eigen::MatrixXd J = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+    J.topRightCorner(n, n).setIdentity();
+    J.bottomLeftCorner(n, n) = -mass.solve(Kt);
+    J.bottomRightCorner(n, n) = -mass.solve(Ct);
+    const Eigen::EigenSolver<Eigen::MatrixXd> eig(J, false);
+    FastestModes out;
+    if (eig.info() != Eigen::Success) return out;
+    for (Eigen::Index k = 0; k < eig.eigenvalues().size(); ++k) {
+        const std::complex<double> lambda = eig.eigenvalues()[k];
+        const double rate = std::abs(lambda);
+        if (!(rate > 0.0) || lambda.imag() < 0.0) continue;
+        const ModeRate mode{rate, -lambda.real() / rate};
+        if (mode.damping_ratio >= ringing_damping_ratio) {
+            if (rate > out.damped.rate) out.damped = mode;
+        } else if (rate > out.ringing.rate) {
+            out.next_ringing = out.ringing, out.ringing = mode;
+        } else if (rate > out.next_ringing.rate) {
+            out.next_ringing = mode;
+        }
+    }
+    return out;
+}
+
+namespace detail {
+// A figure for a reason in words: 4 significant digits.
+inline std::string figure(double x) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.4g", x);
+    return text;
+}
+}  // namespace detail
+
+// The method a run with `s` uses, and why, in words (RunResult::method_choice).
+struct MethodChoice {
+    NewmarkSettings settings;
+    std::string reason;  // empty when the method was named
+};
+
+// Method "auto" made concrete for a run starting at `start`; other methods are returned as they are.
+//  - automatic: Fox-Goodwin when time_step is within its stability limit there (at equal cost per
+//    step it is 50x to 1000x more accurate in contact force than average acceleration on the paper
+//    preset, docs/benchmarks.md), else average-acceleration Newmark (unconditionally stable). Above
+//    200 DOFs the highest mode is not computed: average acceleration.
+//  - automatic_adaptive: radau (L-stable: it steps over what it need not resolve) when an explicit
+//    method's step would be bounded by stability on a component that carries little: a damped mode
+//    (damping ratio >= 0.3) at least half as fast as the fastest ringing one, or, at tolerances of
+//    1e-7 and looser, a fastest ringing mode isolated_mode_ratio times faster than the next. Else
+//    dop853 (order 8, no linear solves): the fastest modes ring and every method has to resolve
+//    them. Above 200 DOFs the spectrum is not computed: dop853.
+template <class System>
+MethodChoice choose_method(const System& system, NewmarkSettings s, const State<System>& start) {
+    if (s.method == Method::automatic) {
+        s.method = Method::newmark;
+        s.gamma = 0.5, s.beta = 0.25, s.hht_alpha = 0.0;
+        if (system.size() > 200)
+            return {s, detail::concat("newmark (average acceleration): ", system.size(),
+                                      " DOFs, above 200 the highest mode is not computed")};
+        const double omega = highest_angular_frequency(system, start);
+        const double limit = newmark_step_limit(0.5, 1.0 / 12.0, omega);
+        const std::string where = "time_step " + detail::figure(s.time_step) + " s against Fox-Goodwin's stability limit " +
+                                  detail::figure(limit) + " s (highest mode " + detail::figure(omega / (2.0 * pi)) + " Hz)";
+        if (omega >= 0.0 && s.time_step <= limit) {
+            s.beta = 1.0 / 12.0;
+            return {s, "fox_goodwin: " + where};
+        }
+        return {s, "newmark (average acceleration): " + where};
+    }
+    if (s.method == Method::automatic_adaptive) {
+        if (system.size() > 200) {
+            s.method = Method::dop853;
+            return {s, detail::concat("dop853: ", system.size(), " DOFs, above 200 the spectrum is not computed")};
+        }
+        const FastestModes modes = fastest_modes(system, start);
+        using detail::figure;
+        const auto mode = [](const ModeRate& m) {
+            return figure(m.rate / (2.0 * pi)) + " Hz at damping ratio " + figure(m.damping_ratio);
+        };
+        const std::string units = " (rates |lambda| / 2 pi)";
+        if (modes.damped.rate > 0.0 && modes.damped.rate >= 0.5 * modes.ringing.rate) {
+            s.method = Method::radau;
+            return {s, "radau: the fastest modes are damped: " + mode(modes.damped) + " (>= " + figure(ringing_damping_ratio) +
+                           "), the fastest ringing mode " + mode(modes.ringing) + units};
+        }
+        const double isolation = modes.next_ringing.rate > 0.0 ? modes.ringing.rate / modes.next_ringing.rate : 0.0;
+        const std::string ringing = mode(modes.ringing) + ", " + figure(isolation) + " times the next ringing mode (" +
+                                    figure(modes.next_ringing.rate / (2.0 * pi)) + " Hz)";
+        if (isolation >= isolated_mode_ratio && s.tolerance >= isolated_mode_tolerance) {
+            s.method = Method::radau;
+            return {s, "radau: the fastest mode rings alone, a stiff spring loaded quasi-statically: " + ringing +
+                           " (>= " + figure(isolated_mode_ratio) + ", tolerance >= " + figure(isolated_mode_tolerance) + ")" + units};
+        }
+        s.method = Method::dop853;
+        return {s, "dop853: the fastest modes ring: " + ringing +
+                       (modes.damped.rate > 0.0 ? ", the fastest damped mode (>= " + figure(ringing_damping_ratio) + ") " +
+                                                      mode(modes.damped) + ", below half that rate"
+                                                : ", no mode damped at " + figure(ringing_damping_ratio) + " or more") +
+                       units};
+    }
+    return {s, ""};
+}
+
+}  // namespace camfollower

@@ -1,0 +1,140 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Method "auto" (solver/choose_method.hpp): the fastest modes' rates and damping ratios against the
+// closed form of a two-mass system, the choice under a tolerance (radau where the fastest mode is
+// damped or rings alone, dop853 else) run exactly as the method chosen, the reason in words, bad
+// settings.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <string>
+
+#include "camfollower/model/presets/paper.hpp"
+#include "camfollower/solver/choose_method.hpp"
+#include "camfollower/solver/simulate.hpp"
+#include "linear_system_instances.hpp"
+
+using namespace camfollower;
+
+namespace {
+
+// Two unit masses on a soft spring to ground (k0), coupled by a stiff spring k and a damper c. Their
+// relative motion is a mode of natural rate sqrt(2 k) (reduced mass 1/2) and damping ratio
+// c / (2 sqrt(k / 2)) = c / sqrt(2 k), to within k0 / k.
+LinearSystem<2> coupled(double k, double c) {
+    LinearSystem<2> s;
+    const double k0 = 250.0;
+    s.M = Eigen::Matrix2d::Identity();
+    s.K << k0 + k, -k, -k, k;
+    s.C << c, -c, -c, c;
+    s.external = [](double t) { return Eigen::Vector2d(std::sin(6.0 * t), 0.0); };
+    return s;
+}
+
+NewmarkSettings automatic(double output_interval, double tolerance) {
+    NewmarkSettings s;
+    set_method(s, "auto");
+    s.time_step = output_interval;
+    set_auto_tolerance(s, tolerance);
+    return s;
+}
+
+template <class System>
+void check_same_run(const System& system, const NewmarkSettings& chosen_by_auto, const char* method, double duration) {
+    RunOptions o;
+    o.duration = duration;
+    const auto r = simulate(system, chosen_by_auto, o);
+    CHECK(std::string(r.method) == method);
+    CHECK(std::string(r.requested_method) == "auto");
+    CHECK(r.method_choice.rfind(std::string(method) + ": ", 0) == 0);
+    NewmarkSettings named = chosen_by_auto;
+    set_method(named, method);
+    const auto direct = simulate(system, named, o);
+    CHECK(direct.method_choice.empty());
+    REQUIRE(direct.recording.rows == r.recording.rows);
+    REQUIRE(r.report.stats.steps == direct.report.stats.steps);
+    REQUIRE(r.recording.names == direct.recording.names);
+    std::size_t differ = 0;
+    for (const std::string& name : r.recording.names)
+        for (std::size_t i = 0; i < r.recording.rows; ++i) differ += r.recording.at(name, i) != direct.recording.at(name, i);
+    CHECK(differ == 0u);
+}
+
+}  // namespace
+
+TEST_CASE("The fastest ringing and damped modes: rates and damping ratios of a coupled pair against the closed form") {
+    const double k = 1e10;
+    const double soft = std::sqrt(250.0 / 2.0);  // both masses on k0 as one
+    for (double c : {1e3, 1e5}) {
+        const LinearSystem<2> s = coupled(k, c);
+        const FastestModes modes = fastest_modes(s, state_at(s, 0.0, s.q0, Eigen::Vector2d::Zero().eval()));
+        const double rate = std::sqrt(2.0 * k), zeta = c / std::sqrt(2.0 * k);
+        CAPTURE(c, zeta);
+        const ModeRate& fast = zeta < ringing_damping_ratio ? modes.ringing : modes.damped;
+        CHECK(fast.rate == Approx(rate).epsilon(1e-6));
+        CHECK(fast.damping_ratio == Approx(zeta).epsilon(1e-6));
+        // The soft mode rings (the damper does not act on the pair moving as one), next to the stiff one
+        // or alone.
+        const ModeRate& slow = zeta < ringing_damping_ratio ? modes.next_ringing : modes.ringing;
+        CHECK(slow.rate == Approx(soft).epsilon(1e-6));
+        CHECK(slow.damping_ratio < 1e-6);
+        CHECK((zeta < ringing_damping_ratio ? modes.damped.rate : modes.next_ringing.rate) == 0.0);
+    }
+}
+
+TEST_CASE("Auto under a tolerance: radau where the fastest mode is damped or rings alone, dop853 else, run as named") {
+    // zeta = 0.707: damped, radau (L-stable) steps over it.
+    check_same_run(coupled(1e10, 1e5), automatic(0.01, 1e-6), "radau", 0.2);
+    // zeta = 0.007: the stiff mode rings, 1.3e4 times faster than the soft one: radau down to
+    // tolerance 1e-7, dop853 below.
+    check_same_run(coupled(1e10, 1e3), automatic(1e-4, 1e-6), "radau", 2e-3);
+    check_same_run(coupled(1e10, 1e3), automatic(1e-4, 1e-8), "dop853", 2e-3);
+    // The paper preset's fastest mode is the undamped cam contact (12.0 kHz), 1.15 times the next: dop853.
+    // With 3 % of critical in every element a stiffly damped mode (11.0 kHz, 0.79) is faster than half
+    // of the fastest ringing one; with the contact 100 times stiffer the contact mode (86 kHz) is 8.2
+    // times the next.
+    const Mechanism<presets::paper_dofs> paper = presets::paper(), damped = presets::paper_damped();
+    CamFollowerParameters p;
+    p.contact_stiffness *= 100.0;
+    const Mechanism<presets::paper_dofs> stiff = presets::paper(p);
+    check_same_run(paper, automatic(paper.period() / 512, 1e-6), "dop853", paper.period() / 16);
+    check_same_run(damped, automatic(damped.period() / 512, 1e-6), "radau", damped.period() / 16);
+    check_same_run(stiff, automatic(stiff.period() / 512, 1e-6), "radau", stiff.period() / 16);
+    RunOptions o;
+    o.duration = damped.period() / 64;
+    const std::string why = simulate(damped, automatic(damped.period() / 512, 1e-6), o).method_choice;
+    CHECK_THAT(why, Catch::StartsWith("radau: the fastest modes are damped: ") && Catch::Contains("Hz at damping ratio 0.78"));
+    const std::string alone = simulate(stiff, automatic(stiff.period() / 512, 1e-6), o).method_choice;
+    CHECK_THAT(alone, Catch::StartsWith("radau: the fastest mode rings alone") && Catch::Contains(" times the next ringing mode (1.052e+04 Hz)"));
+}
+
+TEST_CASE("Auto at a fixed step says why it took Fox-Goodwin or average acceleration") {
+    const Mechanism<presets::paper_dofs> paper = presets::paper();
+    RunOptions o;
+    o.duration = paper.period() / 64;
+    NewmarkSettings s;
+    set_method(s, "auto");
+    s.time_step = paper.period() / 8192;
+    const auto fine = simulate(paper, s, o);
+    CHECK(std::string(fine.method) == "fox_goodwin");
+    CHECK_THAT(fine.method_choice, Catch::StartsWith("fox_goodwin: time_step 9.766e-06 s against Fox-Goodwin's stability limit"));
+    s.time_step = paper.period() / 1024;  // 78 us: beyond the limit (~29 us at the 12 kHz contact mode)
+    const auto coarse = simulate(paper, s, o);
+    CHECK(std::string(coarse.method) == "newmark");
+    CHECK_THAT(coarse.method_choice, Catch::StartsWith("newmark (average acceleration): time_step 7.81"));
+}
+
+TEST_CASE("Auto under a tolerance refuses what it cannot honour, naming it") {
+    NewmarkSettings named;
+    set_method(named, "dop853");
+    CHECK_THROWS_WITH(set_auto_tolerance(named, 1e-6), Catch::Contains("set_auto_tolerance: the method must be 'auto', got 'dop853'"));
+    NewmarkSettings s = automatic(1e-3, 1e-6);
+    CHECK(std::string(method_name(s)) == "auto");
+    CHECK(uses_tolerance(s.method));
+    s.adaptive = false;
+    CHECK_THROWS_WITH(s.validate(), Catch::Contains("adaptive = false needs a named method"));
+    s = automatic(1e-3, 0.0);
+    CHECK_THROWS_WITH(s.validate(), Catch::Contains("tolerance"));
+    s = automatic(1e-3, 1e-6);
+    s.beta = 1.0 / 12.0;
+    CHECK_THROWS_WITH(s.validate(), Catch::Contains("method 'auto' chooses gamma and beta itself"));
+}
