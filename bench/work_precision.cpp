@@ -21,6 +21,7 @@
 #include <ctime>
 #include <stdexcept>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -414,6 +415,17 @@ int main(int argc, char** argv) {
             std::snprintf(label, sizeof label, "%s tol %.0e", method, tol);
             settings.push_back({label, [&m, s] { return run_camfollower(m, s); }, {}, {}});
         }
+    // Method "auto" under a tolerance, labelled with the method it takes on this model.
+    for (double tol : {1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11}) {
+        cf::NewmarkSettings s;
+        cf::set_method(s, "auto");
+        s.time_step = T / grid;
+        cf::set_auto_tolerance(s, tol);
+        const cf::NewmarkSettings chosen = cf::concrete_settings(m, s, std::nullopt, std::nullopt).settings;
+        char label[64];
+        std::snprintf(label, sizeof label, "auto tol %.0e (%s)", tol, cf::method_name(chosen));
+        settings.push_back({label, [&m, s] { return run_camfollower(m, s); }, {}, {}});
+    }
     // The peers: (library, method, its runner) at four tolerances each.
     struct Peer {
         const char* library;
@@ -489,25 +501,31 @@ int main(int argc, char** argv) {
                     static_cast<unsigned long long>(s.last.steps), static_cast<unsigned long long>(s.last.evaluations),
                     events.c_str());
     }
-    // The fastest run reaching each target in both channels, camfollower's and the peers', and the ratio.
-    std::printf("\n| target (force and accel.) | camfollower | fastest peer | peer / camfollower |\n|---|---|---|---|\n");
+    // The fastest run reaching each target in both channels: camfollower's (any setting), `auto`'s
+    // under a tolerance, and the peers'; and the ratios.
+    std::printf("\n| target (force and accel.) | camfollower | auto | fastest peer | peer / camfollower | peer / auto |\n"
+                "|---|---|---|---|---|---|\n");
     for (double target : {1e-4, 1e-6, 1e-8}) {
-        const Setting* best[2] = {nullptr, nullptr};  // [0] camfollower, [1] peer
-        double best_ms[2] = {INFINITY, INFINITY};
+        const Setting* best[3] = {nullptr, nullptr, nullptr};  // camfollower, auto, peer
+        double best_ms[3] = {INFINITY, INFINITY, INFINITY};
         for (const Setting& s : settings) {
             if (!(relative_error(s.last.force, ref.force) <= target && relative_error(s.last.accel, ref.accel) <= target)) continue;
             if (s.label.rfind("hand", 0) == 0) continue;  // the yardstick, neither camfollower nor a peer
-            const int peer = s.label.rfind("odeint", 0) == 0 || s.label.rfind("SUNDIALS", 0) == 0;
+            const bool peer = s.label.rfind("odeint", 0) == 0 || s.label.rfind("SUNDIALS", 0) == 0;
             const double ms = s.times[s.times.size() / 2];
-            if (ms < best_ms[peer]) best_ms[peer] = ms, best[peer] = &s;
+            for (int k : {peer ? 2 : 0, s.label.rfind("auto", 0) == 0 ? 1 : -1})
+                if (k >= 0 && ms < best_ms[k]) best_ms[k] = ms, best[k] = &s;
         }
-        char cells[2][96];
-        for (int k = 0; k < 2; ++k) {
+        char cells[3][96], ratios[2][16];
+        for (int k = 0; k < 3; ++k) {
             if (best[k]) std::snprintf(cells[k], sizeof cells[k], "%s: %.2f ms", best[k]->label.c_str(), best_ms[k]);
             else std::snprintf(cells[k], sizeof cells[k], "not reached");
         }
-        if (best[0] && best[1]) std::printf("| <= %.0e | %s | %s | %.2f |\n", target, cells[0], cells[1], best_ms[1] / best_ms[0]);
-        else std::printf("| <= %.0e | %s | %s | - |\n", target, cells[0], cells[1]);
+        for (int k = 0; k < 2; ++k) {
+            if (best[k] && best[2]) std::snprintf(ratios[k], sizeof ratios[k], "%.2f", best_ms[2] / best_ms[k]);
+            else std::snprintf(ratios[k], sizeof ratios[k], "-");
+        }
+        std::printf("| <= %.0e | %s | %s | %s | %s | %s |\n", target, cells[0], cells[1], cells[2], ratios[0], ratios[1]);
     }
     return 0;
 }

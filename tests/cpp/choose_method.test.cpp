@@ -107,6 +107,29 @@ TEST_CASE("Auto under a tolerance: radau where the fastest mode is damped or rin
     CHECK_THAT(alone, Catch::StartsWith("radau: the fastest mode rings alone") && Catch::Contains(" times the next ringing mode (1.052e+04 Hz)"));
 }
 
+TEST_CASE("Auto under a tolerance above 1e-5 bounds radau's steps by the output interval, unless max_step is set") {
+    const Mechanism<presets::paper_dofs> damped = presets::paper_damped();
+    const State<Mechanism<presets::paper_dofs>> start = state_at(damped, 0.0, damped.initial_displacement(), damped.initial_velocity());
+    const double dt = damped.period() / 2048;
+    const MethodChoice loose = choose_method(damped, automatic(dt, 1e-4), start);
+    CHECK(loose.settings.method == Method::radau);
+    CHECK(loose.settings.max_step == dt);
+    CHECK_THAT(loose.reason, Catch::EndsWith("; max_step = the output interval 3.906e-05 s (tolerance above 1e-05)"));
+    NewmarkSettings bounded = automatic(dt, 1e-4);
+    bounded.max_step = 4 * dt;
+    CHECK(choose_method(damped, bounded, start).settings.max_step == 4 * dt);
+    const MethodChoice tight = choose_method(damped, automatic(dt, 1e-5), start);
+    CHECK(tight.settings.method == Method::radau);
+    CHECK(tight.settings.max_step == 0.0);
+    CHECK_THAT(tight.reason, !Catch::Contains("max_step"));
+    // dop853 is left as asked.
+    const Mechanism<presets::paper_dofs> paper = presets::paper();
+    const MethodChoice explicit_choice =
+        choose_method(paper, automatic(dt, 1e-4), state_at(paper, 0.0, paper.initial_displacement(), paper.initial_velocity()));
+    CHECK(explicit_choice.settings.method == Method::dop853);
+    CHECK(explicit_choice.settings.max_step == 0.0);
+}
+
 TEST_CASE("Auto at a fixed step says why it took Fox-Goodwin or average acceleration") {
     const Mechanism<presets::paper_dofs> paper = presets::paper();
     RunOptions o;
