@@ -220,7 +220,8 @@ private:
         rhs_.noalias() = system_.damping() * v;
         rhs_.noalias() += system_.stiffness() * q;
         rhs_ += f;
-        out.noalias() = -(M_inv_ * rhs_);
+        out.noalias() = M_inv_ * rhs_;  // then negated in place: -(M^-1 r) would be a temporary for dynamic sizes
+        out = -out;
     }
 
     // Stage derivative at (t, q, v): kq = v, kv = a.

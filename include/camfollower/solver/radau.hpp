@@ -130,13 +130,14 @@ public:
         for (int k = 0; k < n_; ++k)
             if (!(M(k, k) > 0.0)) detail::fail("system: mass matrix diagonal must be > 0, got M(", k, ", ", k, ") = ", M(k, k));
         M_inv_ = M.partialPivLu().inverse();
+        M_complex_ = M.template cast<Complex>();
         for (Vector* x : {&q_, &v_, &a_, &qs_, &vs_, &as_, &q_old_, &v_old_, &f_, &rhs_, &eq_, &ev_, &tq_, &tv_, &dq_, &dv_,
-                          &w_real_q_, &w_real_v_, &rq_, &rv_})
+                          &w_real_q_, &w_real_v_, &rq_, &rv_, &sum_})
             x->resize(n_);
-        for (ComplexVector* x : {&w_pair_q_, &w_pair_v_, &rcq_, &rcv_, &xcq_, &xcv_, &tc_}) x->resize(n_);
+        for (ComplexVector* x : {&w_pair_q_, &w_pair_v_, &rcq_, &rcv_, &xcq_, &xcv_, &tc_, &csum_}) x->resize(n_);
         for (auto* set : {&zq_, &zv_, &fq_, &fv_, &Qq_, &Qv_, &Pq_, &Pv_})
             for (Vector& x : *set) x.resize(n_);
-        Kt_.resize(n_, n_), Ct_.resize(n_, n_), G_real_.resize(n_, n_), G_pair_.resize(n_, n_);
+        Kt_.resize(n_, n_), Ct_.resize(n_, n_), G_real_.resize(n_, n_), G_pair_.resize(n_, n_), Ct_complex_.resize(n_, n_);
     }
     Radau(System&&, const NewmarkSettings&) = delete;
 
@@ -199,7 +200,8 @@ private:
         rhs_.noalias() = system_.damping() * v;
         rhs_.noalias() += system_.stiffness() * q;
         rhs_ += f;
-        out.noalias() = -(M_inv_ * rhs_);
+        out.noalias() = M_inv_ * rhs_;  // then negated in place: -(M^-1 r) would be a temporary for dynamic sizes
+        out = -out;
     }
     // y' at (t, q, v) into (kq, kv) = (v, a); the workspace prepared at t with the force there.
     void derivative(double t, const Vector& q, const Vector& v, Vector& kq, Vector& kv, SolverStatistics& stats) {
@@ -248,8 +250,12 @@ private:
         tangent(system_, ws_, q_, v_, 0.0, 1.0, uvv_);
         Kt_ = system_.stiffness();
         Ct_ = system_.damping();
-        for (int r = 0; r < uvq_.rank; ++r) Kt_ += uvq_.U.col(r) * uvq_.V.col(r).transpose();
-        for (int r = 0; r < uvv_.rank; ++r) Ct_ += uvv_.U.col(r) * uvv_.V.col(r).transpose();
+        // Column by column: an outer product would be a temporary for dynamic sizes.
+        for (int r = 0; r < uvq_.rank; ++r)
+            for (int j = 0; j < n_; ++j) Kt_.col(j) += uvq_.V(j, r) * uvq_.U.col(r);
+        for (int r = 0; r < uvv_.rank; ++r)
+            for (int j = 0; j < n_; ++j) Ct_.col(j) += uvv_.V(j, r) * uvv_.U.col(r);
+        Ct_complex_ = Ct_.template cast<Complex>();
         // What rounding the state leaves in the forces, 16 eps max_i sum_j |K_t,ij q_j| + |C_t,ij v_j|:
         // a stiff spring turns the last bit of q into newtons, and no step gets the force error below it.
         double floor = 0.0;
@@ -266,22 +272,24 @@ private:
         const double lr = tab_.mu_real / h;
         const Complex lc = tab_.mu_pair / h;
         G_real_ = (lr * lr) * M + lr * Ct_ + Kt_;
-        G_pair_ = (lc * lc) * M.template cast<Complex>() + lc * Ct_.template cast<Complex>() + Kt_.template cast<Complex>();
+        G_pair_ = (lc * lc) * M_complex_ + lc * Ct_complex_ + Kt_.template cast<Complex>();
         lu_real_.compute(G_real_);
         lu_pair_.compute(G_pair_);
     }
     // x = (lambda - J)^-1 r, real lambda = mu_real / h.
     void solve_real(double h, const Vector& r_q, const Vector& r_v, Vector& x_q, Vector& x_v) {
         const double lr = tab_.mu_real / h;
-        rhs_.noalias() = system_.mass() * (r_v + lr * r_q);
+        sum_ = r_v + lr * r_q;  // a product's operand evaluated here, not into a temporary
+        rhs_.noalias() = system_.mass() * sum_;
         rhs_.noalias() += Ct_ * r_q;
         x_q = lu_real_.solve(rhs_);
         x_v = lr * x_q - r_q;
     }
     void solve_pair(double h, const ComplexVector& r_q, const ComplexVector& r_v, ComplexVector& x_q, ComplexVector& x_v) {
         const Complex lc = tab_.mu_pair / h;
-        tc_.noalias() = system_.mass().template cast<Complex>() * (r_v + lc * r_q);
-        tc_.noalias() += Ct_.template cast<Complex>() * r_q;
+        csum_ = r_v + lc * r_q;
+        tc_.noalias() = M_complex_ * csum_;
+        tc_.noalias() += Ct_complex_ * r_q;
         x_q = lu_pair_.solve(tc_);
         x_v = lc * x_q - r_q;
     }
@@ -345,13 +353,15 @@ private:
     double error_estimate(double h, SolverStatistics& stats) {
         tq_.setZero(), tv_.setZero();
         for (int i = 0; i < 3; ++i) tq_ += (tab_.e[i] / h) * zq_[i], tv_ += (tab_.e[i] / h) * zv_[i];
-        solve_real(h, v_ + tq_, a_ + tv_, eq_, ev_);
+        dq_ = v_ + tq_, dv_ = a_ + tv_;
+        solve_real(h, dq_, dv_, eq_, ev_);
         double err = error_norm(eq_, ev_, qs_, vs_);
         if (err > 1.0 && (first_step_ || rejected_last_)) {
             dq_ = q_ + eq_;
             dv_ = v_ + ev_;
             derivative(t_, dq_, dv_, rq_, rv_, stats);
-            solve_real(h, rq_ + tq_, rv_ + tv_, eq_, ev_);
+            rq_ += tq_, rv_ += tv_;
+            solve_real(h, rq_, rv_, eq_, ev_);
             err = error_norm(eq_, ev_, qs_, vs_);
         }
         return std::isfinite(err) ? err : 1e10;
@@ -480,7 +490,7 @@ private:
     int n_;
     radau5::Tableau tab_;
     Matrix M_inv_, Kt_, Ct_, G_real_;
-    ComplexMatrix G_pair_;
+    ComplexMatrix G_pair_, M_complex_, Ct_complex_;  // M and C_t as complex, for the complex pair's solve
     double force_scale_ = 1.0, force_floor_ = 0.0;
     double t_ = 0.0, t_old_ = 0.0, h_ = 0.0, h_last_ = 0.0, h_old_ = 0.0, err_old_ = 0.0, faccon_ = 1.0;
     double q_ref_ = 0.0, v_ref_ = 0.0, omega_ref_ = 0.0, t_start_ = 0.0, h_before_event_ = 0.0;
@@ -488,8 +498,9 @@ private:
     bool has_polynomial_ = false, rejected_last_ = false, event_retake_ = false, first_step_ = true;
     workspace_t<System> ws_;
     // Scratch, sized once: nothing is allocated inside the time loop.
-    Vector q_, v_, a_, qs_, vs_, as_, q_old_, v_old_, f_, rhs_, eq_, ev_, tq_, tv_, dq_, dv_, w_real_q_, w_real_v_, rq_, rv_;
-    ComplexVector w_pair_q_, w_pair_v_, rcq_, rcv_, xcq_, xcv_, tc_;
+    Vector q_, v_, a_, qs_, vs_, as_, q_old_, v_old_, f_, rhs_, eq_, ev_, tq_, tv_, dq_, dv_, w_real_q_, w_real_v_, rq_, rv_,
+        sum_;
+    ComplexVector w_pair_q_, w_pair_v_, rcq_, rcv_, xcq_, xcv_, tc_, csum_;
     std::array<Vector, 3> zq_, zv_, fq_, fv_, Qq_, Qv_, Pq_, Pv_;  // Q: the last accepted step's polynomial
     LowRank<Vector> uvq_, uvv_;
     Eigen::PartialPivLU<Matrix> lu_real_;
