@@ -2,8 +2,8 @@
 // Method "auto" made concrete at the start of a run, with the reason in words:
 //   at a fixed time_step (Method::automatic): Fox-Goodwin within its stability limit, else
 //   average-acceleration Newmark;
-//   under a tolerance (Method::automatic_adaptive): radau when the model's fastest modes are damped,
-//   dop853 when they ring.
+//   under a tolerance (Method::automatic_adaptive): radau when the model's fastest modes are damped
+//   or its fastest mode rings alone (a stiff contact), else dop853.
 #pragma once
 
 #include <cmath>
