@@ -415,6 +415,18 @@ int main(int argc, char** argv) {
             std::snprintf(label, sizeof label, "%s tol %.0e", method, tol);
             settings.push_back({label, [&m, s] { return run_camfollower(m, s); }, {}, {}});
         }
+    // Newmark under a tolerance: steps of T / 2048 / 2^level, the level by the error estimate.
+    for (const char* method : {"newmark", "fox_goodwin"})
+        for (double tol : {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8}) {
+            cf::NewmarkSettings s;
+            cf::set_method(s, method);
+            s.time_step = T / grid;
+            cf::set_tolerance(s, tol);
+            s.max_halvings = 12;
+            char label[64];
+            std::snprintf(label, sizeof label, "%s tol %.0e", method, tol);
+            settings.push_back({label, [&m, s] { return run_camfollower(m, s); }, {}, {}});
+        }
     // Method "auto" under a tolerance, labelled with the method it takes on this model.
     for (double tol : {1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11}) {
         cf::NewmarkSettings s;

@@ -121,7 +121,13 @@ int run(const std::string& config, std::string output) {
         const auto result = cf::simulate(m, settings, options);
         cf::cli::write_recording_csv(output, result.recording, config);
         const cf::SolverStatistics& stats = result.report.stats;
-        if (cf::uses_tolerance(settings.method))
+        if (result.method_choice.empty() && settings.method == cf::Method::newmark_adaptive)
+            std::printf("%zu rows, %zu channels (%s under tolerance %.3g: %llu steps, %llu rejected, %.3f Newton "
+                        "iterations/step, output every %.4g s)",
+                        result.recording.rows, result.recording.names.size(), result.method, settings.tolerance,
+                        static_cast<unsigned long long>(stats.steps), static_cast<unsigned long long>(stats.rejected_steps),
+                        stats.mean_iterations(), settings.time_step);
+        else if (cf::uses_tolerance(settings.method))
             std::printf("%zu rows, %zu channels (%s%s: %llu steps, %llu rejected, %llu force evaluations, output every %.4g s)",
                         result.recording.rows, result.recording.names.size(), result.method,
                         cf::is_automatic(settings.method) ? ", chosen by auto" : "", static_cast<unsigned long long>(stats.steps),

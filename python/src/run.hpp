@@ -34,12 +34,10 @@ inline NewmarkSettings settings_from(double time_step, std::optional<double> gam
     if (method != "newmark" && (gamma || beta || hht_alpha != 0.0))
         detail::fail("gamma, beta and hht_alpha apply to method 'newmark' only (method '", method, "' sets its own)");
     set_method(s, method);
-    // method "auto" with a tolerance chooses among the adaptive methods.
-    if (s.method == Method::automatic && tolerance) set_auto_tolerance(s, *tolerance);
-    if (!uses_tolerance(s.method) && (tolerance || max_step))
-        detail::fail(tolerance ? "tolerance" : "max_step", " applies to methods 'dormand_prince', 'dop853', 'radau' and "
-                     "'auto' with a tolerance only, got method '", method, "'");
-    if (tolerance) s.tolerance = *tolerance;
+    // With a tolerance, newmark and fox_goodwin adapt their steps and auto chooses among the adaptive methods.
+    if (tolerance) set_tolerance(s, *tolerance);
+    if (!uses_tolerance(s.method) && max_step)
+        detail::fail("max_step applies with a tolerance only (method '", method, "' without one runs fixed steps of time_step)");
     if (max_step) s.max_step = *max_step;
     if (gamma) s.gamma = *gamma;
     if (beta) s.beta = *beta;

@@ -628,14 +628,12 @@ SolverConfig read_solver(const Section& s) {
     } else if (scheme != "average_acceleration") {
         set_method(n, scheme);  // fox_goodwin, dormand_prince, dop853, radau, auto
     }
-    // scheme = "auto" with a tolerance chooses among the adaptive methods.
-    if (n.method == Method::automatic && s.has("tolerance")) n.method = Method::automatic_adaptive;
+    // With a tolerance, the Newmark schemes adapt their steps and "auto" chooses among the adaptive methods.
+    if (s.has("tolerance")) set_tolerance(n, s.quantity("tolerance", "-", n.tolerance));
     if (uses_tolerance(n.method)) {
-        n.tolerance = s.quantity("tolerance", "-", n.tolerance);
         n.max_step = s.quantity("max_step", "s", n.max_step);
-    } else {
-        for (const char* k : {"tolerance", "max_step"})
-            if (s.has(k)) s.fail(k, "applies only with scheme = \"dormand_prince\", \"dop853\", \"radau\" or \"auto\" with a tolerance");
+    } else if (s.has("max_step")) {
+        s.fail("max_step", "applies with a tolerance only (scheme = \"" + scheme + "\" without one runs fixed steps of time_step)");
     }
     n.residual_tolerance = s.quantity("residual_tolerance", "-", n.residual_tolerance);
     n.increment_tolerance = s.quantity("increment_tolerance", "-", n.increment_tolerance);

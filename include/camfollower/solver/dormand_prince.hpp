@@ -13,15 +13,9 @@
 // lumped cam-follower model is not stiff (the explicit stability limit allows larger steps than the
 // accuracy does), and a fifth- or eighth-order method needs far fewer steps than a second-order one.
 //
-// Error control: a step is accepted when both
-//   - the mixed displacement/velocity norm sqrt(mean((e_i / (tol (|y_i| + y_ref)))^2)) <= 1, q_ref the
-//     largest |q| of the run so far, v_ref the largest |v| but at least q_ref omega_ref (omega_ref:
-//     2 pi / period for a camshaft-driven system, else its lowest natural frequency), so that components
-//     near zero (a dwell starting at rest) do not demand absolute accuracy,
-//   - the force-weighted error |K_t e_q + C_t e_v|_inf <= tol * force_scale, K_t, C_t the stiffness and
-//     damping with the contacts' tangent at the new state: the error in the forces (and, through M^-1,
-//     the accelerations) the step leaves behind. A stiff contact turns nanometres into newtons; a
-//     displacement norm alone lets the contact force drift far beyond the tolerance.
+// Error control: a step is accepted when both the mixed displacement/velocity norm <= 1 and the
+// force-weighted error |K_t e_q + C_t e_v|_inf <= tol * force_scale, K_t, C_t with the contacts'
+// tangent at the new state (solver/error_scales.hpp).
 // e is the scheme's error estimate: DOP853 has two (5th- and 3rd-order) and combines their norms
 // (Scheme::combine), the force-weighted ones the same way.
 // Step size by Hairer's PI controller (the scheme's exponent, beta and step-ratio limits), stiffness
@@ -47,6 +41,7 @@
 #include "camfollower/constants.hpp"
 #include "camfollower/error.hpp"
 #include "camfollower/solver/dop853_tableau.hpp"
+#include "camfollower/solver/error_scales.hpp"
 #include "camfollower/solver/events.hpp"
 #include "camfollower/solver/newmark.hpp"
 
@@ -168,14 +163,7 @@ public:
         events_.start(ws_, q_, v_);  // before initial_step() moves the workspace's last force() elsewhere
         t_start_ = t, fixed_steps_ = 0;
         kq_[0] = v_, kv_[0] = s.a;
-        if constexpr (detail::has_period<System>::value) {
-            omega_ref_ = 2.0 * pi / system_.period();
-        } else {
-            const double lowest = natural_frequency_range(system_, s).lowest;
-            omega_ref_ = std::isfinite(lowest) ? lowest : 1.0 / s_.time_step;
-        }
-        q_ref_ = q_.cwiseAbs().maxCoeff();
-        v_ref_ = std::max(v_.cwiseAbs().maxCoeff(), omega_ref_ * q_ref_);
+        scales_.start(reference_rate(system_, s, s_.time_step), q_, v_);
         h_ = initial_step(s.a);
         t_old_ = t_, h_last_ = 0.0, err_old_ = 1e-4;
         stiff_count_ = 0, non_stiff_count_ = 0;
@@ -284,14 +272,7 @@ private:
 
     double error_norm_qv(const Vector& eq, const Vector& ev, const Vector& q0, const Vector& v0, const Vector& q1,
                          const Vector& v1) const {
-        double sum = 0.0;
-        const double tol = s_.tolerance;
-        for (int i = 0; i < n_; ++i) {
-            const double sq = tol * (std::max(std::abs(q0[i]), std::abs(q1[i])) + q_ref_ + 1e-12);
-            const double sv = tol * (std::max(std::abs(v0[i]), std::abs(v1[i])) + v_ref_ + 1e-12);
-            sum += (eq[i] / sq) * (eq[i] / sq) + (ev[i] / sv) * (ev[i] / sv);
-        }
-        return std::sqrt(sum / double(2 * n_));
+        return scales_.mixed(s_.tolerance, eq, ev, q0, v0, q1, v1);
     }
 
     // Hairer's starting step: from the sizes of y, y' and an estimate of y''.
@@ -411,13 +392,7 @@ private:
     void force_errors(const Vector& q1, const Vector& v1, std::array<double, E>& out) {
         tangent(system_, ws_, q1, v1, 1.0, 0.0, uvq_);
         tangent(system_, ws_, q1, v1, 0.0, 1.0, uvv_);
-        for (std::size_t k = 0; k < E; ++k) {
-            ef_.noalias() = system_.stiffness() * eq_[k];
-            ef_.noalias() += system_.damping() * ev_[k];
-            for (int r = 0; r < uvq_.rank; ++r) ef_ += uvq_.U.col(r) * uvq_.V.col(r).dot(eq_[k]);
-            for (int r = 0; r < uvv_.rank; ++r) ef_ += uvv_.U.col(r) * uvv_.V.col(r).dot(ev_[k]);
-            out[k] = ef_.cwiseAbs().maxCoeff();
-        }
+        for (std::size_t k = 0; k < E; ++k) out[k] = force_error(system_, uvq_, uvv_, eq_[k], ev_[k], ef_);
     }
 
     // Hairer's test: h |lambda| ~ h |k_S-1 - k_S-2| / |y_S-1 - y_S-2| (both stages at c = 1) beyond
@@ -469,8 +444,7 @@ private:
         q_ = qs_, v_ = vs_;
         cq_ = cq_trial_, cv_ = cv_trial_;
         kq_[0] = kq_[S - 1], kv_[0] = kv_[S - 1];  // FSAL; the workspace holds the force at the new state
-        q_ref_ = std::max(q_ref_, q_.cwiseAbs().maxCoeff());
-        v_ref_ = std::max({v_ref_, v_.cwiseAbs().maxCoeff(), omega_ref_ * q_ref_});
+        scales_.update(q_, v_);
         accepted(system_, ws_, q_, v_);
         ++stats.steps;
     }
@@ -495,7 +469,7 @@ private:
     double force_scale_ = 1.0;
     // The integration state (ahead of the reported one) and its workspace.
     double t_ = 0.0, t_old_ = 0.0, h_ = 0.0, h_last_ = 0.0, err_old_ = 1e-4;
-    double q_ref_ = 0.0, v_ref_ = 0.0, omega_ref_ = 0.0;
+    ErrorScales scales_;
     double t_start_ = 0.0, ct_ = 0.0;  // ct_: the time's compensation (adaptive steps)
     std::uint64_t fixed_steps_ = 0;
     bool rejected_last_ = false;

@@ -34,6 +34,7 @@
 #include "camfollower/core/system.hpp"
 #include "camfollower/constants.hpp"
 #include "camfollower/error.hpp"
+#include "camfollower/solver/error_scales.hpp"
 #include "camfollower/solver/events.hpp"
 
 namespace camfollower {
@@ -50,24 +51,29 @@ inline constexpr int sparse_backend_threshold = 100;  // DOFs; measured crossove
 // Dormand-Prince 5(4) or 8(5,3) (dop853) with adaptive steps under `tolerance` (solver/
 // dormand_prince.hpp), or implicit Radau IIA of order 5 with adaptive steps (solver/radau.hpp),
 // time_step then being the output interval only.
+// newmark_adaptive: Newmark (gamma, beta: average acceleration or Fox-Goodwin) under `tolerance`, in
+// steps of time_step / 2^level, the level chosen by the step's error estimate.
 // automatic: Fox-Goodwin or average-acceleration Newmark at time_step, chosen at the start of a run
 // from the model's highest mode; automatic_adaptive: dop853 or radau under `tolerance`, chosen from
 // the damping of the model's fastest modes (choose_method, below).
-enum class Method { newmark, dormand_prince, automatic, dop853, radau, automatic_adaptive };
+enum class Method { newmark, dormand_prince, automatic, dop853, radau, automatic_adaptive, newmark_adaptive };
 // The adaptive Runge-Kutta methods (explicit and Radau IIA): tolerance, max_step and adaptive apply to them.
 inline constexpr bool is_runge_kutta(Method m) {
     return m == Method::dormand_prince || m == Method::dop853 || m == Method::radau;
 }
 // The methods that read `tolerance` and `max_step`: the adaptive ones and the choice among them.
-inline constexpr bool uses_tolerance(Method m) { return is_runge_kutta(m) || m == Method::automatic_adaptive; }
+inline constexpr bool uses_tolerance(Method m) {
+    return is_runge_kutta(m) || m == Method::automatic_adaptive || m == Method::newmark_adaptive;
+}
+inline constexpr bool is_newmark(Method m) { return m == Method::newmark || m == Method::newmark_adaptive; }
 inline constexpr bool is_automatic(Method m) { return m == Method::automatic || m == Method::automatic_adaptive; }
 
 // The solver's settings (named for its first method; `method` picks another).
 struct NewmarkSettings {
     Method method = Method::newmark;
-    double time_step = 3e-6;            // s (dormand_prince, dop853, radau: the output interval)
-    double tolerance = 1e-6;            // dormand_prince, dop853, radau, automatic_adaptive: relative error per step, displacements and forces
-    double max_step = 0.0;              // dormand_prince, dop853, radau, automatic_adaptive: largest step, s (0: unbounded)
+    double time_step = 3e-6;            // s (methods under a tolerance: the output interval)
+    double tolerance = 1e-6;            // methods under a tolerance (uses_tolerance): relative error per step, displacements and forces
+    double max_step = 0.0;              // methods under a tolerance: largest step, s (0: unbounded; newmark_adaptive: at most time_step)
     bool adaptive = true;               // dormand_prince, dop853, radau: false = fixed steps of max_step (or time_step), no error control
     double gamma = 0.5;
     double beta = 0.25;
@@ -75,7 +81,7 @@ struct NewmarkSettings {
     double residual_tolerance = 1e-10;  // relative to the system's force scale
     double increment_tolerance = 1e-10; // relative to max |q| (+ 1 nm floor)
     int max_iterations = 25;
-    int max_halvings = 6;
+    int max_halvings = 6;               // newmark_adaptive: the smallest step is time_step / 2^max_halvings
     LinearSolver linear_solver = LinearSolver::sherman_morrison;  // dense backend: low-rank updates, or dense LU always
     Backend backend = Backend::automatic;
     SparseFactorization sparse_factorization = SparseFactorization::automatic;
@@ -117,6 +123,15 @@ struct NewmarkSettings {
         if (method == Method::automatic_adaptive && !adaptive)
             detail::fail("method 'auto' with a tolerance chooses an adaptive method: adaptive = false needs a named "
                          "method ('dormand_prince', 'dop853' or 'radau')");
+        if (method == Method::newmark_adaptive) {
+            if (!adaptive)
+                detail::fail("Newmark under a tolerance adapts its steps: adaptive = false with 'newmark' or 'fox_goodwin' "
+                             "means no tolerance (fixed steps of time_step)");
+            // The error estimate is Newmark's (Zienkiewicz & Xie); HHT-alpha's differs.
+            if (hht_alpha != 0.0)
+                detail::fail("Newmark under a tolerance needs hht_alpha = 0 (error control for HHT-alpha is not "
+                             "implemented), got hht_alpha = ", hht_alpha);
+        }
         if (is_automatic(method) && (gamma != 0.5 || beta != 0.25 || hht_alpha != 0.0))
             detail::fail("method 'auto' chooses gamma and beta itself: leave gamma = 1/2, beta = 1/4, hht_alpha = 0 "
                          "(got ", gamma, ", ", beta, ", ", hht_alpha, ")");
@@ -157,8 +172,9 @@ inline const char* linear_solver_name(const NewmarkSettings& s) {
 //   "radau"           implicit Radau IIA of order 5 (L-stable), adaptive steps under `tolerance`,
 //                     dense output by its collocation polynomial: for models stiff at that accuracy
 //   "auto"            fox_goodwin when time_step is within its stability limit, else newmark's
-//                     average acceleration (choose_method); given a tolerance (set_auto_tolerance),
+//                     average acceleration (choose_method); given a tolerance (set_tolerance),
 //                     radau when the model's fastest modes are damped, else dop853
+// "newmark" and "fox_goodwin" given a tolerance (set_tolerance) adapt their steps (newmark_adaptive).
 inline void set_method(NewmarkSettings& s, const std::string& name) {
     if (name == "newmark") {
         s.method = Method::newmark;
@@ -184,12 +200,18 @@ inline const char* method_name(const NewmarkSettings& s) {
     if (is_automatic(s.method)) return "auto";
     return s.gamma == 0.5 && s.beta == 1.0 / 12.0 && s.hht_alpha == 0.0 ? "fox_goodwin" : "newmark";
 }
-// Method "auto" under `tolerance` (relative error per step, as for the adaptive methods): the choice
-// between dop853 and radau, time_step being the output interval.
+// Runs the method under `tolerance` (relative error per step), time_step becoming the output
+// interval: "newmark" and "fox_goodwin" adapt their steps (newmark_adaptive), "auto" chooses between
+// dop853 and radau (automatic_adaptive), the Runge-Kutta methods take it as given.
+inline void set_tolerance(NewmarkSettings& s, double tolerance) {
+    if (s.method == Method::newmark) s.method = Method::newmark_adaptive;
+    if (s.method == Method::automatic) s.method = Method::automatic_adaptive;
+    s.tolerance = tolerance;
+}
+// Method "auto" under `tolerance`: set_tolerance, refused for any other method.
 inline void set_auto_tolerance(NewmarkSettings& s, double tolerance) {
     if (!is_automatic(s.method)) detail::fail("set_auto_tolerance: the method must be 'auto', got '", method_name(s), "'");
-    s.method = Method::automatic_adaptive;
-    s.tolerance = tolerance;
+    set_tolerance(s, tolerance);
 }
 
 struct SolverStatistics {
@@ -266,6 +288,18 @@ FrequencyRange natural_frequency_range(const System& system, const State<System>
 template <class System>
 double highest_angular_frequency(const System& system, const State<System>& s) {
     return natural_frequency_range(system, s).highest;
+}
+
+// The rate (rad/s) setting the error norms' velocity reference (ErrorScales): 2 pi / period for a
+// camshaft-driven system, else its lowest natural frequency at s, else 1 / time_step.
+template <class System>
+double reference_rate(const System& system, const State<System>& s, double time_step) {
+    if constexpr (detail::has_period<System>::value) {
+        return 2.0 * pi / system.period();
+    } else {
+        const double lowest = natural_frequency_range(system, s).lowest;
+        return std::isfinite(lowest) ? lowest : 1.0 / time_step;
+    }
 }
 
 // Largest stable step of Newmark with beta < gamma / 2 (undamped: omega_max dt < 1 / sqrt(gamma / 2 -
@@ -455,11 +489,16 @@ public:
     using StateType = State<System>;
 
     Newmark(const System& system, const NewmarkSettings& settings)
-        : system_(system), s_(validated(settings)), n_(system.size()), linear_(system, s_) {
+        : system_(system), s_(validated(settings)), n_(system.size()), linear_(system, s_),
+          control_error_(s_.method == Method::newmark_adaptive) {
         norm_M_ = row_sum_norm(linear_.mass());
         norm_C_ = row_sum_norm(linear_.damping());
         norm_K_ = row_sum_norm(linear_.stiffness());
         for (Vector* v : {&q_pred_, &v_pred_, &b_, &a_, &q_, &v_, &r_, &dq_}) v->resize(n_);
+        if (control_error_) {
+            for (Vector* v : {&eq_, &ev_, &da_, &da_old_, &ef_}) v->resize(n_);
+            uvq_ = uvv_ = LowRank<Vector>(n_, std::max(1, max_rank(system)));
+        }
     }
 
     // The stepper keeps a reference to the system: a temporary would dangle.
@@ -467,12 +506,13 @@ public:
 
     const NewmarkSettings& settings() const { return s_; }
     const System& system() const { return system_; }
-    double time_step() const { return s_.time_step; }
+    double time_step() const { return s_.time_step; }  // under a tolerance: the output interval
     double force_scale() const { return force_scale_; }
     const Linear& linear_solver() const { return linear_; }
 
     // A state at (t, q, v) with the consistent acceleration M a = -(C v + K q + f). Sets the
-    // residual scale from it and refuses a conditionally stable scheme beyond its step limit.
+    // residual scale from it and refuses a conditionally stable scheme beyond its step limit (under a
+    // tolerance: bounds the steps by it).
     StateType start(double t, const Vector& q, const Vector& v) {
         StateType s = state_at(system_, t, q, v);
         Vector rhs = linear_.damping() * s.v;
@@ -481,7 +521,8 @@ public:
         s.a = linear_.solve_mass(-rhs);
         const Vector Kq = linear_.stiffness() * s.q;
         force_scale_ = std::max({1.0, Kq.cwiseAbs().maxCoeff(), s.f.cwiseAbs().maxCoeff()});
-        linear_.check_stability_limit(s);
+        if (control_error_) start_error_control(s);
+        else linear_.check_stability_limit(s);
         accepted(system_, s.workspace, s.q, s.v);  // path memory starts from the initial state
         events_.start(s.workspace, s.q, s.v);
         return s;
@@ -494,8 +535,18 @@ public:
     const std::vector<Event>& events() const { return events_.events(); }
     std::vector<Event> take_events() { return events_.take_events(); }
 
-    // One step of the nominal size, halving (recursively, bounded) when Newton fails.
-    void step(StateType& state, SolverStatistics& stats, int level = 0) {
+    // One step of the nominal size time_step, halving (recursively, bounded) when Newton fails; under
+    // a tolerance, one output interval time_step in steps of time_step / 2^level (step_under_tolerance).
+    void step(StateType& state, SolverStatistics& stats) {
+        if (control_error_) step_under_tolerance(state, stats);
+        else step_at_level(state, stats, 0);
+    }
+
+    // The step level (step time_step / 2^level) the error control holds (0 without it).
+    int level() const { return level_; }
+
+private:
+    void step_at_level(StateType& state, SolverStatistics& stats, int level) {
         int iterations = 0;
         double residual = 0.0;
         if (try_step(state, level, iterations, residual)) {
@@ -518,11 +569,10 @@ public:
                 s_.residual_tolerance * force_scale_, " N)"));
         }
         stats.halvings += 1;
-        step(state, stats, level + 1);
-        step(state, stats, level + 1);
+        step_at_level(state, stats, level + 1);
+        step_at_level(state, stats, level + 1);
     }
 
-private:
     static NewmarkSettings validated(const NewmarkSettings& s) {
         s.validate();
         return s;
@@ -560,6 +610,7 @@ private:
         const double v_factor = s_.gamma / (s_.beta * dt);
         const double r_tol = s_.residual_tolerance * force_scale_;
         linear_.new_step();
+        error_ = std::numeric_limits<double>::infinity();  // until Newton converges
 
         // The unknown is the new acceleration (q and v follow from it): unlike q, no rounding error
         // gets amplified by 1/(beta dt^2) in the residual.
@@ -580,18 +631,15 @@ private:
             const double q_tol = s_.increment_tolerance * (q_max + 1e-9);
             // Skip the confirming solve when the next increment is bounded below tolerance.
             if (iterations > 0 && residual_ok && linear_.inverse_bound(level) > 0.0 &&
-                r_.norm() * linear_.inverse_bound(level) <= q_tol && linear_.tangent_is_spd()) {
-                accept(s, t1, false);  // s.f is already the force at (q_, v_)
-                return true;
-            }
+                r_.norm() * linear_.inverse_bound(level) <= q_tol && linear_.tangent_is_spd())
+                return finish(s, t1, dt, false);  // s.f is already the force at (q_, v_)
             linear_.solve(level, one_alpha, r_, dq_);
             a_ += dq_ / q_step;
             ++iterations;
             if (residual_ok && dq_.cwiseAbs().maxCoeff() <= q_tol) {
                 q_ = q_pred_ + q_step * a_;
                 v_ = v_pred_ + v_step * a_;
-                accept(s, t1, true);
-                return true;
+                return finish(s, t1, dt, true);
             }
         }
         return fail_step(s);
@@ -607,8 +655,16 @@ private:
                 (norm_K_ + linear_.tangent_norm()) * q_max);
     }
 
-    CAMFOLLOWER_FORCE_INLINE void accept(StateType& s, double t1, bool evaluate_force) {
+    // The converged iterate (q_, v_, a_): accepted, or under a tolerance refused when its error is
+    // above it (the state left as it was).
+    CAMFOLLOWER_FORCE_INLINE bool finish(StateType& s, double t1, double dt, bool evaluate_force) {
         if (evaluate_force) nonlinear_force(system_, s.workspace, q_, v_, s.f);
+        if (control_error_ && !within_tolerance(s, dt)) return fail_step(s);
+        accept(s, t1);
+        return true;
+    }
+
+    CAMFOLLOWER_FORCE_INLINE void accept(StateType& s, double t1) {
         if constexpr (has_events_v<System>) {
             if (events_.changed(s.workspace, q_, v_)) record_crossings(s, t1);
         }
@@ -634,10 +690,129 @@ private:
         return false;
     }
 
+    // Error control (newmark_adaptive). The steps are time_step / 2^level, level in [coarsest_level_,
+    // max_halvings]: each level's Newton matrix is factored once at construction, as for the halvings,
+    // and the steps land on the output grid (no interpolation). Levels change by the error estimate:
+    // finer after a refused step (Newton's failure: one level; error e: enough levels for e 8^-m <=
+    // 1/2), one level coarser at the end of an output interval whose every step predicts <= 0.8 at
+    // twice the step. Changes are kept rare on purpose: at a constant step Fox-Goodwin's local
+    // errors largely cancel from step to step (its fourth-order phase), and each change of the step
+    // leaves one of them uncancelled (docs/solvers.md).
+    void start_error_control(const StateType& s) {
+        scales_.start(reference_rate(system_, s, s_.time_step), s.q, s.v);
+        // A run from rest at zero has no size to measure displacements against; the explicit methods
+        // then shrink their first steps without bound, the levels cannot. The static deflection under
+        // the force scale stands in.
+        if (norm_K_ > 0.0) scales_.floor_displacement(force_scale_ / norm_K_);
+        double largest = s_.time_step;
+        if (s_.max_step > 0.0) largest = std::min(largest, s_.max_step);
+        const char* bound = s_.max_step > 0.0 && s_.max_step < s_.time_step ? "max_step" : "time_step";
+        if (s_.beta < 0.5 * s_.gamma) {
+            const double omega_max = camfollower::highest_angular_frequency(system_, s);
+            if (std::isfinite(omega_max) && newmark_step_limit(s_.gamma, s_.beta, omega_max) < largest) {
+                largest = newmark_step_limit(s_.gamma, s_.beta, omega_max);
+                bound = "the stability limit";
+            }
+        }
+        coarsest_level_ = 0;
+        while (coarsest_level_ <= s_.max_halvings && s_.time_step / double(1 << coarsest_level_) > largest * (1.0 + 1e-12))
+            ++coarsest_level_;
+        if (coarsest_level_ > s_.max_halvings)
+            detail::fail("Newmark under a tolerance: the largest step allowed by ", bound, " (", largest,
+                         " s) is below the smallest step time_step / 2^max_halvings = ",
+                         s_.time_step / double(1 << s_.max_halvings), " s; raise max_halvings (at most ",
+                         NewmarkSettings::max_levels - 1, ") or shorten time_step");
+        level_ = coarsest_level_;
+        has_old_difference_ = false;
+    }
+
+    void step_under_tolerance(StateType& s, SolverStatistics& stats) {
+        const int finest = s_.max_halvings;
+        const std::uint32_t end = std::uint32_t(1) << finest;
+        std::uint32_t done = 0;  // of the output interval, in its finest steps
+        int level = level_;
+        double largest_error = 0.0;  // of the interval's accepted steps
+        while (done < end) {
+            int iterations = 0;
+            double residual = 0.0;
+            const bool ok = try_step(s, level, iterations, residual);
+            stats.newton_iterations += std::uint64_t(iterations);
+            const std::uint32_t stride = std::uint32_t(1) << (finest - level);
+            if (ok) {
+                stats.steps += 1;
+                stats.max_iterations_in_a_step = std::max(stats.max_iterations_in_a_step, iterations);
+                done += stride;
+                largest_error = std::max(largest_error, error_);
+                continue;
+            }
+            const bool newton_failed = !std::isfinite(error_);
+            if (level >= finest) {
+                const double dt = s_.time_step / double(1 << level);
+                if (newton_failed)
+                    throw ConvergenceError(detail::concat(
+                        "Newton-Raphson did not converge at t = ", s.t, " s with time step ", dt, " s (the smallest, "
+                        "time_step / 2^max_halvings) after ", iterations, " iterations; residual ", residual,
+                        " N (tolerance ", s_.residual_tolerance * force_scale_, " N)"));
+                throw ConvergenceError(detail::concat(
+                    method_name(s_), " under tolerance = ", s_.tolerance, ": the error estimate is ", error_,
+                    " times the tolerance at t = ", s.t, " s with the smallest step time_step / 2^max_halvings = ", dt,
+                    " s; raise max_halvings (at most ", NewmarkSettings::max_levels - 1, ") or the tolerance"));
+            }
+            if (newton_failed) {
+                ++stats.halvings;
+                ++level;
+            } else {
+                ++stats.rejected_steps;
+                const int more = std::max(1, int(std::ceil(std::log2(2.0 * error_) / 3.0)));
+                level = std::min(finest, level + more);
+            }
+        }
+        if (level > coarsest_level_ && largest_error <= coarsen_below) --level;
+        level_ = level;
+    }
+
+    // Zienkiewicz & Xie's local error estimate of the step from s to (q_, v_, a_), dt long, in units
+    // of the tolerance (ErrorScales: the mixed norm and the force-weighted one). With the step's
+    // acceleration difference da = a1 - a0 ~ dt a':
+    //   e_q = (beta - 1/6) dt^2 da                         (the displacement's dt^3 term)
+    //   e_v = (gamma - 1/2) dt da - dt^3 / 12 a''            (a'' from this and the last step's da)
+    // both ~dt^3, so one level coarser multiplies the error by 8.
+    bool within_tolerance(const StateType& s, double dt) {
+        da_ = a_ - s.a;
+        eq_ = ((s_.beta - 1.0 / 6.0) * dt * dt) * da_;
+        ev_ = ((s_.gamma - 0.5) * dt) * da_;
+        if (has_old_difference_) {  // a'' ~ (da / dt - da_old / dt_old) / ((dt + dt_old) / 2)
+            const double w = -dt * dt * dt / 12.0 * 2.0 / (dt + dt_old_);
+            ev_ += (w / dt) * da_;
+            ev_ -= (w / dt_old_) * da_old_;
+        }
+        tangent(system_, s.workspace, q_, v_, 1.0, 0.0, uvq_);
+        tangent(system_, s.workspace, q_, v_, 0.0, 1.0, uvv_);
+        const double force = force_error(system_, uvq_, uvv_, eq_, ev_, ef_) / (s_.tolerance * force_scale_);
+        error_ = std::max(scales_.mixed(s_.tolerance, eq_, ev_, s.q, s.v, q_, v_), force);
+        if (!(error_ <= 1.0)) {
+            if (!std::isfinite(error_)) error_ = 1e10;  // refused for its error, not as Newton's failure
+            return false;
+        }
+        std::swap(da_, da_old_);
+        dt_old_ = dt, has_old_difference_ = true;
+        scales_.update(q_, v_);
+        return true;
+    }
+    static constexpr double coarsen_below = 0.1;
+
     const System& system_;
     NewmarkSettings s_;
     int n_;
     Linear linear_;
+    const bool control_error_;
+    int coarsest_level_ = 0, level_ = 0;
+    double error_ = 0.0;  // the last attempt's error in units of the tolerance (+inf: Newton failed)
+    double dt_old_ = 0.0;
+    bool has_old_difference_ = false;
+    ErrorScales scales_;
+    Vector eq_, ev_, da_, da_old_, ef_;
+    LowRank<Vector> uvq_, uvv_;
     double force_scale_ = 1.0;
     double norm_M_ = 0.0, norm_C_ = 0.0, norm_K_ = 0.0;  // infinity norms, for the rounding floor
     // Scratch, sized once: nothing is allocated inside the time loop.

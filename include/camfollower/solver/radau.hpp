@@ -14,7 +14,7 @@
 // The tableau, its eigen-decomposition, the embedded error estimate and the collocation polynomial
 // are computed from the closed-form coefficients (radau5::tableau), not copied digits.
 //
-// Error control as the explicit methods' (solver/dormand_prince.hpp): the mixed displacement/velocity
+// Error control as the explicit methods' (solver/error_scales.hpp): the mixed displacement/velocity
 // norm and the force-weighted norm |K_t e_q + C_t e_v|_inf / (tol force_scale), both <= 1 (the latter
 // floored at the rounding of the state through K_t and C_t), on Hairer's embedded third-order estimate e = (mu_real/h - J)^-1 (f(y0) + sum_i e_i Z_i / h). Steps by
 // Gustafsson's predictive controller (exponent 1/4), as RADAU5.
@@ -34,6 +34,7 @@
 #include "camfollower/core/system.hpp"
 #include "camfollower/constants.hpp"
 #include "camfollower/error.hpp"
+#include "camfollower/solver/error_scales.hpp"
 #include "camfollower/solver/events.hpp"
 #include "camfollower/solver/newmark.hpp"
 
@@ -156,14 +157,7 @@ public:
         t_ = t, q_ = q, v_ = v, a_ = s.a;
         events_.start(ws_, q_, v_);
         t_start_ = t, fixed_steps_ = 0;
-        if constexpr (detail::has_period<System>::value) {
-            omega_ref_ = 2.0 * pi / system_.period();
-        } else {
-            const double lowest = natural_frequency_range(system_, s).lowest;
-            omega_ref_ = std::isfinite(lowest) ? lowest : 1.0 / s_.time_step;
-        }
-        q_ref_ = q_.cwiseAbs().maxCoeff();
-        v_ref_ = std::max(v_.cwiseAbs().maxCoeff(), omega_ref_ * q_ref_);
+        scales_.start(reference_rate(system_, s, s_.time_step), q_, v_);
         h_ = initial_step();
         t_old_ = t_, h_last_ = 0.0, h_old_ = 0.0, err_old_ = 0.0;
         faccon_ = 1.0;
@@ -215,16 +209,11 @@ private:
     // The scaled error of a displacement/velocity pair (eq, ev), in units of the tolerance: the larger
     // of the mixed norm and the force-weighted norm (the explicit methods' test).
     double error_norm(const Vector& eq, const Vector& ev, const Vector& q1, const Vector& v1) {
-        double sum = 0.0;
         const double tol = s_.tolerance;
-        for (int i = 0; i < n_; ++i) {
-            const double sq = tol * (std::max(std::abs(q_[i]), std::abs(q1[i])) + q_ref_ + 1e-12);
-            const double sv = tol * (std::max(std::abs(v_[i]), std::abs(v1[i])) + v_ref_ + 1e-12);
-            sum += (eq[i] / sq) * (eq[i] / sq) + (ev[i] / sv) * (ev[i] / sv);
-        }
         rhs_.noalias() = Kt_ * eq;
         rhs_.noalias() += Ct_ * ev;
-        return std::max(std::sqrt(sum / double(2 * n_)), rhs_.cwiseAbs().maxCoeff() / std::max(tol * force_scale_, force_floor_));
+        return std::max(scales_.mixed(tol, eq, ev, q_, v_, q1, v1),
+                        rhs_.cwiseAbs().maxCoeff() / std::max(tol * force_scale_, force_floor_));
     }
 
     // A starting step from the rates of change of y and y' (1/s): a fraction tol^(1/4) of the
@@ -232,14 +221,15 @@ private:
     // corrects it within a few steps.
     double initial_step() {
         SolverStatistics scratch;
-        const double d1 = std::max(v_.cwiseAbs().maxCoeff() / (q_ref_ + 1e-12), a_.cwiseAbs().maxCoeff() / (v_ref_ + 1e-12));
+        const double q_ref = scales_.q_ref, v_ref = scales_.v_ref;
+        const double d1 = std::max(v_.cwiseAbs().maxCoeff() / (q_ref + 1e-12), a_.cwiseAbs().maxCoeff() / (v_ref + 1e-12));
         const double h0 = std::min(s_.time_step, 1e-6);
         qs_ = q_ + h0 * v_;
         vs_ = v_ + h0 * a_;
         derivative(t_ + h0, qs_, vs_, dq_, dv_, scratch);
-        const double d2 = std::max((dq_ - v_).cwiseAbs().maxCoeff() / (q_ref_ + 1e-12),
-                                   (dv_ - a_).cwiseAbs().maxCoeff() / (v_ref_ + 1e-12)) / h0;
-        const double rate = std::max({d1, std::sqrt(d2), omega_ref_});
+        const double d2 = std::max((dq_ - v_).cwiseAbs().maxCoeff() / (q_ref + 1e-12),
+                                   (dv_ - a_).cwiseAbs().maxCoeff() / (v_ref + 1e-12)) / h0;
+        const double rate = std::max({d1, std::sqrt(d2), scales_.omega_ref});
         derivative(t_, q_, v_, dq_, a_, scratch);  // the workspace back at the start, its force there
         return std::min(s_.time_step, 0.1 * std::pow(s_.tolerance, 0.25) / rate);
     }
@@ -465,8 +455,7 @@ private:
         err_old_ = err;
         has_polynomial_ = true, first_step_ = false;
         q_ = qs_, v_ = vs_, a_ = as_;
-        q_ref_ = std::max(q_ref_, q_.cwiseAbs().maxCoeff());
-        v_ref_ = std::max({v_ref_, v_.cwiseAbs().maxCoeff(), omega_ref_ * q_ref_});
+        scales_.update(q_, v_);
         accepted(system_, ws_, q_, v_);
     }
 
@@ -493,7 +482,8 @@ private:
     ComplexMatrix G_pair_, M_complex_, Ct_complex_;  // M and C_t as complex, for the complex pair's solve
     double force_scale_ = 1.0, force_floor_ = 0.0;
     double t_ = 0.0, t_old_ = 0.0, h_ = 0.0, h_last_ = 0.0, h_old_ = 0.0, err_old_ = 0.0, faccon_ = 1.0;
-    double q_ref_ = 0.0, v_ref_ = 0.0, omega_ref_ = 0.0, t_start_ = 0.0, h_before_event_ = 0.0;
+    ErrorScales scales_;
+    double t_start_ = 0.0, h_before_event_ = 0.0;
     std::uint64_t fixed_steps_ = 0;
     bool has_polynomial_ = false, rejected_last_ = false, event_retake_ = false, first_step_ = true;
     workspace_t<System> ws_;
