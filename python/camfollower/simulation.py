@@ -37,7 +37,13 @@ def simulate(system, *, duration: Optional[float] = None, revolutions: Optional[
 
     ``method``: "newmark" (the default: Newmark/HHT with ``gamma``, ``beta``, ``hht_alpha``, fixed step
     ``time_step``), "fox_goodwin" (Newmark with gamma = 1/2, beta = 1/12: fourth-order phase on
-    undamped linear modes, stable below dt = sqrt(6) / omega_max, refused beyond it),
+    undamped linear modes, stable below dt = sqrt(6) / omega_max, refused beyond it); both given a
+    ``tolerance`` adapt their steps: ``time_step`` becomes the output interval, integrated in steps of
+    time_step / 2^k (k <= ``max_halvings``, within fox_goodwin's stability limit and ``max_step``)
+    chosen by each step's local error estimate (Zienkiewicz & Xie), measured like the Runge-Kutta
+    methods' below; hht_alpha must then be 0. The global error grows with the run (docs/solvers.md:
+    fox_goodwin some 10 to 40 times the tolerance over a revolution of the paper preset, newmark's
+    average acceleration hundreds to thousands of times),
     "dormand_prince" (explicit Runge-Kutta 5(4) with adaptive steps: each step's error, in
     displacements and velocities and in the forces it leaves, below ``tolerance`` (relative, default
     1e-6; steps no longer than ``max_step`` s if given); ``time_step`` is then the output interval, the

@@ -69,6 +69,26 @@ def test_radau_contact_force_against_scipy_on_independent_equations(model, refer
     assert 0.5 * tolerance < err < 200 * tolerance
 
 
+# Newmark under a tolerance (docs/solvers.md): steps of the output interval / 2^k, k from each step's local
+# error estimate. Its tolerance is per step, as for the Runge-Kutta methods: Fox-Goodwin's force error over
+# the revolution is a few to some tens of times it; a 100 x tighter tolerance takes ~100^(1/3) x the steps
+# (local error ~h^3) and shrinks the error at least 10 x (second order globally).
+def test_fox_goodwin_under_a_tolerance_against_scipy_on_independent_equations(model, reference):
+    runs = {}
+    for tolerance in (1e-5, 1e-7):
+        r = cf.simulate(model, revolutions=1, time_step=model.period / 512, method="fox_goodwin", tolerance=tolerance,
+                        max_halvings=10)
+        assert (r.stats["method"], r.stats["evaluations"]) == ("fox_goodwin", 0)
+        assert len(r["t"]) == 513 and r["t"][-1] == pytest.approx(model.period, rel=1e-12)
+        err = force_error(model, reference, r)
+        print(f"fox_goodwin tolerance {tolerance:g}: contact force error {err:.2e} of the peak, {r.stats['steps']} steps, "
+              f"{r.stats['rejected_steps']} rejected")
+        assert 0.5 * tolerance < err < 100 * tolerance
+        runs[tolerance] = (err, r.stats["steps"])
+    assert runs[1e-7][0] < runs[1e-5][0] / 10
+    assert 0.75 * 100 ** (1 / 3) < runs[1e-7][1] / runs[1e-5][1] < 1.3 * 100 ** (1 / 3)
+
+
 def test_radau_takes_fewer_steps_where_damping_makes_the_model_stiff():
     """The realistically damped preset (3 % in every element): its high modes are overdamped, the
     explicit methods' steps are bounded by stability there (stiff_steps), Radau's by accuracy only."""
@@ -113,12 +133,13 @@ def test_fox_goodwin_is_newmark_with_beta_one_twelfth(model):
 
 @pytest.mark.parametrize("kwargs, message", [
     (dict(method="rk4"), r"method must be 'newmark', 'fox_goodwin', 'dormand_prince', 'dop853', 'radau' or 'auto', got 'rk4'"),
-    (dict(tolerance=1e-6), r"tolerance applies to methods 'dormand_prince', 'dop853', 'radau' and 'auto' with a "
-                           r"tolerance only, got method 'newmark'"),
-    (dict(max_step=1e-5, method="fox_goodwin"), r"max_step applies to methods 'dormand_prince', 'dop853', 'radau' and "
-                                                r"'auto' with a tolerance only"),
-    (dict(max_step=1e-5, method="auto"), r"max_step applies to methods 'dormand_prince', 'dop853', 'radau' and "
-                                         r"'auto' with a tolerance only, got method 'auto'"),
+    (dict(max_step=1e-5), r"max_step applies with a tolerance only \(method 'newmark' without one runs fixed steps "
+                          r"of time_step\)"),
+    (dict(max_step=1e-5, method="fox_goodwin"), r"max_step applies with a tolerance only \(method 'fox_goodwin'"),
+    (dict(max_step=1e-5, method="auto"), r"max_step applies with a tolerance only \(method 'auto'"),
+    (dict(tolerance=1e-6, hht_alpha=-0.1), r"Newmark under a tolerance needs hht_alpha = 0"),
+    (dict(method="fox_goodwin", tolerance=1e-6, max_step=1e-9), r"the largest step allowed by max_step \(1e-09 s\) is "
+                                                                r"below the smallest step time_step / 2\^max_halvings"),
     (dict(method="auto", tolerance=0.0), r"tolerance must be in \[1e-13, 0.1\], got 0"),
     (dict(method="dormand_prince", beta=0.3), r"gamma, beta and hht_alpha apply to method 'newmark' only"),
     (dict(method="dormand_prince", tolerance=0.0), r"tolerance must be in \[1e-13, 0.1\], got 0"),
@@ -148,8 +169,8 @@ def test_method_must_be_a_string(model):
         cf.simulate(model, revolutions=0.1, method="dormand_prince", tolerance="1e-6")
 
 
-@pytest.mark.parametrize("scheme", ["dormand_prince", "dop853", "radau"])
-def test_config_scheme_explicit_reaches_simulate(tmp_path, scheme):
+@pytest.mark.parametrize("scheme", ["dormand_prince", "dop853", "radau", "fox_goodwin"])
+def test_config_scheme_with_a_tolerance_reaches_simulate(tmp_path, scheme):
     text = (ROOT / "examples" / "translating_roller.toml").read_text()
     assert "[solver]" in text
     lines = [line for line in text.splitlines() if not line.startswith("scheme")]
@@ -165,10 +186,10 @@ def test_config_scheme_explicit_reaches_simulate(tmp_path, scheme):
     assert r.stats["method"] == scheme
 
     bad = list(lines)
-    bad[k + 1] = 'tolerance = 1e-7'
+    bad[k + 1] = 'max_step = 1e-5'
     path.write_text("\n".join(bad) + "\n")
-    with pytest.raises(ValueError, match=rf"dp.toml:{k + 2}: solver.tolerance: applies only with scheme = "
-                                         r"\"dormand_prince\", \"dop853\", \"radau\" or \"auto\" with a tolerance"):
+    with pytest.raises(ValueError, match=rf"dp.toml:{k + 2}: solver.max_step: applies with a tolerance only "
+                                         r"\(scheme = \"average_acceleration\" without one runs fixed steps of time_step\)"):
         cf.load_config(path)
 
 
