@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// No heap allocation per time step, for dynamic-size models too: the adaptive steppers run hundreds of
-// steps with Eigen's allocations forbidden (EIGEN_RUNTIME_NO_MALLOC). The system is local to this
-// file, so its steppers are compiled here only, with the check.
+// No heap allocation per time step, for dynamic-size models too: the steppers run hundreds of steps
+// with Eigen's allocations forbidden (EIGEN_RUNTIME_NO_MALLOC). The system is local to this file, so
+// its steppers are compiled here only, with the check.
 #include <stdexcept>
 #define EIGEN_RUNTIME_NO_MALLOC
 // A failed Eigen assertion (a forbidden allocation among them) throws here instead of aborting.
@@ -18,6 +18,7 @@
 #include <Eigen/Core>
 
 #include "camfollower/solver/dormand_prince.hpp"
+#include "camfollower/solver/newmark.hpp"
 #include "camfollower/solver/radau.hpp"
 
 using namespace camfollower;
@@ -43,12 +44,13 @@ struct DynamicCoupled {
 };
 
 template <class Stepper>
-void run_without_allocation(const char* method) {
+void run_without_allocation(const char* method, bool under_tolerance = true) {
     const DynamicCoupled system;
     NewmarkSettings s;
     set_method(s, method);
     s.time_step = 1e-3;
-    s.tolerance = 1e-7;
+    if (under_tolerance) set_tolerance(s, 1e-7);
+    s.max_halvings = 12;  // Newmark under a tolerance: steps down to time_step / 4096
     Stepper stepper(system, s);
     State<DynamicCoupled> state = stepper.start(0.0, system.initial_displacement(), Eigen::VectorXd::Zero(2));
     SolverStatistics stats;
@@ -88,4 +90,10 @@ TEST_CASE("Radau IIA, Dormand-Prince and DOP853 step a dynamic-size model withou
     run_without_allocation<Radau<DynamicCoupled>>("radau");
     run_without_allocation<DormandPrince<DynamicCoupled>>("dormand_prince");
     run_without_allocation<Dop853<DynamicCoupled>>("dop853");
+}
+
+TEST_CASE("Newmark steps a dynamic-size model without heap allocation, at a fixed step and under a tolerance") {
+    run_without_allocation<Newmark<DynamicCoupled>>("newmark", false);
+    run_without_allocation<Newmark<DynamicCoupled>>("newmark");
+    run_without_allocation<Newmark<DynamicCoupled>>("fox_goodwin");
 }
