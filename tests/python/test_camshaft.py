@@ -73,6 +73,17 @@ def test_sparse_and_dense_backends_agree_and_say_which_ran():
     assert np.isfinite(runs["auto"]["cam1.cam_torque"]).all()
 
 
+def test_sparse_and_dense_backends_agree_under_a_tolerance():
+    # Newmark under a tolerance on the sparse backend: the same levels, the same steps, the same run.
+    m = two_cam_shaft(contact_damping=1e-5, max_element_length=0.005).build()
+    runs = {solver: cf.simulate(m, revolutions=0.1, time_step=1e-4, linear_solver=solver, tolerance=1e-5)
+            for solver in ("auto", "low_rank")}
+    assert runs["auto"].stats["backend"] == "sparse" and runs["low_rank"].stats["backend"] == "dense"
+    assert runs["auto"].stats["steps"] == runs["low_rank"].stats["steps"] > 0
+    q = np.asarray(runs["low_rank"].q)
+    assert np.abs(np.asarray(runs["auto"].q) - q).max() <= 1e-9 * np.abs(q).max()
+
+
 def test_a_camshaft_mechanism_pickles_to_the_same_model():
     m = two_cam_shaft().build()
     back = pickle.loads(pickle.dumps(m))
