@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Method "auto" (solver/choose_method.hpp): the fastest modes' rates and damping ratios against the
 // closed form of a two-mass system, the choice under a tolerance (radau where the fastest mode is
-// damped or rings alone, dop853 else) run exactly as the method chosen, the reason in words, bad
-// settings.
+// damped; Fox-Goodwin then dop853 where the modes ring, at tolerances of 1e-7 and looser or on a mode
+// ringing alone; dop853 else; radau for the mode ringing alone when Fox-Goodwin's finest step is
+// beyond its stability limit) run exactly as the method chosen, the reason in words, bad settings.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -47,7 +48,13 @@ void check_same_run(const System& system, const NewmarkSettings& chosen_by_auto,
     CHECK(std::string(r.requested_method) == "auto");
     CHECK(r.method_choice.rfind(std::string(method) + ": ", 0) == 0);
     NewmarkSettings named = chosen_by_auto;
-    set_method(named, method);
+    if (std::string(method) == "fox_goodwin_then_dop853") {  // not a method by name: auto's choice only
+        named.method = Method::fox_goodwin_then_dop853;
+        named.beta = 1.0 / 12.0;
+        named.max_halvings = 12;  // auto raises the default 6 to 12 for Fox-Goodwin
+    } else {
+        set_method(named, method);
+    }
     const auto direct = simulate(system, named, o);
     CHECK(direct.method_choice.empty());
     REQUIRE(direct.recording.rows == r.recording.rows);
@@ -81,14 +88,18 @@ TEST_CASE("The fastest ringing and damped modes: rates and damping ratios of a c
     }
 }
 
-TEST_CASE("Auto under a tolerance: radau where the fastest mode is damped or rings alone, dop853 else, run as named") {
+TEST_CASE("Auto under a tolerance: radau where the fastest mode is damped, Fox-Goodwin then dop853 or dop853 where they ring, run as named") {
     // zeta = 0.707: damped, radau (L-stable) steps over it.
     check_same_run(coupled(1e10, 1e5), automatic(0.01, 1e-6), "radau", 0.2);
-    // zeta = 0.007: the stiff mode rings, 1.3e4 times faster than the soft one: radau down to
-    // tolerance 1e-7, dop853 below.
-    check_same_run(coupled(1e10, 1e3), automatic(1e-4, 1e-6), "radau", 2e-3);
-    check_same_run(coupled(1e10, 1e3), automatic(1e-4, 1e-8), "dop853", 2e-3);
-    // The paper preset's fastest mode is the undamped cam contact (12.0 kHz), 1.15 times the next: dop853.
+    // zeta = 0.007: the stiff mode rings, 1.3e4 times faster than the soft one: Fox-Goodwin (stability
+    // limit sqrt(6) / sqrt(2e10) = 17 us, above its finest step 1e-4 / 2^12 = 24 ns) at every tolerance.
+    check_same_run(coupled(1e10, 1e3), automatic(1e-4, 1e-6), "fox_goodwin_then_dop853", 2e-3);
+    check_same_run(coupled(1e10, 1e3), automatic(1e-4, 1e-8), "fox_goodwin_then_dop853", 2e-3);
+    // An output interval of 0.1 s: the finest step 24 us is beyond the limit, radau down to 1e-7, dop853 below.
+    check_same_run(coupled(1e10, 1e3), automatic(0.1, 1e-6), "radau", 0.2);
+    check_same_run(coupled(1e10, 1e3), automatic(0.1, 1e-8), "dop853", 0.2);
+    // The paper preset's fastest mode is the undamped cam contact (12.0 kHz), 1.15 times the next:
+    // Fox-Goodwin then dop853 at 1e-7 and looser, dop853 tighter.
     // With 3 % of critical in every element a stiffly damped mode (11.0 kHz, 0.79) is faster than half
     // of the fastest ringing one; with the contact 100 times stiffer the contact mode (86 kHz) is 8.2
     // times the next.
@@ -96,15 +107,21 @@ TEST_CASE("Auto under a tolerance: radau where the fastest mode is damped or rin
     CamFollowerParameters p;
     p.contact_stiffness *= 100.0;
     const Mechanism<presets::paper_dofs> stiff = presets::paper(p);
-    check_same_run(paper, automatic(paper.period() / 512, 1e-6), "dop853", paper.period() / 16);
+    check_same_run(paper, automatic(paper.period() / 512, 1e-7), "fox_goodwin_then_dop853", paper.period() / 16);
+    check_same_run(paper, automatic(paper.period() / 512, 1e-8), "dop853", paper.period() / 16);
     check_same_run(damped, automatic(damped.period() / 512, 1e-6), "radau", damped.period() / 16);
-    check_same_run(stiff, automatic(stiff.period() / 512, 1e-6), "radau", stiff.period() / 16);
+    check_same_run(stiff, automatic(stiff.period() / 512, 1e-9), "fox_goodwin_then_dop853", stiff.period() / 16);
     RunOptions o;
     o.duration = damped.period() / 64;
     const std::string why = simulate(damped, automatic(damped.period() / 512, 1e-6), o).method_choice;
     CHECK_THAT(why, Catch::StartsWith("radau: the fastest modes are damped: ") && Catch::Contains("Hz at damping ratio 0.78"));
     const std::string alone = simulate(stiff, automatic(stiff.period() / 512, 1e-6), o).method_choice;
-    CHECK_THAT(alone, Catch::StartsWith("radau: the fastest mode rings alone") && Catch::Contains(" times the next ringing mode (1.052e+04 Hz)"));
+    CHECK_THAT(alone, Catch::StartsWith("fox_goodwin_then_dop853: the fastest modes ring: ") &&
+                          Catch::Contains(" times the next ringing mode (1.052e+04 Hz)") && Catch::Contains("the fastest rings alone"));
+    const std::string loose = simulate(paper, automatic(paper.period() / 512, 1e-6), o).method_choice;
+    CHECK_THAT(loose, Catch::Contains("tolerance >= 1e-07") && Catch::Contains("dop853 from the first contact event"));
+    const std::string tight = simulate(paper, automatic(paper.period() / 512, 1e-8), o).method_choice;
+    CHECK_THAT(tight, Catch::StartsWith("dop853: ") && Catch::Contains("tolerance < 1e-07"));
 }
 
 TEST_CASE("Auto under a tolerance above 1e-5 bounds radau's steps by the output interval, unless max_step is set") {
@@ -125,7 +142,7 @@ TEST_CASE("Auto under a tolerance above 1e-5 bounds radau's steps by the output 
     // dop853 is left as asked.
     const Mechanism<presets::paper_dofs> paper = presets::paper();
     const MethodChoice explicit_choice =
-        choose_method(paper, automatic(dt, 1e-4), state_at(paper, 0.0, paper.initial_displacement(), paper.initial_velocity()));
+        choose_method(paper, automatic(dt, 1e-8), state_at(paper, 0.0, paper.initial_displacement(), paper.initial_velocity()));
     CHECK(explicit_choice.settings.method == Method::dop853);
     CHECK(explicit_choice.settings.max_step == 0.0);
 }

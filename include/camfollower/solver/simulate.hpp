@@ -4,6 +4,7 @@
 // channels, report progress and honour cancellation.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -14,6 +15,7 @@
 
 #include "camfollower/solver/choose_method.hpp"
 #include "camfollower/solver/dormand_prince.hpp"
+#include "camfollower/solver/handover.hpp"
 #include "camfollower/solver/integrate.hpp"
 #include "camfollower/solver/newmark.hpp"
 #include "camfollower/solver/observers.hpp"
@@ -53,6 +55,9 @@ struct RunResult {
     // Highest natural frequency at the start (Hz, contacts linearized), for reading the step against
     // the shortest period: dense backend up to 200 DOFs only, else NaN (an eigen solve too costly).
     double highest_mode_hz = std::numeric_limits<double>::quiet_NaN();
+    // fox_goodwin_then_dop853: the start of the output interval from which dop853 ran (the first
+    // contact event is in it); NaN when Fox-Goodwin ran throughout, and for every other method.
+    double handover_time = std::numeric_limits<double>::quiet_NaN();
 };
 
 namespace detail {
@@ -108,6 +113,7 @@ RunResult<System> run(const System& system, const NewmarkSettings& settings, con
     result.report.stats.add(settling);
     result.recording = recorder.take();
     result.events = stepper.take_events();
+    if constexpr (std::is_same_v<Stepper, FoxGoodwinThenDop853<System>>) result.handover_time = stepper.handover_time();
     result.time_step = settings.time_step;
     result.decimation = options.record.decimation;
     result.backend = std::is_same_v<Stepper, SparseNewmark<System>> ? "sparse" : "dense";
@@ -171,9 +177,16 @@ RunResult<System> simulate(const System& system, const NewmarkSettings& requeste
         RunResult<System> r = simulate(system, choice.settings, options, q0, v0);
         r.requested_method = "auto";
         r.method_choice = std::move(choice.reason);
+        if (std::isfinite(r.handover_time))
+            r.method_choice += "; dop853 took over at t = " + detail::figure(r.handover_time) + " s";
         return r;
     }
     const NewmarkSettings& settings = requested;
+    if (settings.method == Method::fox_goodwin_then_dop853) {
+        if (settings.backend == Backend::sparse)
+            detail::fail("linear_solver 'sparse' or 'klu' applies to Newmark alone; fox_goodwin_then_dop853 runs on the dense backend only");
+        return detail::run<FoxGoodwinThenDop853<System>>(system, settings, options, q0, v0);
+    }
     if (is_runge_kutta(settings.method)) {
         if (settings.backend == Backend::sparse)
             detail::fail("linear_solver 'sparse' or 'klu' applies to Newmark; ", method_name(settings),
@@ -218,6 +231,8 @@ PeriodicOrbit periodic_orbit(const System& system, const NewmarkSettings& reques
         return detail::shoot_with<Dop853<System>>(system, settings, options, q, v, keep_going);
     if (settings.method == Method::radau)
         return detail::shoot_with<Radau<System>>(system, settings, options, q, v, keep_going);
+    if (settings.method == Method::fox_goodwin_then_dop853)
+        return detail::shoot_with<FoxGoodwinThenDop853<System>>(system, settings, options, q, v, keep_going);
     if (settings.method == Method::dormand_prince)
         return detail::shoot_with<DormandPrince<System>>(system, settings, options, q, v, keep_going);
     if constexpr (detail::has_sparse_matrices<System>::value) {
