@@ -9,6 +9,7 @@
 #include <mutex>
 #include <memory>
 #include <optional>
+#include <limits>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -76,7 +77,7 @@ struct RunOutput {
     const char* requested_method = "";
     std::string method_choice;
     double highest_mode_hz = 0.0;
-    double handover_time = 0.0;
+    double restart_time = std::numeric_limits<double>::quiet_NaN();
     double final_time = 0.0;
     ContactLosses losses;
     // Located contact losses and re-contacts: (time, switching function's name, +1 made / -1 lost).
@@ -97,7 +98,7 @@ std::shared_ptr<RunOutput> output_of(const System& system, RunResult<System>&& r
     out->requested_method = r.requested_method;
     out->method_choice = std::move(r.method_choice);
     out->highest_mode_hz = r.highest_mode_hz;
-    out->handover_time = r.handover_time;
+    out->restart_time = r.restart_time;
     out->final_time = r.final_state.t;
     out->losses = losses_of(system, r.final_state);
     const std::vector<std::string> names = event_names(system);
@@ -150,7 +151,7 @@ inline py::dict dict_of(const std::shared_ptr<RunOutput>& out) {
     stats["rejected_steps"] = st.rejected_steps;
     stats["stiff_steps"] = st.stiff_steps;
     stats["highest_mode_hz"] = result.highest_mode_hz;
-    if (std::string(result.method) == "fox_goodwin_then_dop853") stats["handover_time"] = result.handover_time;
+    stats["restart_time"] = result.restart_time;
     stats["steps_per_shortest_period"] = 1.0 / (result.highest_mode_hz * result.time_step);
     const SettleReport& sr = result.settle_report;
     if (sr.requested) {

@@ -3,7 +3,7 @@
 //   at a fixed time_step (Method::automatic): Fox-Goodwin within its stability limit, else
 //   average-acceleration Newmark;
 //   under a tolerance (Method::automatic_adaptive): radau when the model's fastest modes are damped,
-//   else Fox-Goodwin handing over to dop853 at the first contact event (fox_goodwin_then_dop853) at
+//   else Fox-Goodwin, or dop853 for runs that meet a contact event (fox_goodwin_or_dop853), at
 //   tolerances of 1e-7 and looser or when the fastest mode rings alone (a stiff contact), else dop853.
 #pragma once
 
@@ -107,7 +107,7 @@ struct MethodChoice {
 //    200 DOFs the highest mode is not computed: average acceleration.
 //  - automatic_adaptive: radau (L-stable: it steps over what it need not resolve) when a damped mode
 //    (damping ratio >= 0.3) is at least half as fast as the fastest ringing one. Else, when the
-//    fastest modes ring, fox_goodwin_then_dop853 (solver/handover.hpp) at tolerances of 1e-7 and
+//    fastest modes ring, fox_goodwin_or_dop853 (solver/handover.hpp) at tolerances of 1e-7 and
 //    looser or when the fastest ringing mode is isolated_mode_ratio times faster than the next, and
 //    dop853 (order 8, no linear solves) at tighter tolerances. Fox-Goodwin needs its stability limit
 //    at or above its finest step (time_step / 2^max_halvings, max_halvings raised to at least
@@ -169,14 +169,15 @@ MethodChoice choose_method(const System& system, NewmarkSettings s, const State<
         const bool fits = s.backend != Backend::sparse && !(limit < finest) &&
                           (s.max_step == 0.0 || s.max_step >= finest);
         if (fits && (isolated || s.tolerance >= fox_goodwin_tolerance)) {
-            s.method = Method::fox_goodwin_then_dop853;
+            s.method = Method::fox_goodwin_or_dop853;
             s.beta = 1.0 / 12.0;
             s.max_halvings = halvings;
-            return {s, "fox_goodwin_then_dop853: the fastest modes ring: " + ringing + units + "; " +
+            return {s, "fox_goodwin_or_dop853: the fastest modes ring: " + ringing + units + "; " +
                            (isolated ? "the fastest rings alone (>= " + figure(isolated_mode_ratio) + ")"
                                      : "tolerance >= " + figure(fox_goodwin_tolerance)) +
                            "; Fox-Goodwin's stability limit " + figure(limit) + " s >= its finest step " +
-                           figure(finest) + " s; dop853 from the first contact event"};
+                           figure(finest) + " s (max_halvings " + std::to_string(halvings) +
+                           "); the whole run by dop853 if it meets a contact event"};
         }
         if (isolated && s.tolerance >= isolated_mode_tolerance)
             return take_radau("radau: the fastest mode rings alone, a stiff spring loaded quasi-statically: " + ringing + " (>= " +

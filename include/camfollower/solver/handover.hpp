@@ -1,23 +1,22 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Fox-Goodwin under a tolerance until the first contact event, DOP853 from there on
-// (Method::fox_goodwin_then_dop853, what method "auto" takes under a tolerance when the model's
-// fastest modes ring; solver/choose_method.hpp).
+// Fox-Goodwin under a tolerance unless the run meets a contact event, DOP853 when it does
+// (Method::fox_goodwin_or_dop853, what method "auto" takes under a tolerance where the model's fastest
+// modes ring; solver/choose_method.hpp).
 //
 // Why two methods: without contact loss Fox-Goodwin under a tolerance is the cheapest way to a given
 // accuracy in force on the cam models measured (docs/benchmarks.md), but Newmark does not end a step at
-// an event, so across the kink of a contact loss it is second order and loses 3-9x to DOP853, which
-// does. Whether a run loses contact cannot be told at its start. So Fox-Goodwin runs each output
-// interval from a copy of the state at its start; the first interval in which it sees a contact event
-// (or cannot meet the tolerance at its finest step) is run again from that copy by DOP853, which
-// locates the event, ends a step there and keeps the run from then on.
+// an event, so across the kinks of a contact loss it is second order and its steps crowd there
+// (3-9x DOP853's time). Whether a run loses contact cannot be told at its start. So Fox-Goodwin runs
+// until it sees a contact event (or cannot meet the tolerance at its finest step); then the whole run
+// is done again from its start by DOP853 (simulate(), periodic_orbit()), which locates the events and
+// ends its steps there. Again from the start, not on from the event: the error Fox-Goodwin leaves
+// before a loss (1e-9 of the peak force at tolerance 1e-8, DOP853's 3e-12) is amplified some 1000x
+// by the landing after the flight, a steep impact.
 #pragma once
 
-#include <cmath>
-#include <limits>
-#include <vector>
+#include <exception>
 
 #include "camfollower/error.hpp"
-#include "camfollower/solver/dormand_prince.hpp"
 #include "camfollower/solver/newmark.hpp"
 
 namespace camfollower {
@@ -32,71 +31,63 @@ inline NewmarkSettings dop853_part(NewmarkSettings s) {
     return s;
 }
 
+namespace detail {
+// Thrown by FoxGoodwinUnlessEvents at the first contact event: the run goes to DOP853.
+struct FoxGoodwinGaveWay : std::exception {
+    double time = 0.0;      // start of the output interval in which Fox-Goodwin gave way
+    SolverStatistics work;  // Fox-Goodwin's, until then
+    const char* what() const noexcept override { return "Fox-Goodwin met a contact event: the run goes to DOP853"; }
+};
+}  // namespace detail
+
+// Fox-Goodwin under the settings' tolerance; throws detail::FoxGoodwinGaveWay from step() at the end of
+// the first output interval in which it saw a contact event, or in which it could not meet the
+// tolerance at its finest step.
 template <class System>
-class FoxGoodwinThenDop853 {
+class FoxGoodwinUnlessEvents {
 public:
     using Vector = typename System::Vector;
     using StateType = State<System>;
 
-    FoxGoodwinThenDop853(const System& system, const NewmarkSettings& settings)
-        : s_(validated(settings)), first_(system, fox_goodwin_part(s_)), then_(system, dop853_part(s_)) {}
-    FoxGoodwinThenDop853(System&&, const NewmarkSettings&) = delete;
+    FoxGoodwinUnlessEvents(const System& system, const NewmarkSettings& settings)
+        : s_(validated(settings)), fox_goodwin_(system, fox_goodwin_part(s_)) {}
+    FoxGoodwinUnlessEvents(System&&, const NewmarkSettings&) = delete;
 
     const NewmarkSettings& settings() const { return s_; }
-    const System& system() const { return first_.system(); }
+    const System& system() const { return fox_goodwin_.system(); }
     double time_step() const { return s_.time_step; }  // the output interval
-    double force_scale() const { return first_.force_scale(); }
-
-    StateType start(double t, const Vector& q, const Vector& v) {
-        handed_over_ = false;
-        handover_time_ = std::numeric_limits<double>::quiet_NaN();
-        StateType s = first_.start(t, q, v);
-        interval_start_ = s;  // sized once: the copies in step() reuse its storage
-        return s;
-    }
+    double force_scale() const { return fox_goodwin_.force_scale(); }
+    StateType start(double t, const Vector& q, const Vector& v) { return fox_goodwin_.start(t, q, v); }
 
     void step(StateType& s, SolverStatistics& stats) {
-        if (handed_over_) return then_.step(s, stats);
-        interval_start_ = s;
-        bool refused = false;
+        const double t0 = s.t;
         try {
-            first_.step(s, stats);
-        } catch (const ConvergenceError&) {  // the tolerance not met at the finest step: DOP853's turn
-            refused = true;
+            fox_goodwin_.step(s, stats);
+        } catch (const ConvergenceError&) {  // the tolerance not met at the finest step
+            give_way(t0, stats);
         }
-        if (!refused && first_.events().empty()) return;
-        handed_over_ = true;
-        handover_time_ = interval_start_.t;
-        (void)first_.take_events();  // located on Newmark's cubic; DOP853 locates them again
-        const double end = interval_start_.t + s_.time_step;
-        s = then_.start(interval_start_.t, interval_start_.q, interval_start_.v);
-        then_.step(s, stats);
-        s.t = end;
+        if (!fox_goodwin_.events().empty()) give_way(t0, stats);
     }
 
-    // True once DOP853 has taken over; handover_time() is then the start of the output interval it
-    // took over at (NaN before).
-    bool handed_over() const { return handed_over_; }
-    double handover_time() const { return handover_time_; }
-
-    const std::vector<Event>& events() const { return handed_over_ ? then_.events() : first_.events(); }
-    std::vector<Event> take_events() { return handed_over_ ? then_.take_events() : first_.take_events(); }
-    double highest_angular_frequency(const StateType& s) { return first_.highest_angular_frequency(s); }
+    const std::vector<Event>& events() const { return fox_goodwin_.events(); }  // empty: it gives way at the first
+    std::vector<Event> take_events() { return fox_goodwin_.take_events(); }
+    double highest_angular_frequency(const StateType& s) { return fox_goodwin_.highest_angular_frequency(s); }
 
 private:
     static NewmarkSettings validated(const NewmarkSettings& s) {
         s.validate();
-        if (s.method != Method::fox_goodwin_then_dop853)
-            detail::fail("FoxGoodwinThenDop853 needs method fox_goodwin_then_dop853, got '", method_name(s), "'");
+        if (s.method != Method::fox_goodwin_or_dop853)
+            detail::fail("FoxGoodwinUnlessEvents needs method fox_goodwin_or_dop853, got '", method_name(s), "'");
         return s;
+    }
+    [[noreturn]] static void give_way(double t, const SolverStatistics& stats) {
+        detail::FoxGoodwinGaveWay e;
+        e.time = t, e.work = stats;
+        throw e;
     }
 
     NewmarkSettings s_;
-    Newmark<System> first_;
-    Dop853<System> then_;
-    StateType interval_start_;
-    bool handed_over_ = false;
-    double handover_time_ = std::numeric_limits<double>::quiet_NaN();
+    Newmark<System> fox_goodwin_;
 };
 
 }  // namespace camfollower

@@ -55,9 +55,10 @@ struct RunResult {
     // Highest natural frequency at the start (Hz, contacts linearized), for reading the step against
     // the shortest period: dense backend up to 200 DOFs only, else NaN (an eigen solve too costly).
     double highest_mode_hz = std::numeric_limits<double>::quiet_NaN();
-    // fox_goodwin_then_dop853: the start of the output interval from which dop853 ran (the first
-    // contact event is in it); NaN when Fox-Goodwin ran throughout, and for every other method.
-    double handover_time = std::numeric_limits<double>::quiet_NaN();
+    // fox_goodwin_or_dop853 (solver/handover.hpp): the start of the output interval in which
+    // Fox-Goodwin met the first contact event, after which dop853 ran the whole run again (`method`
+    // "dop853"); NaN when Fox-Goodwin ran throughout (`method` "fox_goodwin"), and for other methods.
+    double restart_time = std::numeric_limits<double>::quiet_NaN();
 };
 
 namespace detail {
@@ -113,7 +114,6 @@ RunResult<System> run(const System& system, const NewmarkSettings& settings, con
     result.report.stats.add(settling);
     result.recording = recorder.take();
     result.events = stepper.take_events();
-    if constexpr (std::is_same_v<Stepper, FoxGoodwinThenDop853<System>>) result.handover_time = stepper.handover_time();
     result.time_step = settings.time_step;
     result.decimation = options.record.decimation;
     result.backend = std::is_same_v<Stepper, SparseNewmark<System>> ? "sparse" : "dense";
@@ -176,16 +176,25 @@ RunResult<System> simulate(const System& system, const NewmarkSettings& requeste
         MethodChoice choice = concrete_settings(system, requested, q0, v0);
         RunResult<System> r = simulate(system, choice.settings, options, q0, v0);
         r.requested_method = "auto";
-        r.method_choice = std::move(choice.reason);
-        if (std::isfinite(r.handover_time))
-            r.method_choice += "; dop853 took over at t = " + detail::figure(r.handover_time) + " s";
+        r.method_choice = std::move(choice.reason) + (r.method_choice.empty() ? "" : "; " + r.method_choice);
         return r;
     }
     const NewmarkSettings& settings = requested;
-    if (settings.method == Method::fox_goodwin_then_dop853) {
+    if (settings.method == Method::fox_goodwin_or_dop853) {
         if (settings.backend == Backend::sparse)
-            detail::fail("linear_solver 'sparse' or 'klu' applies to Newmark alone; fox_goodwin_then_dop853 runs on the dense backend only");
-        return detail::run<FoxGoodwinThenDop853<System>>(system, settings, options, q0, v0);
+            detail::fail("linear_solver 'sparse' or 'klu' applies to Newmark alone; fox_goodwin_or_dop853 runs on the dense backend only");
+        try {
+            RunResult<System> r = detail::run<FoxGoodwinUnlessEvents<System>>(system, settings, options, q0, v0);
+            r.method = "fox_goodwin";
+            return r;
+        } catch (const detail::FoxGoodwinGaveWay& e) {  // the whole run again, by dop853
+            RunResult<System> r = detail::run<Dop853<System>>(system, dop853_part(settings), options, q0, v0);
+            r.restart_time = e.time;
+            r.method_choice = detail::concat("Fox-Goodwin met a contact event (or could not meet the tolerance) in the "
+                                             "output interval from t = ", detail::figure(e.time), " s after ", e.work.steps,
+                                             " steps: run again from the start by dop853");
+            return r;
+        }
     }
     if (is_runge_kutta(settings.method)) {
         if (settings.backend == Backend::sparse)
@@ -231,8 +240,13 @@ PeriodicOrbit periodic_orbit(const System& system, const NewmarkSettings& reques
         return detail::shoot_with<Dop853<System>>(system, settings, options, q, v, keep_going);
     if (settings.method == Method::radau)
         return detail::shoot_with<Radau<System>>(system, settings, options, q, v, keep_going);
-    if (settings.method == Method::fox_goodwin_then_dop853)
-        return detail::shoot_with<FoxGoodwinThenDop853<System>>(system, settings, options, q, v, keep_going);
+    if (settings.method == Method::fox_goodwin_or_dop853) {
+        try {
+            return detail::shoot_with<FoxGoodwinUnlessEvents<System>>(system, settings, options, q, v, keep_going);
+        } catch (const detail::FoxGoodwinGaveWay&) {
+            return detail::shoot_with<Dop853<System>>(system, dop853_part(settings), options, q, v, keep_going);
+        }
+    }
     if (settings.method == Method::dormand_prince)
         return detail::shoot_with<DormandPrince<System>>(system, settings, options, q, v, keep_going);
     if constexpr (detail::has_sparse_matrices<System>::value) {
