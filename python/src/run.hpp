@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <functional>
 #include <mutex>
 #include <memory>
@@ -151,7 +152,7 @@ inline py::dict dict_of(const std::shared_ptr<RunOutput>& out) {
     stats["rejected_steps"] = st.rejected_steps;
     stats["stiff_steps"] = st.stiff_steps;
     stats["highest_mode_hz"] = result.highest_mode_hz;
-    stats["restart_time"] = result.restart_time;
+    if (std::isfinite(result.restart_time)) stats["restart_time"] = result.restart_time;
     stats["steps_per_shortest_period"] = 1.0 / (result.highest_mode_hz * result.time_step);
     const SettleReport& sr = result.settle_report;
     if (sr.requested) {

@@ -112,6 +112,7 @@ TEST_CASE("Auto under a tolerance: radau where the fastest mode is damped, Fox-G
     check_same_run(paper, automatic(paper.period() / 512, 1e-8), "dop853", paper.period() / 16);
     check_same_run(damped, automatic(damped.period() / 512, 1e-6), "radau", damped.period() / 16);
     check_same_run(stiff, automatic(stiff.period() / 512, 1e-9), "fox_goodwin_or_dop853", stiff.period() / 16);
+    check_same_run(stiff, automatic(stiff.period() / 512, 1e-11), "dop853", stiff.period() / 64);
     RunOptions o;
     o.duration = damped.period() / 64;
     const std::string why = simulate(damped, automatic(damped.period() / 512, 1e-6), o).method_choice;

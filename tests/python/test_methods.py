@@ -2,7 +2,6 @@
 """The integration methods (docs/solvers.md): Dormand-Prince 5(4) and 8(5,3) against an independent solution
 of the same equations (the NumPy model integrated by scipy), Fox-Goodwin, the settings each method
 accepts, the config's [solver] scheme."""
-import math
 import re
 from pathlib import Path
 
@@ -229,7 +228,7 @@ def expected_choice(m, tolerance, time_step, max_halvings=6):
     # Fox-Goodwin's stability limit sqrt(6) / omega_max (undamped) against its finest step.
     omega_max = np.sqrt(np.max(np.real(np.linalg.eigvals(np.linalg.solve(M, K)))))
     fits = np.sqrt(6) / omega_max >= time_step / 2**max(max_halvings, 12)  # auto gives Fox-Goodwin 12 halvings
-    if fits and (isolation >= 3 or tolerance >= 1e-7):
+    if fits and ((isolation >= 3 and tolerance >= 1e-10) or tolerance >= 1e-7):
         return "fox_goodwin_or_dop853", figures
     return ("radau" if isolation >= 3 and tolerance >= 1e-7 else "dop853"), figures
 
@@ -261,7 +260,7 @@ def test_auto_with_a_tolerance_takes_radau_where_damped_fox_goodwin_where_loose_
     # Without a contact event the run is fox_goodwin's under the tolerance, with the 12 halvings auto
     # gives it (the default is 6).
     named = dict(method="fox_goodwin", max_halvings=12) if ran == "fox_goodwin" else dict(method=chosen)
-    assert math.isnan(r.stats["restart_time"])
+    assert "restart_time" not in r.stats
     direct = cf.simulate(m, revolutions=0.25, time_step=T / 512, tolerance=tolerance, **named)
     np.testing.assert_array_equal(r["cam.force"], direct["cam.force"])
 

@@ -4,7 +4,8 @@
 //   average-acceleration Newmark;
 //   under a tolerance (Method::automatic_adaptive): radau when the model's fastest modes are damped,
 //   else Fox-Goodwin, or dop853 for runs that meet a contact event (fox_goodwin_or_dop853), at
-//   tolerances of 1e-7 and looser or when the fastest mode rings alone (a stiff contact), else dop853.
+//   tolerances of 1e-7 and looser or (down to 1e-10) when the fastest mode rings alone (a stiff
+//   contact), else dop853.
 #pragma once
 
 #include <algorithm>
@@ -39,6 +40,9 @@ inline constexpr double radau_long_step_tolerance = 1e-5;
 // docs/benchmarks.md). On a stiff isolated mode it wins at every tolerance (dop853's steps are bounded
 // by stability there).
 inline constexpr double fox_goodwin_tolerance = 1e-7;
+// Below this tolerance the rounding of Fox-Goodwin's millions of steps floors its error even on an
+// isolated mode (the contact stiffness x100 at 1e-11: 3.4e-7 in force, dop853 2.6e-8): dop853 there.
+inline constexpr double fox_goodwin_isolated_tolerance = 1e-10;
 // Fox-Goodwin chosen by auto gets at least this many halvings (finest step time_step / 4096): the
 // default 6 bounds its steps at 1e-7 and tighter on a stiff contact (measured: the contact stiffness
 // x100 at output interval T/2048 needs 8), where it would hand over to dop853 at once.
@@ -108,7 +112,8 @@ struct MethodChoice {
 //  - automatic_adaptive: radau (L-stable: it steps over what it need not resolve) when a damped mode
 //    (damping ratio >= 0.3) is at least half as fast as the fastest ringing one. Else, when the
 //    fastest modes ring, fox_goodwin_or_dop853 (solver/handover.hpp) at tolerances of 1e-7 and
-//    looser or when the fastest ringing mode is isolated_mode_ratio times faster than the next, and
+//    looser or, down to 1e-10, when the fastest ringing mode is isolated_mode_ratio times faster
+//    than the next, and
 //    dop853 (order 8, no linear solves) at tighter tolerances. Fox-Goodwin needs its stability limit
 //    at or above its finest step (time_step / 2^max_halvings, max_halvings raised to at least
 //    fox_goodwin_halvings, and max_step when set) and the dense
@@ -168,12 +173,13 @@ MethodChoice choose_method(const System& system, NewmarkSettings s, const State<
         const double limit = newmark_step_limit(0.5, 1.0 / 12.0, omega);
         const bool fits = s.backend != Backend::sparse && !(limit < finest) &&
                           (s.max_step == 0.0 || s.max_step >= finest);
-        if (fits && (isolated || s.tolerance >= fox_goodwin_tolerance)) {
+        if (fits && ((isolated && s.tolerance >= fox_goodwin_isolated_tolerance) || s.tolerance >= fox_goodwin_tolerance)) {
             s.method = Method::fox_goodwin_or_dop853;
             s.beta = 1.0 / 12.0;
             s.max_halvings = halvings;
             return {s, "fox_goodwin_or_dop853: the fastest modes ring: " + ringing + units + "; " +
-                           (isolated ? "the fastest rings alone (>= " + figure(isolated_mode_ratio) + ")"
+                           (isolated ? "the fastest rings alone (>= " + figure(isolated_mode_ratio) + ", tolerance >= " +
+                                                 figure(fox_goodwin_isolated_tolerance) + ")"
                                      : "tolerance >= " + figure(fox_goodwin_tolerance)) +
                            "; Fox-Goodwin's stability limit " + figure(limit) + " s >= its finest step " +
                            figure(finest) + " s (max_halvings " + std::to_string(halvings) +
