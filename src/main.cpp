@@ -121,10 +121,13 @@ int run(const std::string& config, std::string output) {
         const auto result = cf::simulate(m, settings, options);
         cf::cli::write_recording_csv(output, result.recording, config);
         const cf::SolverStatistics& stats = result.report.stats;
-        if (result.method_choice.empty() && settings.method == cf::Method::newmark_adaptive)
-            std::printf("%zu rows, %zu channels (%s under tolerance %.3g: %llu steps, %llu rejected, %.3f Newton "
+        // Newmark under a tolerance, named or taken by auto (its fox_goodwin_or_dop853 without a contact event).
+        const std::string ran = result.method;
+        if (cf::uses_tolerance(settings.method) && (ran == "newmark" || ran == "fox_goodwin"))
+            std::printf("%zu rows, %zu channels (%s%s under tolerance %.3g: %llu steps, %llu rejected, %.3f Newton "
                         "iterations/step, output every %.4g s)",
-                        result.recording.rows, result.recording.names.size(), result.method, settings.tolerance,
+                        result.recording.rows, result.recording.names.size(), result.method,
+                        cf::is_automatic(settings.method) ? ", chosen by auto," : "", settings.tolerance,
                         static_cast<unsigned long long>(stats.steps), static_cast<unsigned long long>(stats.rejected_steps),
                         stats.mean_iterations(), settings.time_step);
         else if (cf::uses_tolerance(settings.method))

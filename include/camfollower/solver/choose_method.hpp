@@ -37,15 +37,15 @@ inline constexpr double isolated_mode_tolerance = 1e-7;
 inline constexpr double radau_long_step_tolerance = 1e-5;
 // At this tolerance and looser Fox-Goodwin under a tolerance reaches a given accuracy in force and
 // acceleration sooner than dop853 on the paper preset; tighter, dop853's order 8 wins (measured:
-// docs/benchmarks.md). On a stiff isolated mode it wins at every tolerance (dop853's steps are bounded
-// by stability there).
+// docs/benchmarks.md). On a stiff isolated mode it wins down to fox_goodwin_isolated_tolerance
+// (dop853's steps are bounded by stability there).
 inline constexpr double fox_goodwin_tolerance = 1e-7;
 // Below this tolerance the rounding of Fox-Goodwin's millions of steps floors its error even on an
 // isolated mode (the contact stiffness x100 at 1e-11: 3.4e-7 in force, dop853 2.6e-8): dop853 there.
 inline constexpr double fox_goodwin_isolated_tolerance = 1e-10;
 // Fox-Goodwin chosen by auto gets at least this many halvings (finest step time_step / 4096): the
 // default 6 bounds its steps at 1e-7 and tighter on a stiff contact (measured: the contact stiffness
-// x100 at output interval T/2048 needs 8), where it would hand over to dop853 at once.
+// x100 at output interval T/2048 needs 8), and the run would go to dop853 at once.
 inline constexpr int fox_goodwin_halvings = 12;
 
 // The two fastest ringing modes (damping ratio below ringing_damping_ratio) and the fastest damped
@@ -113,11 +113,10 @@ struct MethodChoice {
 //    (damping ratio >= 0.3) is at least half as fast as the fastest ringing one. Else, when the
 //    fastest modes ring, fox_goodwin_or_dop853 (solver/handover.hpp) at tolerances of 1e-7 and
 //    looser or, down to 1e-10, when the fastest ringing mode is isolated_mode_ratio times faster
-//    than the next, and
-//    dop853 (order 8, no linear solves) at tighter tolerances. Fox-Goodwin needs its stability limit
-//    at or above its finest step (time_step / 2^max_halvings, max_halvings raised to at least
-//    fox_goodwin_halvings, and max_step when set) and the dense
-//    backend: failing either, radau takes the isolated mode at 1e-7 and looser, dop853 the rest.
+//    than the next, and dop853 (order 8, no linear solves) at tighter tolerances. Fox-Goodwin needs
+//    its stability limit at or above its finest step (time_step / 2^max_halvings, max_halvings
+//    raised to at least fox_goodwin_halvings, and max_step when set) and the dense backend: failing
+//    either, radau takes the isolated mode at 1e-7 and looser, dop853 the rest.
 //    Above 200 DOFs the spectrum is not computed: dop853. Radau chosen at a tolerance above 1e-5
 //    gets max_step = time_step (the output interval) unless max_step is set.
 template <class System>
