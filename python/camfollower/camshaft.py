@@ -135,10 +135,11 @@ def camshaft_study(case: Union["Config", Mechanism], rpm: Optional[Sequence[floa
     speeds = list(rpm) if rpm is not None else [base.camshaft_speed_rpm]
     if not speeds:
         raise ValueError("rpm: give at least one camshaft speed")
-    summaries, results = [], []
-    for speed in speeds:
+    for speed in speeds:  # all of them before the first run
         if not (math.isfinite(speed) and speed > 0):
             raise ValueError(f"rpm: camshaft speeds must be finite and > 0, got {speed}")
+    summaries, results = [], []
+    for speed in speeds:
         m = base if speed == base.camshaft_speed_rpm else base.with_camshaft_speed_rpm(float(speed))
         result = simulate(m, revolutions=revolutions, record_last_revolutions=record_last_revolutions, **options)
         summaries.append(run_summary(m, result))

@@ -7,14 +7,15 @@ Reads a config (docs/config.md), simulates it, and writes into DIR: the recorded
 (``run.csv``), per contact its SVAJ diagram, the cam profile, pressure angle and
 curvature, simulated against rigid follower acceleration, contact force with contact loss shaded and
 the force's spectrum, and ``summary.json`` (written last). Every file is written to a temporary name
-and renamed (the library's atomic writer), so a failed run leaves no half-written file.
+and renamed (the library's atomic writer), so a failed run leaves no half-written file; the config
+is never overwritten or removed. Every command-line argument is checked before anything runs; an error
+is one line ``camfollower: error: ...`` (exit status 1).
 """
 
 from __future__ import annotations
 
 import argparse
 import io
-import json
 import math
 import sys
 from pathlib import Path
@@ -23,6 +24,7 @@ import numpy as np
 
 from . import _files
 from .config import load_config
+from .speed import _MAX_RPM, _MIN_RPM
 
 
 def _write(config: str, path: Path, content: bytes) -> None:
@@ -34,6 +36,65 @@ def _save(config: str, fig, path: Path) -> None:
     _files.save_figure(fig, path, protect=[config])
 
 
+def _folder(config: str, out: str) -> Path:
+    """The output folder, its old summary.json removed unless that is the config (or links to it)."""
+    return _files.output_folder(out, "--out", protect=[config])
+
+
+def _speeds(values, option: str, engine: bool = False) -> list:
+    """Speeds (rpm) given as `option`, each finite and within the model's camshaft speeds (an engine
+    turns twice as fast as its camshaft)."""
+    factor = 2.0 if engine else 1.0
+    lo, hi = factor * _MIN_RPM, factor * _MAX_RPM
+    for v in values:
+        if not (math.isfinite(v) and lo <= v <= hi):
+            raise ValueError(f"{option}: {v:g} is not {'an engine' if engine else 'a camshaft'} speed in "
+                             f"[{lo:.6g}, {hi:.6g}] rpm")
+    return [float(v) for v in values]
+
+
+def _integer(value, option: str, lo: int, hi: int) -> None:
+    if not lo <= value <= hi:
+        raise ValueError(f"{option}: {value} is not in [{lo}, {hi}]")
+
+
+_MAX_REVOLUTIONS = 1e6  # camshaft revolutions per speed: far beyond any study, far below the step cap
+
+
+def check_arguments(args: argparse.Namespace) -> None:
+    """Every command-line argument, checked before the config is read or anything runs; ValueError
+    naming the option as typed on the command line and what it accepts."""
+    _files.check_name(args.config, "config")
+    _files.check_name(args.out, "--out")
+    if args.command == "camshaft":
+        if args.rpm and args.engine_rpm:
+            raise ValueError("give --rpm (camshaft) or --engine-rpm (twice the camshaft's), not both")
+        _speeds(args.rpm or [], "--rpm")
+        _speeds(args.engine_rpm or [], "--engine-rpm", engine=True)
+        if not (math.isfinite(args.revolutions) and 0 < args.revolutions <= _MAX_REVOLUTIONS):
+            raise ValueError(f"--revolutions: {args.revolutions:g} is not a number of camshaft revolutions in "
+                             f"(0, {_MAX_REVOLUTIONS:g}]")
+    if args.command == "sweep":
+        _speeds(args.rpm or [], "--rpm")
+        if args.jump:
+            lo, hi = _speeds(args.jump, "--jump")
+            if not lo < hi:
+                raise ValueError(f"--jump: LO {lo:g} must be below HI {hi:g} rpm")
+    if args.command in ("sweep", "montecarlo"):
+        if args.workers is not None:
+            _integer(args.workers, "--workers", 1, 1 << 20)
+        if args.scheduler is not None:
+            if not args.scheduler.strip():
+                raise ValueError("--scheduler: give a Dask scheduler address (tcp://host:8786) or dask:N")
+            if args.workers is not None:
+                raise ValueError("give --workers (a local process pool) or --scheduler (a Dask scheduler), not both")
+    if args.command == "montecarlo":
+        if args.cases is not None:
+            _integer(args.cases, "--cases", 1, 10_000_000)
+        if args.seed is not None:
+            _integer(args.seed, "--seed", 0, 2**63 - 1)
+
+
 def figures(config: str, out: str) -> dict:
     """Run the case in `config` and write its CSV, figures and summary into `out`; return the summary."""
     import matplotlib
@@ -42,7 +103,7 @@ def figures(config: str, out: str) -> dict:
     from . import plot
 
     case = load_config(config)
-    folder = _files.output_folder(out)
+    folder = _folder(config, out)
     m = case.mechanism
     rpm = m.camshaft_speed_rpm
     result = case.run()
@@ -84,8 +145,7 @@ def figures(config: str, out: str) -> dict:
             "min_convex_surface_radius_mm": float(1e3 * follower.min_surface_radius(program)[1]),
         }
     summary["files"] = written + ["summary.json"]
-    text = json.dumps(summary, indent=2) + "\n"
-    _write(config, folder / "summary.json", text.encode())
+    _write(config, folder / "summary.json", _files.json_text(summary).encode())
     return summary
 
 
@@ -97,11 +157,13 @@ def camshaft(config: str, out: str, rpm=None, engine_rpm=None, revolutions: floa
     matplotlib.use("Agg")
     from .camshaft import camshaft_study, plot_study, plot_traces
 
-    case = load_config(config)
     if rpm and engine_rpm:
         raise ValueError("give --rpm (camshaft) or --engine-rpm (twice the camshaft's), not both")
-    speeds = list(rpm) if rpm else [0.5 * e for e in engine_rpm] if engine_rpm else None
-    folder = _files.output_folder(out)
+    # Checked as given, before the halving: a bad engine speed is named as the engine speed.
+    speeds = _speeds(rpm, "--rpm") if rpm else [0.5 * e for e in _speeds(engine_rpm, "--engine-rpm", engine=True)] \
+        if engine_rpm else None
+    case = load_config(config)
+    folder = _folder(config, out)
     summaries, results = camshaft_study(case, speeds, revolutions=revolutions)
     written = []
     rows = ["camshaft_rpm,cam,lift_error_mm,max_force_N,min_force_lifting_N,contact_lost_s,twist_peak_to_peak_deg,"
@@ -122,7 +184,7 @@ def camshaft(config: str, out: str, rpm=None, engine_rpm=None, revolutions: floa
         _save(config, plot_traces(m, r), folder / file)
         written.append(file)
     summary = {"config": str(case.path), "speeds": summaries, "files": written + ["summary.json"]}
-    _write(config, folder / "summary.json", (json.dumps(summary, indent=2) + "\n").encode())
+    _write(config, folder / "summary.json", _files.json_text(summary).encode())
     return summary
 
 
@@ -156,7 +218,7 @@ def sweep(config: str, out: str, *, rpm=None, jump=None, executor=None, workers=
 
     case = load_config(config)
     st = sweep_settings(case.data.get("sweep", {}), rpm=rpm, jump=jump, path=case.path)
-    folder = _files.output_folder(out)
+    folder = _folder(config, out)
     m = case.mechanism
     result = sp.speed_sweep(m, st["rpm"], contact=st["contact"], steps_per_revolution=st["steps_per_revolution"],
                             executor=executor, workers=workers, progress=progress)
@@ -184,7 +246,7 @@ def sweep(config: str, out: str, *, rpm=None, jump=None, executor=None, workers=
         summary["jump"] = {"rpm": jump_result.rpm, "angle_deg": jump_result.angle_deg, "bracket": list(jump_result.bracket),
                            "min_force_below_N": jump_result.min_force_below_N,
                            "evaluations": len(jump_result.evaluations)}
-    _write(config, folder / "summary.json", (json.dumps(summary, indent=2, default=str) + "\n").encode())
+    _write(config, folder / "summary.json", _files.json_text(summary).encode())
     return summary
 
 
@@ -202,7 +264,7 @@ def montecarlo(config: str, out: str, *, cases=None, seed=None, executor=None, w
     st = montecarlo_settings(case.data.get("montecarlo"), cases=cases, seed=seed, path=case.path)
     data = {k: v for k, v in case.data.items() if k not in ("sweep", "montecarlo")}
     build = tol.ConfigCase(data, case.path.parent if case.path else ".")
-    folder = _files.output_folder(out)
+    folder = _folder(config, out)
     result = tol.monte_carlo(build, st["tolerances"], cases=st["cases"], seed=st["seed"], contact=st["contact"],
                              steps_per_revolution=st["steps_per_revolution"], executor=executor, workers=workers,
                              progress=progress)
@@ -222,8 +284,15 @@ def montecarlo(config: str, out: str, *, cases=None, seed=None, executor=None, w
         files.append("histogram.png")
     summary["failed_cases"] = [{k: r[k] for k in ["case", "seed"] + result.parameters + ["error"]} for r in result.failed()]
     summary["files"] = files + ["summary.json"]
-    _write(config, folder / "summary.json", (json.dumps(summary, indent=2, default=str) + "\n").encode())
+    _write(config, folder / "summary.json", _files.json_text(summary).encode())
     return summary
+
+
+def _message(error: BaseException, limit: int = 2000) -> str:
+    """An error as printable text of at most `limit` characters: whatever raised it, the message never
+    carries a whole file's content or a terminal control sequence."""
+    text = "".join(c if c.isprintable() or c == "\n" else "?" for c in str(error))
+    return text if len(text) <= limit else text[:limit] + f"... ({len(text)} characters)"
 
 
 def _add_executor_options(p) -> None:
@@ -259,6 +328,7 @@ def main(argv=None) -> int:
     mc.add_argument("-o", "--out", default="out", help="output folder (default: ./out)")
     args = parser.parse_args(argv)
     try:
+        check_arguments(args)
         if args.command == "camshaft":
             study = camshaft(args.config, args.out, args.rpm, args.engine_rpm, args.revolutions)
         elif args.command == "sweep":
@@ -269,8 +339,8 @@ def main(argv=None) -> int:
                                 workers=args.workers, progress=not args.no_progress)
         else:
             summary = figures(args.config, args.out)
-    except (ValueError, RuntimeError, OSError, ImportError) as e:
-        print(f"camfollower: error: {e}", file=sys.stderr)
+    except (ValueError, TypeError, RuntimeError, OSError, ImportError) as e:
+        print(f"camfollower: error: {_message(e)}", file=sys.stderr)
         return 1
     except KeyboardInterrupt:
         print("camfollower: cancelled", file=sys.stderr)

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import io
 import json
+import math
 import os
 from pathlib import Path
 from typing import Any, Dict, List, Optional, Sequence, Tuple
@@ -16,6 +17,18 @@ from . import _files
 _FORMAT = "camfollower.Result/1"
 _STAT_TYPES = {"steps": int, "newton_iterations": int, "max_iterations_in_a_step": int, "halvings": int,
                "decimation": int, "cancelled": bool}
+
+
+def _settle_from_json(text: str) -> Optional[Dict[str, Any]]:
+    """The settle report as saved: strict JSON writes a non-finite change as null; read it back as NaN."""
+    settle = json.loads(text)
+    if isinstance(settle, dict):
+        for key in ("change", "change_absolute", "tolerance"):
+            if key in settle and settle[key] is None:
+                settle[key] = math.nan
+        if isinstance(settle.get("history"), list):
+            settle["history"] = [math.nan if h is None else h for h in settle["history"]]
+    return settle
 
 
 class Result:
@@ -129,10 +142,10 @@ class Result:
         np.savez(buffer, format=np.array(_FORMAT), names=np.array(self._names), dofs=np.array(self.dof_names),
                  data=np.ascontiguousarray(self._data), stats_keys=np.array(list(numbers)),
                  stats_values=np.array([float(v) for v in numbers.values()]),
-                 stats_text=np.array(json.dumps(texts)),
+                 stats_text=np.array(_files.json_text(texts, indent=None)),
                  contact_names=np.array(list(self.contact_loss), dtype=str),
-                 settle=np.array(json.dumps(self.settle)),
-                 events=np.array(json.dumps(self.events)),
+                 settle=np.array(_files.json_text(self.settle, indent=None)),
+                 events=np.array(_files.json_text(self.events, indent=None)),
                  **{f"contact_loss_{i}": np.array(v, dtype=float).reshape(-1, 2)
                     for i, v in enumerate(self.contact_loss.values())})
         _files.write_bytes(path, buffer.getvalue())
@@ -149,7 +162,7 @@ class Result:
             if "stats_text" in z:
                 stats.update(json.loads(str(z["stats_text"])))
             losses = {str(n): [tuple(x) for x in z[f"contact_loss_{i}"]] for i, n in enumerate(z["contact_names"])}
-            settle = json.loads(str(z["settle"])) if "settle" in z else None
+            settle = _settle_from_json(str(z["settle"])) if "settle" in z else None
             events = json.loads(str(z["events"])) if "events" in z else []
             return cls([str(n) for n in z["names"]], [str(d) for d in z["dofs"]], z["data"], stats, losses, settle,
                        events)

@@ -82,7 +82,8 @@ def _unknown(table: Dict[str, Any], known, path, prefix: str) -> None:
 def _int(table, key, default, lo, hi, path, prefix):
     v = table.get(key, default)
     if isinstance(v, bool) or not isinstance(v, int) or not lo <= v <= hi:
-        raise ValueError(f"{_where(path, prefix + '.' + key)}: must be an integer in [{lo}, {hi}], got {_shown(v)}")
+        raise ValueError(f"{_where(path, prefix + '.' + key if prefix else key)}: must be an integer in [{lo}, {hi}], "
+                         f"got {_shown(v)}")
     return v
 
 
@@ -115,11 +116,15 @@ def sweep_settings(table: Dict[str, Any], *, rpm=None, jump=None, path=None) -> 
         speeds = [lo + (hi - lo) * i / (n - 1) for i in range(n)]
     else:
         raise ValueError(f"{_where(path, 'sweep')}: give the speeds: rpm = [...] or rpm_from, rpm_to, count (or --rpm)")
-    bracket = jump if jump else table.get("jump")
+    # The bracket is checked whole here, before any run: from the command line (named --jump) or the file.
+    bracket, key, where = (jump, "--jump", None) if jump else (table.get("jump"), "sweep.jump", path)
     if bracket is not None:
         if not isinstance(bracket, (list, tuple)) or len(bracket) != 2:
-            raise ValueError(f"{_where(path, 'sweep.jump')}: must be two speeds [lo, hi] in rpm, got {_shown(bracket)}")
-        bracket = [_speed(b, "sweep.jump", path) for b in bracket]
+            raise ValueError(f"{_where(where, key)}: must be two speeds [lo, hi] in rpm, got {_shown(bracket)}")
+        bracket = [_speed(b, key, where) for b in bracket]
+        if not bracket[0] < bracket[1]:
+            raise ValueError(f"{_where(where, key)}: the low speed {bracket[0]:g} must be below the high speed "
+                             f"{bracket[1]:g} rpm")
     contact = table.get("contact")
     if contact is not None and not isinstance(contact, str):
         raise ValueError(f"{_where(path, 'sweep.contact')}: must be a contact's name")
@@ -156,10 +161,11 @@ def montecarlo_settings(table: Optional[Dict[str, Any]], *, cases=None, seed=Non
             tolerances[name] = distribution({k: v for k, v in b.items() if k != "parameter"})
         except ValueError as e:
             raise ValueError(f"{_where(path, key)}: {_shown(str(e), 400)}") from None
-    if cases is None:
-        cases = _int(table, "cases", 100, 1, 10_000_000, path, "montecarlo")
-    if seed is None:
-        seed = _int(table, "seed", 0, 0, 2 ** 63 - 1, path, "montecarlo")
+    # Overrides (the command line's --cases, --seed) obey the table's ranges, named as options.
+    cases = _int(table, "cases", 100, 1, 10_000_000, path, "montecarlo") if cases is None else \
+        _int({"--cases": cases}, "--cases", None, 1, 10_000_000, None, "")
+    seed = _int(table, "seed", 0, 0, 2 ** 63 - 1, path, "montecarlo") if seed is None else \
+        _int({"--seed": seed}, "--seed", None, 0, 2 ** 63 - 1, None, "")
     contact = table.get("contact")
     if contact is not None and not isinstance(contact, str):
         raise ValueError(f"{_where(path, 'montecarlo.contact')}: must be a contact's name")

@@ -23,7 +23,6 @@ from __future__ import annotations
 
 import argparse
 import io
-import json
 import math
 import os
 import sys
@@ -526,7 +525,7 @@ def run_study(cfg: StudyConfig, out: Path, figures: bool = True) -> dict:
         plot_kinematics(cam, cfg.rpm, out / "kinematics.png")
         make_figures(cases, carrier, modal, bands, cfg, out, progress)
     cam.write_surface_csv(str(out / "cam_surface.csv"))
-    _files.write_text(out / "summary.json", json.dumps(summary, indent=2) + "\n")
+    _files.write_text(out / "summary.json", _files.json_text(summary))
     return summary
 
 
@@ -582,6 +581,7 @@ def main(argv: list[str] | None = None) -> int:
     out = Path(args.out)
     try:
         cfg.validate()
+        _files.check_name(args.out, "--out")
         out.mkdir(parents=True, exist_ok=True)
         if not os.access(out, os.W_OK):
             raise PermissionError(f"'{out}' is not writable")

@@ -2,8 +2,10 @@
 """Hardening: output files that cannot be damaged, parameters that say what they accept, and the
 other ways an adversarial user found to get a wrong answer silently or an unhelpful error."""
 
+import json
 import math
 import os
+import re
 import stat
 import subprocess
 import sys
@@ -431,3 +433,184 @@ def test_a_preset_whose_calibration_cannot_converge_names_the_file_and_table(tmp
     path.write_text("\n".join(lines) + "\n")
     with pytest.raises((ValueError, RuntimeError), match=r"denormal.toml:\d+: preset: static equilibrium"):
         cf.load_config(path)
+
+
+# --- the command line (python -m camfollower): its output folder, its JSON, its arguments ------------
+
+
+def _strict_json(path):
+    """A summary parsed as RFC 8259 JSON: NaN, Infinity and -Infinity are not JSON."""
+    def refuse(constant):
+        raise ValueError(f"{path.name}: {constant} is not JSON")
+    return json.loads(path.read_text(), parse_constant=refuse)
+
+
+def _small_studies_config(folder: Path, name: str = "studies.toml") -> Path:
+    """paper_studies.toml cut to one sweep speed (no jump) and two Monte-Carlo cases, coarse steps."""
+    text = (ROOT / "examples" / "paper_studies.toml").read_text()
+    start, end = text.index("[sweep]"), text.index("[montecarlo]")
+    text = text[:start] + "[sweep]\nrpm = [700]\nsteps_per_revolution = 512\n\n" + text[end:]
+    text = text.replace("cases = 200", "cases = 2\nsteps_per_revolution = 512")
+    path = folder / name
+    path.write_text(text)
+    return path
+
+
+@pytest.mark.parametrize("link", ["itself", "symlink", "hardlink", "summary_symlink"])
+def test_the_output_folder_never_removes_the_runs_config(tmp_path, link):
+    """output_folder removes an old summary.json; never when that is the config, or either links to
+    the other (same device and inode)."""
+    out = tmp_path / "out"
+    out.mkdir()
+    text = "[camshaft]\nspeed = \"600 rpm\"\n"
+    if link == "summary_symlink":
+        config = tmp_path / "case.toml"
+        config.write_text(text)
+        (out / "summary.json").symlink_to(config)
+    else:
+        (out / "summary.json").write_text(text)
+        config = {"itself": out / "summary.json", "symlink": tmp_path / "case.toml",
+                  "hardlink": tmp_path / "case.toml"}[link]
+        if link == "symlink":
+            config.symlink_to(out / "summary.json")
+        elif link == "hardlink":
+            os.link(out / "summary.json", config)
+    with pytest.raises(ValueError, match=r"--out: '.*summary.json' is the input file '.*' \(or a link to it\)"):
+        _files.output_folder(out, protect=[config])
+    assert config.read_text() == text
+    (tmp_path / "other.toml").write_text(text)  # an unrelated input: the old summary goes as before
+    _files.output_folder(out, protect=[tmp_path / "other.toml"])
+    assert not (out / "summary.json").exists() and not (out / "summary.json").is_symlink()
+
+
+@pytest.mark.parametrize("command", ["figures", "camshaft", "sweep", "montecarlo"])
+def test_no_command_deletes_its_config_as_an_old_summary(tmp_path, capsys, command):
+    from camfollower import cli
+
+    out = tmp_path / "out"
+    out.mkdir()
+    config = _small_studies_config(out, "summary.json")
+    text = config.read_text()
+    assert cli.main([command, str(config), "-o", str(out)] + (["--no-progress"] if command in ("sweep", "montecarlo")
+                                                              else [])) == 1
+    err = capsys.readouterr().err
+    assert err.startswith("camfollower: error: --out: ") and "is the input file" in err and str(config) in err
+    assert config.read_text() == text
+    assert sorted(p.name for p in out.iterdir()) == ["summary.json"]  # refused before anything ran
+
+
+def test_an_output_folder_whose_name_is_not_utf8_is_refused_before_the_run(tmp_path):
+    """argv bytes that are not UTF-8 arrive surrogate-escaped: the core's writer cannot take them, and
+    pybind11's TypeError printed the whole run.csv after the run. Refused up front, naming --out."""
+    out = os.fsencode(tmp_path) + b"/out\xff"
+    config = ROOT / "examples" / "translating_roller.toml"
+    t0 = time.perf_counter()
+    run = subprocess.run([sys.executable, "-m", "camfollower", "figures", str(config), "-o", out],
+                         capture_output=True, timeout=120)
+    err = run.stderr.decode("utf-8", "replace")
+    assert run.returncode == 1, err
+    assert err.startswith("camfollower: error: --out: ") and "not valid UTF-8" in err and "out\\xff" in err
+    assert "Traceback" not in err and len(err) < 1000
+    assert not os.path.exists(out) and time.perf_counter() - t0 < 30  # no run, no folder
+
+
+def test_paths_that_are_not_utf8_are_value_errors_without_the_content(tmp_path):
+    """The same for the library: an output path with undecodable bytes is a ValueError naming the
+    parameter, never a TypeError that echoes the file's content."""
+    secret = "content that must not be echoed"
+    with pytest.raises(ValueError, match=r"^path: the name .*out\\xff.csv' is not valid UTF-8") as e:
+        _files.write_bytes(os.fsdecode(os.fsencode(tmp_path) + b"/out\xff.csv"), secret.encode() * 1000)
+    assert secret not in str(e.value) and len(str(e.value)) < 1000
+    with pytest.raises(ValueError, match=r"^--out: the name .* is not valid UTF-8"):
+        _files.output_folder(os.fsdecode(os.fsencode(tmp_path) + b"/out\xff"))
+
+
+def test_a_command_line_error_is_one_bounded_printable_message():
+    from camfollower import cli
+
+    text = cli._message(ValueError("\x1b[2J" + "x" * 1_000_000))
+    assert text.startswith("?[2Jx") and len(text) < 2100 and "\x1b" not in text
+
+
+def test_every_summary_the_commands_write_is_strict_json(tmp_path, capsys):
+    """sweep wrote first_loss_angle_deg = NaN (contact kept): not JSON. Every summary is parsed here
+    by a strict parser; a non-finite number is null."""
+    from camfollower import cli
+
+    config = _small_studies_config(tmp_path)
+    assert cli.main(["sweep", str(config), "--workers", "1", "--no-progress", "-o", str(tmp_path / "sweep")]) == 0
+    sweep = _strict_json(tmp_path / "sweep" / "summary.json")
+    assert sweep["speeds"][0]["contact_lost"] is False and sweep["speeds"][0]["first_loss_angle_deg"] is None
+    assert cli.main(["montecarlo", str(config), "--workers", "1", "--no-progress", "-o", str(tmp_path / "mc")]) == 0
+    assert _strict_json(tmp_path / "mc" / "summary.json")["cases"] == 2
+    assert cli.main(["figures", str(ROOT / "examples" / "translating_roller.toml"), "-o", str(tmp_path / "fig")]) == 0
+    assert _strict_json(tmp_path / "fig" / "summary.json")["contacts"]["cam"]["contact_lost_s"] == 0.0
+    assert "error" not in capsys.readouterr().err
+
+
+def test_the_json_writer_is_strict_and_fails_loudly_on_what_it_cannot_write():
+    text = _files.json_text({"nan": math.nan, "inf": [np.float32("inf"), -math.inf], "n": np.int64(3),
+                             "a": np.array([1.5, np.nan]), "ok": np.bool_(True), 7: (1, 2.5)})
+    assert json.loads(text, parse_constant=lambda c: pytest.fail(c)) == {
+        "nan": None, "inf": [None, None], "n": 3, "a": [1.5, None], "ok": True, "7": [1, 2.5]}
+    with pytest.raises(TypeError, match="not JSON serializable"):
+        _files.json_text({"x": object()})
+
+
+def test_a_saved_result_holds_strict_json_and_reads_back_nan(tmp_path):
+    result = cf.simulate(cf.CamFollowerModel(), duration=1e-3, time_step=1e-5)
+    result.settle = {"settled": False, "revolutions": 3, "change": math.nan, "history": [math.inf, 0.5]}
+    path = result.save(tmp_path / "r.npz")
+    with np.load(path) as z:
+        for key in ("settle", "events", "stats_text"):
+            json.loads(str(z[key]), parse_constant=lambda c: pytest.fail(f"{key}: {c}"))
+    back = cf.Result.load(path).settle
+    assert back["settled"] is False and math.isnan(back["change"]) and math.isnan(back["history"][0])
+    assert back["history"][1] == 0.5
+
+
+_MISSING = "no-such-config.toml"  # an argument checked first is refused before the config is read
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["camshaft", _MISSING, "--engine-rpm", "-1"], r"--engine-rpm: -1 is not an engine speed in \[.*\] rpm"),
+    (["camshaft", _MISSING, "--rpm", "nan"], r"--rpm: nan is not a camshaft speed in \[.*\] rpm"),
+    (["camshaft", _MISSING, "--rpm", "1000", "--engine-rpm", "2000"], "give --rpm .* or --engine-rpm .*, not both"),
+    (["camshaft", _MISSING, "--revolutions", "0"], r"--revolutions: 0 is not a number of camshaft revolutions in \(0, "),
+    (["camshaft", _MISSING, "--revolutions", "inf"], r"--revolutions: inf is not"),
+    (["sweep", _MISSING, "--jump", "2000", "1000"], "--jump: LO 2000 must be below HI 1000 rpm"),
+    (["sweep", _MISSING, "--jump", "nan", "1000"], r"--jump: nan is not a camshaft speed in \["),
+    (["sweep", _MISSING, "--rpm", "1e308"], r"--rpm: 1e\+308 is not a camshaft speed in \["),
+    (["sweep", _MISSING, "--workers", "0"], r"--workers: 0 is not in \[1, "),
+    (["sweep", _MISSING, "--scheduler", " "], "--scheduler: give a Dask scheduler address"),
+    (["montecarlo", _MISSING, "--workers", "2", "--scheduler", "dask:2"], "give --workers .* or --scheduler .*, not both"),
+    (["montecarlo", _MISSING, "--cases", "0"], r"--cases: 0 is not in \[1, 10000000\]"),
+    (["montecarlo", _MISSING, "--seed", "-1"], r"--seed: -1 is not in \[0, "),
+    (["figures", _MISSING, "-o", "a\0b"], "--out: the path contains a NUL character"),
+])
+def test_every_command_line_argument_is_checked_before_anything_runs(tmp_path, capsys, monkeypatch, argv, message):
+    from camfollower import cli
+
+    monkeypatch.chdir(tmp_path)
+    assert cli.main(argv) == 1
+    err = capsys.readouterr().err
+    assert re.match("camfollower: error: " + message, err) and err.count("\n") == 1, err
+    assert not (tmp_path / "out").exists()
+
+
+def test_study_settings_check_a_whole_bracket_and_the_overrides_before_any_run(monkeypatch):
+    from camfollower import camshaft as cs
+    from camfollower import simulation
+    from camfollower.studies import montecarlo_settings, sweep_settings
+
+    with pytest.raises(ValueError, match=r"^sweep.jump: the low speed 2000 must be below the high speed 1000 rpm"):
+        sweep_settings({"rpm": [700], "jump": [2000, 1000]})
+    with pytest.raises(ValueError, match=r"^--jump: must be a camshaft speed"):
+        sweep_settings({"rpm": [700], "jump": [1000, 2000]}, jump=[math.nan, 1000])
+    table = {"tolerance": [{"parameter": "a", "distribution": "normal", "std": 0.1}]}
+    for kw, name in (({"cases": 0}, "--cases"), ({"seed": -1}, "--seed"), ({"cases": 2.5}, "--cases")):
+        with pytest.raises(ValueError, match=f"^{name}: must be an integer in"):
+            montecarlo_settings(table, **kw)
+    monkeypatch.setattr(simulation, "simulate", lambda *a, **k: pytest.fail("a speed ran before all were checked"))
+    with pytest.raises(ValueError, match="rpm: camshaft speeds must be finite and > 0, got nan"):
+        cs.camshaft_study(cf.load_config(ROOT / "examples" / "camshaft.toml"), [1000.0, math.nan])
