@@ -86,6 +86,10 @@ def load_config(path: os.PathLike | str) -> Config:
     if "\0" in str(p):
         raise ValueError(f"config path must not contain a NUL character: {str(p)!r}")
     try:
+        str(p).encode("utf-8")
+    except UnicodeEncodeError:  # undecodable bytes (surrogateescape): the library's reader takes UTF-8
+        raise ValueError(f"config path {os.fsencode(str(p))!r} is not valid UTF-8; rename the file") from None
+    try:
         st = p.stat()
     except OSError as e:
         raise ValueError(f"config '{p}': {e.strerror or e}") from None

@@ -525,6 +525,17 @@ def test_paths_that_are_not_utf8_are_value_errors_without_the_content(tmp_path):
         _files.output_folder(os.fsdecode(os.fsencode(tmp_path) + b"/out\xff"))
 
 
+def test_a_config_path_that_is_not_utf8_is_a_value_error_without_its_content(tmp_path):
+    """load_config passed the surrogate-escaped name to the core, whose pybind11 TypeError echoed the
+    whole config text."""
+    name = os.fsdecode(os.fsencode(tmp_path) + b"/case\xff.toml")
+    secret = "a line of the config that must not be echoed"
+    Path(name).write_text(f"# {secret}\n" + (ROOT / "examples" / "translating_roller.toml").read_text())
+    with pytest.raises(ValueError, match=r"config path .*case\\xff.toml' is not valid UTF-8") as e:
+        cf.load_config(name)
+    assert secret not in str(e.value) and len(str(e.value)) < 1000
+
+
 def test_a_command_line_error_is_one_bounded_printable_message():
     from camfollower import cli
 
