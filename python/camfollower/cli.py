@@ -24,6 +24,7 @@ import numpy as np
 
 from . import _files
 from .config import load_config
+from .executors import _check_scheduler
 from .speed import _MAX_RPM, _MIN_RPM
 
 
@@ -86,6 +87,7 @@ def check_arguments(args: argparse.Namespace) -> None:
         if args.scheduler is not None:
             if not args.scheduler.strip():
                 raise ValueError("--scheduler: give a Dask scheduler address (tcp://host:8786) or dask:N")
+            _check_scheduler(args.scheduler, "--scheduler")
             if args.workers is not None:
                 raise ValueError("give --workers (a local process pool) or --scheduler (a Dask scheduler), not both")
     if args.command == "montecarlo":

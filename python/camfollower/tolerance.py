@@ -36,7 +36,7 @@ from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple
 import numpy as np
 
 from . import _core
-from .executors import run_cases
+from .executors import check_executor, run_cases
 from .response import STUDY_STEPS_PER_REVOLUTION, steady_response
 
 #: Metrics of each case kept in the table (from camfollower.response.steady_response).
@@ -377,6 +377,7 @@ def monte_carlo(build: Callable[[Mapping[str, float]], Any], tolerances: Mapping
         raise ValueError(f"cases must be an integer in [1, 1e7], got {cases!r}")
     if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
         raise ValueError(f"seed must be an integer >= 0, got {seed!r}")
+    check_executor(executor, workers)  # before the nominal model is solved
     nominal = {name: build.nominal(name) for name in tolerances}
     _check_ranges(build, tolerances, nominal)
     options = dict(contact=contact, steps_per_revolution=steps_per_revolution, fallback="transient", multipliers=False)

@@ -257,6 +257,213 @@ def test_unreachable_scheduler_fails_fast():
     assert time.perf_counter() - t0 < 15
 
 
+def _in_thread(seconds, fn):
+    """fn() in a daemon thread: (returned, raised), or a test failure after `seconds` (a hang)."""
+    import threading
+
+    box = {}
+
+    def run():
+        try:
+            box["value"] = fn()
+        except BaseException as e:  # noqa: BLE001 - handed to the test
+            box["error"] = e
+
+    t = threading.Thread(target=run, daemon=True)
+    t.start()
+    t.join(seconds)
+    assert not t.is_alive(), f"still running after {seconds} s"
+    return box.get("value"), box.get("error")
+
+
+class _FakeScheduler:
+    """A TCP server on 127.0.0.1 that is not a Dask scheduler: it accepts and stays silent, sends a
+    frame header announcing 3.5e18 bytes (then nothing), or closes every connection at once."""
+
+    def __init__(self, behaviour):
+        import socket
+        import threading
+
+        self.behaviour, self.sock, self.open = behaviour, socket.create_server(("127.0.0.1", 0)), []
+        self.sock.settimeout(0.1)
+        self.port = self.sock.getsockname()[1]
+        self.stop = threading.Event()
+        self.thread = threading.Thread(target=self._serve, daemon=True)
+        self.thread.start()
+
+    def _serve(self):
+        import socket
+        import struct
+
+        while not self.stop.is_set():
+            try:
+                conn, _ = self.sock.accept()
+            except socket.timeout:
+                continue
+            if self.behaviour == "closes":
+                conn.close()
+                continue
+            if self.behaviour == "garbage":
+                conn.sendall(struct.pack("<Q", 0x3100000000000000) + b"\xff" * 8)
+            self.open.append(conn)
+
+    def close(self):
+        self.stop.set()
+        self.thread.join(5)
+        for c in self.open:
+            c.close()
+        self.sock.close()
+
+
+@pytest.mark.parametrize("behaviour", ["silent", "garbage", "closes"])
+def test_a_peer_that_is_not_a_dask_scheduler_fails_within_the_timeout(behaviour):
+    """Before, a silent peer hung Client() for ever (distributed bounds the TCP connection, not the
+    handshake) and a huge frame length raised MemoryError out of the command line."""
+    pytest.importorskip("distributed")
+    server = _FakeScheduler(behaviour)
+    address = f"tcp://127.0.0.1:{server.port}"
+    try:
+        t0 = time.perf_counter()
+        value, error = _in_thread(20, lambda: executors.run_cases(abs, [1, 2], executor=address, connect_timeout=2.0,
+                                                                  progress=False))
+        elapsed = time.perf_counter() - t0
+    finally:
+        server.close()
+    assert isinstance(error, RuntimeError), (value, error)
+    assert address in str(error) and "Dask scheduler" in str(error)
+    assert elapsed < 2.0 + 5.0  # the timeout, plus tearing the half-made client down
+
+
+def _exit_below_two(x):
+    if x < 2:
+        os._exit(3)  # kills the Dask worker process, as a crash in compiled code would
+    return x * x
+
+
+def test_dask_keeps_the_healthy_cases_when_others_kill_their_workers():
+    """Two workers, the cases 0 and 1 each kill theirs: the cases 2 and 3 queued behind them on the
+    same workers died with them (KilledWorker), and must be run again, as the process pool does."""
+    dask = pytest.importorskip("dask")
+    pytest.importorskip("distributed")
+    # One failure per task, as camfollower's own dask:N clusters do: a remote scheduler's default (3
+    # reruns per task) only spreads the same deaths wider.
+    with dask.config.set({"distributed.scheduler.allowed-failures": 0}):
+        out = executors.run_cases(_exit_below_two, range(4), executor="dask:2", progress=False)
+    assert [o.ok for o in out] == [False, False, True, True], [o.error for o in out]
+    assert [o.value for o in out[2:]] == [4, 9]
+    assert out[0].error == out[1].error == "worker crashed"
+
+
+_ORPHAN_STUDY = """
+import os, sys, time
+from camfollower import executors
+
+def case(folder):
+    open(os.path.join(folder, str(os.getpid())), "w").close()
+    time.sleep(120)
+
+if __name__ == "__main__":
+    executors.run_cases(case, [sys.argv[1]] * 2, workers=2, progress=False)
+"""
+
+
+def _running(pid):
+    try:
+        with open(f"/proc/{pid}/stat") as f:
+            return f.read().rpartition(")")[2].split()[0] != "Z"  # a zombie is dead, just not reaped
+    except FileNotFoundError:
+        return False
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
+def test_pool_workers_die_when_the_study_process_is_killed(tmp_path):
+    import signal
+
+    script = tmp_path / "study.py"
+    script.write_text(_ORPHAN_STUDY)
+    study = subprocess.Popen([sys.executable, str(script), str(tmp_path)])
+    workers = []
+    try:
+        deadline = time.monotonic() + 60
+        while len(workers) < 2 and time.monotonic() < deadline and study.poll() is None:
+            time.sleep(0.05)
+            workers = [int(p.name) for p in tmp_path.iterdir() if p.name.isdigit()]
+        assert len(workers) == 2, "the pool's workers did not start"
+        study.send_signal(signal.SIGKILL)
+        study.wait(10)
+        deadline = time.monotonic() + 5
+        while any(_running(w) for w in workers) and time.monotonic() < deadline:
+            time.sleep(0.05)
+        assert not any(_running(w) for w in workers), "pool workers outlived the killed study"
+    finally:
+        if study.poll() is None:
+            study.kill()
+        for w in workers:  # only the workers this test started, should they have survived
+            if _running(w):
+                os.kill(w, signal.SIGKILL)
+
+
+@pytest.mark.parametrize("spec", ["dask:abc", "dask:0", "dask:-2", "dask:1.5", "dask: 2", "dask:", "dask:١", "dask:5000",
+                                  "tcp://host", "tcp://:8786", "tcp://host:0", "tcp://host:70000", "host:8786",
+                                  "http://host:8786", "Serial", "process", ""])
+def test_bad_executor_strings_are_refused_before_anything_runs(spec):
+    for items in ([1, 2], []):  # up front: even a study with no case
+        with pytest.raises(ValueError, match=r"^executor(?=.*'dask:N')(?=.*tcp://host:port)"):
+            executors.run_cases(abs, items, executor=spec, progress=False)
+
+
+def test_bad_executor_types_worker_counts_and_timeouts_are_refused():
+    for bad in (3, 2.5, ["serial"], b"serial", abs):
+        with pytest.raises(TypeError, match=r"executor must be None or 'processes'.*dask.distributed.Client"):
+            executors.run_cases(abs, [], executor=bad)
+    for workers in (True, 2.0, "2"):
+        with pytest.raises(TypeError, match="workers must be an integer"):
+            executors.run_cases(abs, [1], workers=workers, executor="serial")
+    for workers in (0, -1):
+        with pytest.raises(ValueError, match="workers must be an integer >= 1"):
+            executors.run_cases(abs, [1], workers=workers)
+    # A count the executor would ignore: the Dask and serial executors have their own workers.
+    for executor in ("serial", "dask:2", "tcp://127.0.0.1:9"):
+        with pytest.raises(ValueError, match="workers=2 sizes the process pool.*dask:N"):
+            executors.run_cases(abs, [1], workers=2, executor=executor)
+    assert [o.value for o in executors.run_cases(abs, [-1], workers=1, executor="serial", progress=False)] == [1]
+    for timeout in (0, -1.0, math.nan, math.inf):
+        with pytest.raises(ValueError, match="connect_timeout must be a finite number of seconds > 0"):
+            executors.run_cases(abs, [1], executor="tcp://127.0.0.1:9", connect_timeout=timeout)
+    with pytest.raises(ValueError, match=r"address: 'dask:x' needs N"):
+        executors.connect("dask:x")
+    with pytest.raises(ValueError, match="address must be a Dask scheduler address"):
+        executors.connect("serial")
+
+
+class _NeverBuilt:
+    """A Monte-Carlo builder that fails the test if the study gets as far as building a model."""
+
+    def nominal(self, name):
+        return 1.0
+
+    def __call__(self, values):
+        raise AssertionError("a model was built before the executor was checked")
+
+
+def test_monte_carlo_checks_its_executor_before_building_a_model():
+    for executor, workers in (("dask:abc", None), ("dask:2", 4), (object(), None)):
+        with pytest.raises((ValueError, TypeError), match="executor"):
+            tol.monte_carlo(_NeverBuilt(), {"x": tol.Normal(0.1)}, cases=2, executor=executor, workers=workers,
+                            progress=False)
+
+
+def test_command_line_refuses_a_bad_scheduler_before_reading_the_config(tmp_path, capsys):
+    from camfollower import cli
+
+    missing = str(tmp_path / "missing.toml")  # never read: the option is refused first
+    for spec in ("dask:abc", "tcp://host", "dask:0"):
+        assert cli.main(["montecarlo", missing, "--scheduler", spec, "-o", str(tmp_path / "out")]) == 1
+        err = capsys.readouterr().err
+        assert err.startswith("camfollower: error: --scheduler") and "'dask:N'" in err, err
+        assert "missing.toml" not in err and "Traceback" not in err
+
+
 def test_monte_carlo_on_a_dask_local_cluster_equals_serial_bit_for_bit():
     distributed = pytest.importorskip("distributed")
     build = tol.PaperCase()
