@@ -186,23 +186,30 @@ def plot_study(summaries: Sequence[Dict[str, Any]], engine: bool = False):
 
 
 def plot_traces(mechanism: Mechanism, result):
-    """Contact force of every cam and the drive torque against the camshaft angle, over the recorded run."""
+    """Contact force of every cam and the drive torque against the camshaft angle, folded onto one
+    revolution (0-360°, whatever revolutions were recorded; the lines broken where the angle wraps)."""
     import matplotlib.pyplot as plt
 
+    from .plot import per_revolution
+
     state = mechanism.builder().__getstate__()
-    theta = np.degrees(np.asarray(result["theta"]))
+    theta = np.asarray(result["theta"])
     fig, (a, b) = plt.subplots(2, 1, figsize=(10, 7), sharex=True, constrained_layout=True)
     for c in state["contacts"]:
-        a.plot(theta, np.asarray(result[f"{c['name']}.force"]), lw=0.8, label=c["name"])
+        a.plot(*per_revolution(theta, np.asarray(result[f"{c['name']}.force"])), lw=0.8, label=c["name"])
     a.set_ylabel("contact force (N)")
-    a.legend(fontsize=7, ncol=4)
-    for s in _drives(state):
-        b.plot(theta, _drive_torque(s, result), lw=0.8, label=s["name"])
+    a.legend(fontsize=7, ncol=4, loc="best")
+    drives = _drives(state)
+    for s in drives:
+        b.plot(*per_revolution(theta, _drive_torque(s, result)), lw=0.8, label=s["name"])
+    if drives:
+        b.legend(fontsize=7, loc="best")
     b.set_ylabel("drive torque (N m)")
-    b.set_xlabel("camshaft angle (deg)")
+    b.set_xlabel("camshaft angle (deg, per revolution)")
+    b.set_xlim(0, 360)
     for ax in (a, b):
         ax.grid(True, alpha=0.3)
-    fig.suptitle(f"{mechanism.camshaft_speed_rpm:g} rpm camshaft")
+    fig.suptitle(f"{mechanism.camshaft_speed_rpm:.6g} rpm camshaft")
     return fig
 
 

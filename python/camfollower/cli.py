@@ -121,10 +121,12 @@ def figures(config: str, out: str) -> dict:
     omega = m.omega
     for c in contacts:
         name, program, follower, dof = c["name"], c["program"], c["follower"], c["follower_dof"]
-        for fig, file in ((plot.svaj(program, rpm=rpm), f"svaj_{name}.png"),
+        angular = type(follower).__name__.startswith("Oscillating")  # the lift is the arm's rotation (rad)
+        for fig, file in ((plot.svaj(program, rpm=rpm, angular=angular), f"svaj_{name}.png"),
                           (plot.profile(follower, program), f"profile_{name}.png"),
                           (plot.pressure_angle_and_curvature(follower, program), f"pressure_angle_curvature_{name}.png"),
-                          (plot.acceleration(result, program, omega, dof), f"acceleration_{name}.png"),
+                          (plot.acceleration(result, program, omega, dof, phase=c["phase"],
+                                             unit="rad/s²" if angular else "m/s²"), f"acceleration_{name}.png"),
                           (plot.contact_force(result, name), f"contact_force_{name}.png")):
             _save(config, fig, folder / file)
             written.append(file)
@@ -132,8 +134,8 @@ def figures(config: str, out: str) -> dict:
         sample_rate = 1.0 / (result.time_step * result.decimation)
         fmax = min(0.5 * sample_rate, 20000.0)
         naturals = list(m.modal_analysis(0.0)["frequencies_hz"])
-        _save(config, plot.spectrum(force - force.mean(), sample_rate, fmax=fmax, natural_frequencies=naturals),
-              folder / f"spectrum_{name}.png")
+        _save(config, plot.spectrum(force - force.mean(), sample_rate, fmax=fmax, natural_frequencies=naturals,
+                                    quantity=f"{name} contact force", unit="N"), folder / f"spectrum_{name}.png")
         written.append(f"spectrum_{name}.png")
         lost = sum(b - a for a, b in result.contact_loss.get(name, []))
         theta = np.linspace(0.0, 2 * math.pi, 7201)

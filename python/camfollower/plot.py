@@ -4,13 +4,20 @@
 Every function draws into new axes (or the ``ax``/``axes`` given) and returns the Figure, so it can
 be saved, shown or changed. Angles are shown in degrees, lengths in mm; the data stay SI.
 
-- :func:`svaj`: lift, velocity, acceleration and jerk of a motion program;
+- :func:`svaj`: lift, velocity, acceleration and jerk of a motion program (a length, or with
+  ``angular=True`` an oscillating follower's arm rotation);
 - :func:`profile`: the cam surface, the follower's reference curve (a roller's pitch curve) and the
   contact point at one cam angle; an undercut cam is drawn and flagged in the title, not refused;
-- :func:`pressure_angle_and_curvature`: both along the revolution;
-- :func:`acceleration`: a follower DOF's simulated acceleration against the rigid ω²h″;
+- :func:`pressure_angle_and_curvature`: both along the revolution (radii beyond the display
+  limit left as a gap, the limit marked);
+- :func:`acceleration`: a follower DOF's simulated acceleration against the rigid ω²h″, over one
+  revolution of the cam's own angle whatever revolutions were recorded;
 - :func:`contact_force`: a contact's force with its intervals without contact shaded;
-- :func:`spectrum`: an amplitude spectrum with natural frequencies marked.
+- :func:`spectrum`: an amplitude spectrum, labelled with its quantity and unit, natural frequencies
+  marked.
+
+Angle axes run 0-360° per revolution: a recorded run is folded onto one revolution
+(:func:`per_revolution`), its line broken where the angle wraps.
 """
 
 from __future__ import annotations
@@ -38,9 +45,42 @@ def _theta(points: int) -> np.ndarray:
     return np.linspace(0.0, 2 * math.pi, points)
 
 
-def svaj(program, rpm: Optional[float] = None, points: int = 3601, axes=None):
-    """Lift (mm), velocity, acceleration and jerk over one revolution. Per radian of cam angle, or,
-    with ``rpm``, in time (m/s, m/s², m/s³) at that constant camshaft speed."""
+def per_revolution(angle, *series):
+    """Fold a recorded angle (rad, cumulative: any revolution) onto one revolution: returns the angle
+    in degrees in [0, 360] and each series, ready to plot. Where the angle wraps, the line is closed
+    at 360° and restarted at 0° (the series interpolated there) with a NaN between, so no line runs
+    back across the plot, e.g. for a periodic orbit whose rows hold both t = 0 and t = T."""
+    deg = np.degrees(np.asarray(angle, dtype=float))
+    ys = [np.asarray(y, dtype=float) for y in series]
+    rev = np.floor(deg / 360.0)
+    x = deg - 360.0 * rev
+    xs, yss, start = [], [[] for _ in ys], 0
+    for i in np.nonzero(np.diff(rev))[0]:
+        xs.append(x[start:i + 1])
+        for out, y in zip(yss, ys):
+            out.append(y[start:i + 1])
+        if rev[i + 1] == rev[i] + 1:  # one wrap forward: close the line at the edges
+            f = (360.0 * rev[i + 1] - deg[i]) / (deg[i + 1] - deg[i])
+            xs.append(np.array([360.0, np.nan, 0.0]))
+            for out, y in zip(yss, ys):
+                edge = y[i] + f * (y[i + 1] - y[i])
+                out.append(np.array([edge, np.nan, edge]))
+        else:  # backwards or a skipped revolution: only break the line
+            xs.append(np.array([np.nan]))
+            for out in yss:
+                out.append(np.array([np.nan]))
+        start = i + 1
+    xs.append(x[start:])
+    for out, y in zip(yss, ys):
+        out.append(y[start:])
+    return (np.concatenate(xs), *(np.concatenate(out) for out in yss))
+
+
+def svaj(program, rpm: Optional[float] = None, points: int = 3601, axes=None, angular: bool = False):
+    """Lift, velocity, acceleration and jerk over one revolution. Per radian of cam angle, or, with
+    ``rpm``, in time at that constant camshaft speed. The lift is a length (drawn in mm; m/s, m/s²,
+    m/s³ in time), or with ``angular=True`` an oscillating follower's arm rotation (drawn in deg;
+    rad/s, rad/s², rad/s³ in time)."""
     plt = _pyplot()
     theta = _theta(points)
     d = program.evaluate(theta)
@@ -52,8 +92,11 @@ def svaj(program, rpm: Optional[float] = None, points: int = 3601, axes=None):
     if axes is None:
         fig, axes = plt.subplots(4, 1, sharex=True, figsize=(8, 9))
     fig = axes[0].figure
-    units = ("m/s", "m/s²", "m/s³") if rpm is not None else ("m/rad", "m/rad²", "m/rad³")
-    series = [(1e3 * d["h"], "lift h (mm)"), (w * d["dh"], f"velocity ({units[0]})"),
+    base = "rad" if angular else "m"
+    per = ("s", "s²", "s³") if rpm is not None else ("rad", "rad²", "rad³")
+    units = [f"{base}/{p}" for p in per]
+    lift = (np.degrees(d["h"]), "arm rotation h (deg)") if angular else (1e3 * d["h"], "lift h (mm)")
+    series = [lift, (w * d["dh"], f"velocity ({units[0]})"),
               (w**2 * d["d2h"], f"acceleration ({units[1]})"), (w**3 * d["d3h"], f"jerk ({units[2]})")]
     for ax, (y, label) in zip(axes, series):
         ax.plot(np.degrees(theta), y, lw=1.0)
@@ -88,7 +131,9 @@ def profile(follower, program, theta: float = 0.0, points: int = 1441, ax=None):
 
 
 def pressure_angle_and_curvature(follower, program, points: int = 3601, axes=None):
-    """Pressure angle (deg) and surface radius of curvature (mm; concave < 0, clipped to ±10 r_b)."""
+    """Pressure angle (deg) and surface radius of curvature (mm; concave < 0). Radii beyond ±10 r_b
+    (near-straight flanks, where the radius passes through infinity between convex and concave) are
+    left as a gap, not drawn at the limit: the limit is marked by dotted lines."""
     plt = _pyplot()
     t = _theta(points)
     p = follower.profile(program, t)
@@ -97,18 +142,30 @@ def pressure_angle_and_curvature(follower, program, points: int = 3601, axes=Non
     axes[0].plot(np.degrees(t), np.degrees(p["pressure_angle"]), lw=1.0)
     axes[0].set_ylabel("pressure angle (deg)")
     limit = 10 * follower.base_radius
-    rho = np.clip(np.asarray(p["surface_radius"]), -limit, limit)
-    axes[1].plot(np.degrees(t), 1e3 * rho, lw=1.0)
-    axes[1].set_ylabel("surface radius of curvature (mm)")
+    rho = np.asarray(p["surface_radius"], dtype=float)
+    shown = np.where(np.abs(rho) <= limit, rho, np.nan)  # a gap: no plateau that reads as a value
+    axes[1].plot(np.degrees(t), 1e3 * shown, lw=1.0, label="surface radius")
+    # The limit is marked on the side(s) where the radius goes beyond it.
+    beyond = [sign for sign in (1, -1) if np.any(sign * rho > limit)]
+    for i, sign in enumerate(beyond):
+        axes[1].axhline(sign * 1e3 * limit, color="0.3", lw=0.8, ls=":",
+                        label=f"display limit ±10 r_b = ±{1e3 * limit:g} mm; beyond it: gap" if i == 0 else None)
+    if beyond:
+        axes[1].legend(loc="best", fontsize=7)
+    axes[1].set_ylabel("surface radius of curvature (mm)\nconvex > 0, concave < 0")
     for ax in axes:
         ax.grid(alpha=0.3)
     axes[-1].set_xlabel("cam angle θ (deg)"), axes[-1].set_xlim(0, 360)
     return axes[0].figure
 
 
-def acceleration(result, program, omega: float, dof: str, revolutions: Optional[float] = None, ax=None):
-    """A follower DOF's simulated acceleration a.<dof> against the rigid-follower ω²h″ (m/s²), over
-    the recorded run (or its last ``revolutions``), against the cam angle of channel ``theta``."""
+def acceleration(result, program, omega: float, dof: str, revolutions: Optional[float] = None, ax=None,
+                 phase: float = 0.0, unit: str = "m/s²"):
+    """A follower DOF's simulated acceleration a.<dof> against the rigid-follower ω²h″ (``unit``:
+    m/s², rad/s² for an oscillating follower's arm), over the recorded run (or its last
+    ``revolutions``), against the cam's own angle: the shaft angle of channel ``theta`` plus the
+    contact's ``phase`` (rad), folded onto 0-360° whatever revolutions were recorded (each recorded
+    revolution over the same axis, the line broken where the angle wraps)."""
     plt = _pyplot()
     t = np.asarray(result["t"])
     a = np.asarray(result[f"a.{dof}"])
@@ -118,10 +175,11 @@ def acceleration(result, program, omega: float, dof: str, revolutions: Optional[
         a, theta = a[keep], theta[keep]
     if ax is None:
         fig, ax = plt.subplots(figsize=(9, 4.5))
-    deg = np.degrees(theta)
+    deg, a = per_revolution(theta + phase, a)
     ax.plot(deg, a, lw=0.8, label=f"simulated a.{dof}")
-    ax.plot(deg, omega**2 * np.asarray(program.evaluate(theta)["d2h"]), "k--", lw=0.8, label="rigid ω²h″")
-    ax.set_xlabel("cam angle θ (deg, cumulative)"), ax.set_ylabel("acceleration (m/s²)")
+    grid = _theta(3601)  # the rigid follower on its own grid: one revolution, drawn once
+    ax.plot(np.degrees(grid), omega**2 * np.asarray(program.evaluate(grid)["d2h"]), "k--", lw=0.8, label="rigid ω²h″")
+    ax.set_xlabel("cam angle θ (deg, per revolution)"), ax.set_ylabel(f"acceleration ({unit})"), ax.set_xlim(0, 360)
     ax.legend(loc="best"), ax.grid(alpha=0.3)
     return ax.figure
 
@@ -142,20 +200,26 @@ def contact_force(result, contact: str = "cam", ax=None):
 
 
 def spectrum(signal, sample_rate: float, fmax: Optional[float] = None,
-             natural_frequencies: Sequence[float] = (), ax=None, log: bool = True):
+             natural_frequencies: Sequence[float] = (), ax=None, log: bool = True, quantity: str = "signal",
+             unit: str = "signal units"):
     """Amplitude spectrum (Hann window) of a signal sampled at ``sample_rate`` (Hz), natural
-    frequencies marked."""
+    frequencies marked; the amplitude axis names the ``quantity`` and its ``unit`` (e.g. "contact
+    force", "N"): a sinusoid of amplitude A reads A."""
     plt = _pyplot()
     s = _an.spectrum(np.asarray(signal), sample_rate)
     band = s.band(0.0, fmax if fmax is not None else s.frequency[-1])
     if ax is None:
         fig, ax = plt.subplots(figsize=(9, 4.5))
-    (ax.semilogy if log else ax.plot)(band.frequency, band.amplitude, lw=0.8)
-    for f in natural_frequencies:
-        if f <= band.frequency[-1]:
-            ax.axvline(f, color="tab:red", lw=0.5, ls=":")
-    ax.set_xlabel("frequency (Hz)"), ax.set_ylabel("amplitude"), ax.grid(alpha=0.3)
+    (ax.semilogy if log else ax.plot)(band.frequency, band.amplitude, lw=0.8, label=quantity)
+    marked = [f for f in natural_frequencies if f <= band.frequency[-1]]
+    for i, f in enumerate(marked):
+        ax.axvline(f, color="tab:red", lw=0.5, ls=":", label="natural frequencies" if i == 0 else None)
+    ax.set_xlabel("frequency (Hz)"), ax.set_ylabel(f"{quantity} amplitude ({unit})"), ax.grid(alpha=0.3)
+    ax.set_xlim(0, band.frequency[-1])
+    ax.set_title(f"Amplitude spectrum of the {quantity} (Hann window)")
+    if marked:
+        ax.legend(loc="upper right", fontsize=8)
     return ax.figure
 
 
-__all__ = ["svaj", "profile", "pressure_angle_and_curvature", "acceleration", "contact_force", "spectrum"]
+__all__ = ["per_revolution", "svaj", "profile", "pressure_angle_and_curvature", "acceleration", "contact_force", "spectrum"]

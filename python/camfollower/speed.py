@@ -221,11 +221,23 @@ def speed_sweep(system, speeds: Sequence[float], **options) -> Dict[str, Any]:
             "resonances": resonances}
 
 
+def _resonance_strength(sweep: Dict[str, Any], rpm: np.ndarray, spec: np.ndarray) -> List[float]:
+    """Each resonance's harmonic amplitude (N), interpolated at its crossing speed (NaN: not computed)."""
+    out = []
+    for k, _, r in sweep["resonances"]:
+        row = spec[k - 1] if 0 < k <= spec.shape[0] else np.full(rpm.size, np.nan)
+        good = np.isfinite(row)
+        out.append(float(np.interp(r, rpm[good], row[good])) if good.sum() >= 1 else float("nan"))
+    return out
+
+
 def plot_waterfall(sweep: Dict[str, Any], *, labels: int = 12, ax=None):
     """Campbell-style waterfall of a :func:`speed_sweep`: contact-force harmonic amplitude (colour, dB
     re 1 N) at frequency k x rpm / 60 against camshaft speed, the natural frequencies as dashed lines,
-    and circled where a shaft order k crosses a mode (a resonance: k x rpm / 60 = f), with that
-    order's line and label (at most ``labels`` of them). Returns the figure."""
+    and every crossing of a shaft order k with a mode (a resonance: k x rpm / 60 = f) marked. At most
+    ``labels`` of them, the strongest harmonics first, are circled with their order's line and label
+    "k×", and only where the label does not overlap another: a long run of high orders crossing one
+    mode stays readable. Returns the figure."""
     import matplotlib.pyplot as plt
 
     missing = [k for k in ("rows", "spectrum", "orders", "natural_hz", "resonances")
@@ -233,9 +245,9 @@ def plot_waterfall(sweep: Dict[str, Any], *, labels: int = 12, ax=None):
     if missing:
         raise ValueError(f"sweep must be a speed_sweep() result; missing {missing}")
     rows = sweep["rows"]
-    rpm = np.array([r["rpm"] for r in rows])
-    spec = np.asarray(sweep["spectrum"])
-    fig = ax.figure if ax is not None else plt.figure(figsize=(8, 5.5))
+    rpm = np.array([r["rpm"] for r in rows], dtype=float)
+    spec = np.asarray(sweep["spectrum"], dtype=float)
+    fig = ax.figure if ax is not None else plt.figure(figsize=(9, 6))
     ax = ax or fig.add_subplot(111)
     orders = np.asarray(sweep["orders"])
     if spec.size:
@@ -245,16 +257,40 @@ def plot_waterfall(sweep: Dict[str, Any], *, labels: int = 12, ax=None):
         sc = ax.scatter(R.ravel(), F.ravel(), c=amp.ravel(), s=8, cmap="viridis", vmin=np.nanmax(amp) - 80)
         fig.colorbar(sc, ax=ax, label="contact force harmonic (dB re 1 N)")
         fmax = float(np.nanmax(F))
-        for f in sweep["natural_hz"]:
-            if f <= fmax:
-                ax.axhline(f, color="tab:red", lw=0.8, ls="--")
+        span = float(rpm.max() - rpm.min()) or 1.0
+        ax.set_xlim(rpm.min() - 0.03 * span, rpm.max() + 0.03 * span)
+        ax.set_ylim(0, 1.05 * fmax)
+        for i, f in enumerate(f for f in sweep["natural_hz"] if f <= fmax):
+            ax.axhline(f, color="tab:red", lw=0.8, ls="--", label="natural frequency (dwell)" if i == 0 else None)
+            ax.annotate(f"mode {f:.4g} Hz", (0.0, f), xycoords=("axes fraction", "data"), xytext=(3, -3),
+                        textcoords="offset points", ha="left", va="top", fontsize=7, color="tab:red")
+        res = sweep["resonances"]
+        if res:
+            ax.plot([r for _, _, r in res], [f for _, f, _ in res], "|", color="tab:red", ms=6, mew=0.8,
+                    label="shaft order × mode crossing")
+        # Label the strongest crossings first; skip one whose label would touch a label already placed
+        # (in display space, with the axes' final limits).
+        fig.canvas.draw_idle()
+        to_px = ax.transData.transform
+        placed: List[Tuple[float, float]] = []
+        strength = _resonance_strength(sweep, rpm, spec)
+        order = sorted(range(len(res)), key=lambda i: -(strength[i] if np.isfinite(strength[i]) else -np.inf))
         line = np.array([rpm.min(), rpm.max()])
-        for i, (k, f, r) in enumerate(sweep["resonances"]):
-            ax.plot(r, f, "o", mfc="none", mec="tab:red", ms=9)
-            if i < labels:
-                ax.plot(line, k * line / 60.0, color="0.5", lw=0.5)
-                ax.annotate(f"{k}x", (r, f), xytext=(3, 4), textcoords="offset points", fontsize=7, color="tab:red")
-        ax.set_ylim(0, fmax)
+        gap_x, gap_y = 30.0 * fig.dpi / 100.0, 14.0 * fig.dpi / 100.0  # a label's size, in pixels
+        for i in order:
+            if len(placed) >= labels:
+                break
+            k, f, r = res[i]
+            x, y = to_px((r, f))
+            if any(abs(x - px) < gap_x and abs(y - py) < gap_y for px, py in placed):
+                continue
+            placed.append((x, y))
+            ax.plot(r, f, "o", mfc="none", mec="tab:red", ms=9, label="labelled resonance" if len(placed) == 1 else None)
+            ax.plot(line, k * line / 60.0, color="0.5", lw=0.5)
+            ax.annotate(f"{k}×", (r, f), xytext=(0, 7), textcoords="offset points", ha="center", fontsize=7,
+                        color="tab:red")
+        if ax.get_legend_handles_labels()[0]:
+            ax.legend(loc="upper left", fontsize=7)
     ax.set_xlabel("camshaft speed (rpm)")
     ax.set_ylabel("frequency (Hz)")
     ax.set_title("Contact force shaft orders of the periodic response; resonances circled")
@@ -263,7 +299,7 @@ def plot_waterfall(sweep: Dict[str, Any], *, labels: int = 12, ax=None):
 
 def plot_margin(rows: Sequence[Dict[str, Any]], jump: Optional[JumpSpeed] = None, ax=None):
     """The margin curve: minimum contact force against speed, contact loss marked, the jump speed
-    (if given) as a vertical line. Returns the figure."""
+    (if given) as a vertical line inside the axes. Returns the figure."""
     import matplotlib.pyplot as plt
 
     fig = ax.figure if ax is not None else plt.figure(figsize=(7, 4.5))
@@ -275,11 +311,19 @@ def plot_margin(rows: Sequence[Dict[str, Any]], jump: Optional[JumpSpeed] = None
     ax.plot(rpm, f, "o-", label="minimum contact force")
     if lost.any():
         ax.plot(rpm[lost], f[lost], "x", color="tab:red", ms=9, label="contact lost")
+    speeds = list(rpm)
     if jump is not None:
         ax.axvline(jump.rpm, color="tab:red", ls="--", label=f"jump {jump.rpm:.0f} rpm at {jump.angle_deg:.0f} deg")
+        speeds.append(jump.rpm)
+    if speeds:  # the jump line off the last speed stays inside, clear of the frame
+        lo, hi = min(speeds), max(speeds)
+        pad = 0.04 * (hi - lo) if hi > lo else 0.05 * hi
+        ax.set_xlim(lo - pad, hi + pad)
     ax.axhline(0.0, color="0.5", lw=0.6)
     ax.set_xlabel("camshaft speed (rpm)")
     ax.set_ylabel("minimum contact force (N)")
+    ax.set_title("Margin against jump: smallest contact force per revolution")
+    ax.grid(alpha=0.3)
     ax.legend()
     return fig
 

@@ -339,6 +339,8 @@ def make_figures(cases: dict, carrier: float, modal: dict, bands: list, cfg: Stu
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    from . import plot as cfplot
+
     data = folder / "data"
     data.mkdir(exist_ok=True)
     n = cfg.steps_per_revolution
@@ -349,6 +351,9 @@ def make_figures(cases: dict, carrier: float, modal: dict, bands: list, cfg: Stu
 
     def deg(c):
         return np.degrees(np.mod(last_rev(c, c.theta), 2 * math.pi))
+
+    def fold(c, y):  # (deg, y) to plot: the line broken where the angle wraps (camfollower.plot)
+        return cfplot.per_revolution(last_rev(c, c.theta), y)
 
     def save(fig, name):
         fig.tight_layout()
@@ -362,12 +367,12 @@ def make_figures(cases: dict, carrier: float, modal: dict, bands: list, cfg: Stu
         for ax, (panel_title, series) in zip(axes[0], panels):
             for label, c, style in series:
                 y = last_rev(c, signal(c))
-                ax.plot(deg(c), y, style, lw=0.8, label=label)
+                ax.plot(*fold(c, y), style, lw=0.8, label=label)
                 header.append(f"{c.key.replace('/', '_')}")
                 cols.append(y)
             if signal(series[0][1]) is series[0][1].follower_acc:
                 c = series[0][1]
-                ax.plot(deg(c), last_rev(c, c.theory_acc), "k--", lw=0.8, label="theoretical ω²h''")
+                ax.plot(*fold(c, last_rev(c, c.theory_acc)), "k--", lw=0.8, label="theoretical ω²h''")
             ax.set_xlabel("cam angle θ (deg)"), ax.set_ylabel(ylabel), ax.set_xlim(0, 360)
             for b in (30, 180, 210):
                 ax.axvline(b, color="0.7", lw=0.6)
@@ -441,7 +446,7 @@ def make_figures(cases: dict, carrier: float, modal: dict, bands: list, cfg: Stu
     header, cols = ["theta_deg"], [deg(c["inline/physical/clearance"])]
     for key in ("inline/physical/clearance", "offset/physical/clearance"):
         y = 1e6 * last_rev(c[key], c[key].rod_lateral)
-        ax.plot(deg(c[key]), y, lw=0.8, label=key.split("/")[0])
+        ax.plot(*fold(c[key], y), lw=0.8, label=key.split("/")[0])
         header.append(f"{key.split('/')[0]}_x3_um")
         cols.append(y)
     for wall in (-cfg.clearance, cfg.clearance):
