@@ -6,10 +6,13 @@
 //   camfollower run CONFIG [-o FILE]              simulate the case, CSV of every recorded channel
 //   camfollower export CONFIG -o FILE [--contact NAME] [--unit mm] [--cutter-radius R] [--points N]
 //                                                 cam surface (and cutter path) for manufacturing, CSV
+// Exit status: 0 done, 1 the config or the run failed, 2 the command line is wrong (usage); every error
+// is one line "camfollower: error: ..." on stderr.
 #include <cmath>
 #include <cstdio>
 #include <exception>
 #include <fstream>
+#include <limits>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -24,6 +27,32 @@
 namespace cf = camfollower;
 
 namespace {
+
+// A number as the command line's messages show it: an integer in full, anything else like %g (never
+// DBL_MAX's 309 digits).
+std::string shown(double v) {
+    char text[32];
+    if (std::isfinite(v) && v == std::floor(v) && std::abs(v) < 1e15) std::snprintf(text, sizeof text, "%.0f", v);
+    else std::snprintf(text, sizeof text, "%.6g", v);
+    return text;
+}
+
+// A numeric option's check: finite and in [lo, hi] (hi = inf: no upper bound; `what`: "a camshaft
+// speed", `unit`: " rpm"). CLI11's own checks let NaN through (every comparison with it is false) and
+// print DBL_MAX in full. A text that is not a number is left to CLI11's conversion, which names the
+// option too.
+CLI::Validator finite_in(double lo, double hi, const std::string& what, const std::string& unit = "") {
+    const std::string range = std::isinf(hi) ? ">= " + shown(lo) + unit + " (finite)"
+                                             : "in [" + shown(lo) + ", " + shown(hi) + "]" + unit;
+    return CLI::Validator(
+        [=](std::string& input) -> std::string {
+            double v = 0.0;
+            if (!CLI::detail::lexical_cast(input, v)) return {};
+            if (std::isfinite(v) && v >= lo && v <= hi) return {};
+            return (std::isnan(v) ? std::string("nan") : shown(v)) + " is not " + what + " " + range;
+        },
+        range);
+}
 
 // The paper's mechanism, as a case (what kinematics and modes describe without a config).
 cf::config::CaseConfig paper_case() {
@@ -181,23 +210,28 @@ int export_cam(const std::string& config, const std::string& output, std::string
 int main(int argc, char** argv) {
     CLI::App app{"camfollower: dynamics of flexible cam-follower mechanisms (SI units; config format: docs/config.md)"};
     app.require_subcommand(1);
+    app.footer("Exit status: 0 done, 1 the config or the run failed, 2 a command-line (usage) error.");
+    const double min_rpm = cf::detail::min_camshaft_speed * 30.0 / cf::pi;
+    const double max_rpm = cf::detail::max_camshaft_speed * 30.0 / cf::pi;
     std::string config, output;
     double rpm = 0.0, theta_deg = 0.0;
 
     CLI::App* kin = app.add_subcommand("kinematics", "Per contact: largest pressure angle, smallest cam-surface radius, lift range, rigid velocity and acceleration");
     kin->add_option("config", config, "config file (default: the paper's mechanism)")->check(CLI::ExistingFile);
-    kin->add_option("--rpm", rpm, "camshaft speed for the velocity and acceleration (default: the config's)")->check(CLI::PositiveNumber);
+    kin->add_option("--rpm", rpm, "camshaft speed for the velocity and acceleration (default: the config's)")
+        ->check(finite_in(min_rpm, max_rpm, "a camshaft speed", " rpm"));
 
     CLI::App* mod = app.add_subcommand("modes", "Natural frequencies of the mechanism, contacts linearized at a cam angle");
     mod->add_option("config", config, "config file (default: the paper's mechanism)")->check(CLI::ExistingFile);
-    mod->add_option("--theta", theta_deg, "camshaft angle of the linearization, deg")->check(CLI::Range(-1e6, 1e6));
+    mod->add_option("--theta", theta_deg, "camshaft angle of the linearization, deg")
+        ->check(finite_in(-1e6, 1e6, "a cam angle", " deg"));
     int mode_count = 0;
     mod->add_option("--count", mode_count, "how many of the lowest modes (default: all; 20 above 200 DOFs)")
-        ->check(CLI::Range(1, 100000));
+        ->check(finite_in(1, 100000, "a number of modes"));
 
     CLI::App* runc = app.add_subcommand("run", "Simulate the case the config describes; write every recorded channel as CSV");
     runc->add_option("config", config, "config file")->required()->check(CLI::ExistingFile);
-    runc->add_option("-o,--output", output, "CSV file (default: the config's [output] file)");
+    CLI::Option* run_output = runc->add_option("-o,--output", output, "CSV file (default: the config's [output] file)");
 
     CLI::App* exp = app.add_subcommand("export", "Cam surface (and cutter-centre path) of one contact's cam for manufacturing, as CSV "
                                                   "with units, rotation direction and zero mark in its header");
@@ -205,17 +239,39 @@ int main(int argc, char** argv) {
     double cutter_radius = 0.0;
     std::size_t points = 3600;
     exp->add_option("config", config, "config file")->required()->check(CLI::ExistingFile);
-    exp->add_option("-o,--output", output, "CSV file")->required();
+    CLI::Option* export_output = exp->add_option("-o,--output", output, "CSV file")->required();
     exp->add_option("--contact", contact, "contact whose cam to export (default: the first)");
     exp->add_option("--unit", unit, "length unit of the file")->check(CLI::IsMember({"m", "mm", "um", "inch"}))->capture_default_str();
     exp->add_option("--cutter-radius", cutter_radius, "radius of the milling cutter or grinding wheel, in --unit (0: no cutter path)")
-        ->check(CLI::NonNegativeNumber);
-    exp->add_option("--points", points, "points round the cam")->check(CLI::Range(8, 10000000))->capture_default_str();
+        ->check(finite_in(0.0, std::numeric_limits<double>::infinity(), "a radius"));
+    exp->add_option("--points", points, "points round the cam")
+        ->check(finite_in(8, double(cf::detail::max_points), "a number of points"))
+        ->capture_default_str();
 
     try {
         app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
+        // What CLI11 cannot check alone: an empty -o (run would fall back to the config's own file) and
+        // a cutter radius of at most a kilometre in the file's unit.
+        for (const CLI::Option* o : {run_output, export_output})
+            if (o->count() > 0 && output.empty())
+                throw CLI::ValidationError("-o/--output", "must name a file, got an empty string");
+        if (*exp && cutter_radius > 0.0) {
+            const double metres = cf::length_unit_spec(cf::length_unit_from_name(unit)).metres;
+            const double most = cf::detail::max_part_length / metres;
+            if (cutter_radius > most)
+                throw CLI::ValidationError("--cutter-radius", shown(cutter_radius) + " is not a radius in [0, " +
+                                                                  shown(most) + "] " + unit);
+        }
+    } catch (const CLI::CallForHelp& e) {
         return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        // CLI11 would print the bare message and exit with its own codes (105, 106, 109, ...).
+        std::fprintf(stderr, "camfollower: error: %s\n", cf::detail::message_text(e.what()).c_str());
+        return 2;
     }
     try {
         if (*kin) return kinematics(config, rpm);

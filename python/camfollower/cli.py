@@ -307,7 +307,9 @@ def _add_executor_options(p) -> None:
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(prog="python -m camfollower", description=__doc__.split("\n\n")[0])
+    parser = argparse.ArgumentParser(prog="python -m camfollower", description=__doc__.split("\n\n")[0],
+                                     epilog="exit status: 0 done, 1 an error (one line 'camfollower: error: ...'), "
+                                            "2 a command line argparse cannot read")
     sub = parser.add_subparsers(dest="command", required=True)
     f = sub.add_parser("figures", help="simulate a config; write run.csv, figures and summary.json")
     f.add_argument("config", help="config file (docs/config.md)")

@@ -625,3 +625,56 @@ def test_study_settings_check_a_whole_bracket_and_the_overrides_before_any_run(m
     monkeypatch.setattr(simulation, "simulate", lambda *a, **k: pytest.fail("a speed ran before all were checked"))
     with pytest.raises(ValueError, match="rpm: camshaft speeds must be finite and > 0, got nan"):
         cs.camshaft_study(cf.load_config(ROOT / "examples" / "camshaft.toml"), [1000.0, math.nan])
+
+
+# --- the C++ command line (src/main.cpp, CLI11): numeric options, usage errors, exit status -----------
+
+_CPP_CLI = next((p for p in (ROOT / "build-sanitize" / "src" / "camfollower", ROOT / "build" / "src" / "camfollower")
+                 if p.exists()), ROOT / "build-sanitize" / "src" / "camfollower")
+
+
+def _cpp_cli(*args, cwd=None):
+    return subprocess.run([str(_CPP_CLI), *map(str, args)], capture_output=True, text=True, timeout=120, cwd=cwd)
+
+
+@pytest.mark.skipif(not _CPP_CLI.exists(), reason="the command line is built by scripts/test.sh (ctest)")
+@pytest.mark.parametrize("args, message", [
+    (["kinematics", "--rpm", "nan"], r"--rpm: nan is not a camshaft speed in \[9.5493e-06, 954930\] rpm"),
+    (["kinematics", "--rpm", "1e308"], r"--rpm: 1e\+308 is not a camshaft speed in \[9.5493e-06, 954930\] rpm"),
+    (["kinematics", "--rpm", "-5"], r"--rpm: -5 is not a camshaft speed in \["),
+    (["modes", "--theta", "inf"], r"--theta: inf is not a cam angle in \[-1000000, 1000000\] deg"),
+    (["modes", "--count", "0"], r"--count: 0 is not a number of modes in \[1, 100000\]"),
+    (["export", "{flat}", "-o", "{tmp}/cam.csv", "--cutter-radius", "nan"], r"--cutter-radius: nan is not a radius >= 0"),
+    (["export", "{flat}", "-o", "{tmp}/cam.csv", "--cutter-radius", "-1"], r"--cutter-radius: -1 is not a radius >= 0"),
+    (["export", "{flat}", "-o", "{tmp}/cam.csv", "--cutter-radius", "2e6"],
+     r"--cutter-radius: 2000000 is not a radius in \[0, 1000000\] mm"),
+    (["export", "{flat}", "-o", "{tmp}/cam.csv", "--points", "-5"], r"--points: -5 is not a number of points in \[8, 10000000\]"),
+    (["run", "{flat}", "-o", ""], r"-o/--output: must name a file, got an empty string"),
+    (["export", "{flat}", "-o", ""], r"-o/--output: must name a file, got an empty string"),
+    (["run"], r"config is required"),
+    (["run", "{flat}", "--bogus"], r"The following argument"),
+    (["kinematics", "--rpm", "fast"], r"(Could not convert|--rpm).*fast"),
+    ([], r"A subcommand is required"),
+])
+def test_cpp_command_line_errors_are_named_usage_errors(tmp_path, args, message):
+    """NaN passed CLI11's range checks (--cutter-radius nan silently wrote no cutter path), 1e308 rpm
+    was taken, -o "" wrote the config's own output file, and parse errors went out without the
+    prefix, with CLI11's exit codes (105, 106, 109) and DBL_MAX in 309 digits."""
+    flat = ROOT / "examples" / "flat_faced_table.toml"
+    r = _cpp_cli(*[a.format(flat=flat, tmp=tmp_path) for a in args], cwd=tmp_path)
+    assert r.returncode == 2, (r.returncode, r.stderr)
+    assert re.match("camfollower: error: " + message, r.stderr) and r.stderr.count("\n") == 1, r.stderr
+    assert len(r.stderr) < 300 and not list(tmp_path.iterdir())  # nothing written, not even the default file
+
+
+@pytest.mark.skipif(not _CPP_CLI.exists(), reason="the command line is built by scripts/test.sh (ctest)")
+def test_cpp_command_line_help_and_run_errors_keep_their_status(tmp_path):
+    help_ = _cpp_cli("--help")
+    assert help_.returncode == 0 and "Exit status: 0 done, 1 the config or the run failed, 2 a command-line" in help_.stdout
+    assert _cpp_cli("run", "--help").returncode == 0
+    bad = tmp_path / "bad.toml"
+    bad.write_text("[camshaft]\nspeed = \"fast\"\n")
+    r = _cpp_cli("run", bad, "-o", tmp_path / "x.csv")
+    assert r.returncode == 1 and r.stderr.startswith("camfollower: error: ") and "bad.toml" in r.stderr
+    ok = _cpp_cli("kinematics", ROOT / "examples" / "flat_faced_table.toml", "--rpm", "954929")
+    assert ok.returncode == 0 and "at 954929 rpm" in ok.stdout
