@@ -6,7 +6,8 @@
 #   Debian packages: compilers, CMake, Ninja, Eigen 3.4, SuiteSparse, toml++, CLI11, Catch2 v2, Google Benchmark,
 #   ccache (compiles are cached in ~/.cache/ccache, keyed on paths relative to the clone: a second clone
 #   or a rebuild after a small change compiles only what changed).
-#   PyPI (into .venv): numpy, matplotlib, pybind11, scikit-build-core; for tests also scipy, pytest, sympy, ezdxf,
+#   PyPI (into .venv): numpy, matplotlib, pybind11, scikit-build-core; for tests also scipy, pytest (with
+#   pytest-xdist: the tests run on both cores), sympy, ezdxf,
 #   hypothesis, the studies' extras (pandas, pyarrow, tqdm, dask[distributed]) and Sphinx with MyST (the docs site).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -42,12 +43,12 @@ need() {  # need MODULE... : pip-install the given packages unless all modules i
   fi
 }
 need "numpy, matplotlib, pybind11, scikit_build_core" numpy matplotlib "pybind11>=2.12" "scikit-build-core>=0.10"
-[ "$mode" = study ] || need "scipy, pytest, sympy, ezdxf, hypothesis" scipy pytest sympy ezdxf hypothesis
+[ "$mode" = study ] || need "scipy, pytest, xdist, sympy, ezdxf, hypothesis" scipy pytest pytest-xdist sympy ezdxf hypothesis
 [ "$mode" = study ] || need "pandas, pyarrow, tqdm, distributed" pandas pyarrow tqdm "dask[distributed]"
 [ "$mode" = study ] || need "sphinx, myst_parser" sphinx myst-parser
 
 # Rebuild the package only when its sources changed.
-stamp=$(cat pyproject.toml CMakeLists.txt cmake/* $(find include python -type f \( -name '*.hpp' -o -name '*.cpp' -o -name '*.py' -o -name '*.txt' -o -name '*.pyi' \) | sort) | sha256sum | cut -c1-16)
+stamp=$(cat pyproject.toml CMakeLists.txt cmake/* $(find include python src -type f \( -name '*.hpp' -o -name '*.cpp' -o -name '*.py' -o -name '*.txt' -o -name '*.pyi' \) | sort) | sha256sum | cut -c1-16)
 # The build folder is kept (build/python), so a rebuild compiles only what changed; flock keeps two
 # set-ups in one clone from building at once.
 if [ "$(cat .venv/.camfollower-stamp 2>/dev/null)" != "$stamp" ]; then

@@ -12,8 +12,10 @@ package re-exports it and adds the Python-side analysis and the paper study.
 
 import numpy as _numpy  # noqa: F401  (imported here, not lazily inside the first simulate call)
 
-from . import _core
-from ._core import (
+from . import _api_errors, _core
+
+_api_errors.install(_core)  # argument mismatches: short TypeErrors naming the call, not pybind11's dumps
+from ._core import (  # noqa: E402
     ArmTurn,
     BoundaryContinuity,
     CamEccentricity,

@@ -101,7 +101,7 @@ def simulate(system, *, duration: Optional[float] = None, revolutions: Optional[
                                        settle_tolerance=settle_tolerance, settle_dofs=settle_dofs,
                                        settle_min_revolutions=settle_min_revolutions,
                                        settle_max_revolutions=settle_max_revolutions, initial_state=initial_state,
-                                       method=method, tolerance=tolerance, max_step=max_step)
+                                       method=method, tolerance=tolerance, max_step=max_step, progress=progress)
     return _result(_capped(lambda: _core._run(system, progress=progress, **args), args, max_output_bytes), settle_dofs)
 
 
@@ -180,9 +180,16 @@ def _result(raw, settle_dofs) -> Result:
 def _run_arguments(system, *, duration, revolutions, time_step, decimation, record_from, record_last_revolutions,
                    gamma, beta, hht_alpha, linear_solver, residual_tolerance, increment_tolerance, max_iterations,
                    max_halvings, max_output_bytes, progress_interval, settle, settle_tolerance, settle_dofs,
-                   settle_min_revolutions, settle_max_revolutions, initial_state, method, tolerance, max_step):
+                   settle_min_revolutions, settle_max_revolutions, initial_state, method, tolerance, max_step,
+                   progress=None):
     """simulate()'s arguments checked and turned into _core._run's (but for system and progress), and the
     watched DOFs' names (None without settle)."""
+    if not isinstance(system, (_core.Mechanism, _core.CamFollowerModel)):
+        raise TypeError(f"system must be a camfollower Mechanism (MechanismBuilder.build(), camfollower.presets, "
+                        f"a config's .mechanism) or a CamFollowerModel, got {type(system).__name__}")
+    if progress is not None and not callable(progress):
+        raise TypeError(f"progress must be a callable progress(steps_done, steps_planned) or None, "
+                        f"got {type(progress).__name__}")
     # Numbers and counts checked here by name (pybind11 would say "incompatible function arguments").
     for name, value in (("time_step", time_step), ("hht_alpha", hht_alpha), ("residual_tolerance", residual_tolerance),
                         ("increment_tolerance", increment_tolerance), ("max_output_bytes", max_output_bytes),
@@ -220,7 +227,14 @@ def _run_arguments(system, *, duration, revolutions, time_step, decimation, reco
     elif record_last_revolutions is not None:
         if not (math.isfinite(record_last_revolutions) and record_last_revolutions > 0):
             raise ValueError(f"record_last_revolutions must be finite and > 0, got {record_last_revolutions!r}")
-        start = duration - record_last_revolutions * period
+        window = record_last_revolutions * period
+        if window > duration * (1 + 1e-12):
+            raise ValueError(f"record_last_revolutions = {record_last_revolutions:g} is longer than the run "
+                             f"({duration / period:g} revolutions)")
+        if isinstance(time_step, numbers.Real) and window < 2 * decimation * time_step:
+            raise ValueError(f"record_last_revolutions = {record_last_revolutions:g} ({window:g} s) holds fewer than two "
+                             f"rows at decimation {decimation} x time_step {time_step:g} s; record a longer window")
+        start = duration - window
     settle_args = {}
     if settle:
         period = getattr(system, "period", None)

@@ -16,4 +16,16 @@ PYBIND11_MODULE(_core, m) {
     camfollower::python::bind_line_contact(m);
     camfollower::python::bind_export(m);
     camfollower::python::bind_config(m);
+    // An instance made by cls.__new__(cls) alone (its __init__ never ran) holds no C++ object; pybind11
+    // would hand its first method raw memory (allocated through this hook, used for nothing else). Every
+    // class of the module refuses instead.
+    namespace py = pybind11;
+    for (const auto& item : m.attr("__dict__").cast<py::dict>()) {
+        if (!PyType_Check(item.second.ptr())) continue;
+        if (py::detail::type_info* info = py::detail::get_type_info(reinterpret_cast<PyTypeObject*>(item.second.ptr())))
+            info->operator_new = [](std::size_t) -> void* {
+                throw py::value_error("this instance is uninitialized: its __init__ never ran (made by cls.__new__(cls) "
+                                      "alone); create it by calling the class");
+            };
+    }
 }

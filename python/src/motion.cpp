@@ -226,7 +226,11 @@ void bind_motion(py::module_& m) {
 
     py::class_<Segment>(m, "Segment", "One segment of a motion program (angles in rad, lifts in m).")
         .def(py::init([](const MotionLaw& law, double theta_start, double theta_end, double h_start,
-                         double h_end) { return Segment{law, theta_start, theta_end, h_start, h_end}; }),
+                         double h_end) {
+                 Segment s{law, theta_start, theta_end, h_start, h_end};
+                 s.validate();  // at once, not when a MotionProgram is made of it
+                 return s;
+             }),
              py::arg("law"), py::arg("theta_start"), py::arg("theta_end"), py::arg("h_start"), py::arg("h_end"))
         .def_readonly("law", &Segment::law)
         .def_readonly("theta_start", &Segment::theta_start)

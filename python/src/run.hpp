@@ -190,7 +190,15 @@ inline bool python_says_go_on(const py::object& progress, std::uint64_t done, st
         if (PyErr_CheckSignals() != 0) throw py::error_already_set();
         if (!progress.is_none()) {
             const py::object keep_going = progress(done, total);
-            if (!keep_going.is_none() && !keep_going.cast<bool>()) return false;
+            if (keep_going.is_none()) return true;
+            // True/False (or NumPy's bool); anything else is a mistake, not a vote to go on.
+            const std::string type = py::str(py::type::handle_of(keep_going).attr("__name__"));
+            if (!py::isinstance<py::bool_>(keep_going) && type != "bool" && type != "bool_") {
+                PyErr_SetString(PyExc_TypeError, ("progress(steps_done, steps_planned) must return None, True or False, got " +
+                                                  type).c_str());
+                throw py::error_already_set();
+            }
+            if (!keep_going.cast<bool>()) return false;
         }
     } catch (py::error_already_set& e) {
         error.emplace(std::move(e));

@@ -670,6 +670,23 @@ OutputConfig read_output(const Section& s) {
     return o;
 }
 
+// A recording with no row, or one (nothing to draw), is a mistake in [output]: refused by its key.
+void check_recording(const Section& s, const SolverConfig& solver, const OutputConfig& o, double period) {
+    const double dt = solver.time_step_for(period), duration = solver.duration_for(period);
+    const double steps = std::ceil(duration / dt - 1e-9);
+    if (double(o.decimation) > steps)
+        s.fail("decimation", detail::concat("decimation = ", o.decimation, " steps is longer than the run (", steps,
+                                            " steps): it would record a single row"));
+    if (o.record_last_revolutions <= 0.0) return;
+    if (o.record_last_revolutions * period > duration * (1.0 + 1e-12))
+        s.fail("record_last_revolutions", detail::concat("record_last_revolutions = ", o.record_last_revolutions,
+                                                         " is longer than the run (", duration / period, " revolutions)"));
+    if (o.record_last_revolutions * period < 2.0 * double(o.decimation) * dt)
+        s.fail("record_last_revolutions",
+               detail::concat("record_last_revolutions = ", o.record_last_revolutions, " (", o.record_last_revolutions * period,
+                              " s) holds fewer than two rows at decimation ", o.decimation, " x time step ", dt, " s"));
+}
+
 }  // namespace
 
 const MotionProgram& CaseConfig::program(const std::string& name) const {
@@ -714,7 +731,10 @@ CaseConfig build_case(const toml::table& table, const std::string& origin, const
         c.mechanism.set_camshaft_speed_rpm(rpm);
     }
     if (const std::optional<Section> s = root.table("solver")) c.solver = read_solver(*s);
-    if (const std::optional<Section> s = root.table("output")) c.output = read_output(*s);
+    if (const std::optional<Section> s = root.table("output")) {
+        c.output = read_output(*s);
+        check_recording(*s, c.solver, c.output, 60.0 / rpm);
+    }
     // [sweep] and [montecarlo] describe studies run by the Python package (python -m camfollower sweep |
     // montecarlo), which reads and checks them; they do not change the case.
     (void)root.table("sweep");

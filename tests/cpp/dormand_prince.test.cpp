@@ -295,3 +295,41 @@ TEST_CASE("Both explicit methods sum the solution with compensation: no rounding
         }
     }
 }
+
+// The driver asks its observer between output rows; one output interval may hold millions of
+// integration steps (here max_step 1e-9 s against an output interval of 0.05 s: 5e7 steps). The
+// adaptive methods poll the progress callback between their own steps and stop there.
+TEST_CASE("The adaptive methods stop within an output interval when the progress callback says so") {
+    const DrivenSdof sdof;
+    const auto system = sdof.system();
+    for (const char* method : {"dormand_prince", "dop853", "radau"}) {
+        CAPTURE(method);
+        NewmarkSettings s = dopri(0.05, 1e-6, method);
+        s.max_step = 1e-9;
+        RunOptions options;
+        options.duration = 0.1;
+        std::uint64_t calls = 0;
+        options.progress = [&](std::uint64_t, std::uint64_t) { return ++calls < 3; };
+        const auto r = simulate(system, s, options);
+        CHECK(r.report.cancelled);
+        CHECK(calls == 3);
+        CHECK(r.recording.rows == 1);  // the start only: the first interval never ended
+        CHECK(r.report.stats.steps < 10 * InterruptPoll::every);
+    }
+}
+
+TEST_CASE("A recording window without rows is refused by the option's name") {
+    const DrivenSdof sdof;
+    const auto system = sdof.system();
+    NewmarkSettings s;
+    s.time_step = 1e-3;
+    RunOptions options;
+    options.duration = 0.1;
+    options.record.from_time = 0.2;
+    CHECK_THROWS_WITH(simulate(system, s, options), Catch::Contains("record_from = 0.2 s: the recording window starts after the run ends"));
+    options.record.from_time = -std::numeric_limits<double>::infinity();
+    options.record.decimation = 1000;
+    CHECK_THROWS_WITH(simulate(system, s, options), Catch::Contains("decimation = 1000 steps") && Catch::Contains("single row"));
+    options.record.decimation = 50;
+    CHECK(simulate(system, s, options).recording.rows == 3);
+}

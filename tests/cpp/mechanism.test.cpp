@@ -214,3 +214,45 @@ TEST_CASE("bad descriptions: a clear error naming the element, and nothing half-
                      HertzContact{}, 0.0, "ground", "ground", "arm", "x", CamEccentricity{}, "ground"});
     CHECK_THROWS_WITH(Mechanism<>(osc), Catch::Contains("lateral is defined for translating followers only"));
 }
+
+TEST_CASE("each role of an element names a DOF of its own, each element a name of its own") {
+    MechanismBuilder b;
+    b.add_dof("f", 0.5);
+    b.add_dof("g", 0.2);
+    b.add_spring("spring", "f", "ground", 2e4, 0.0, 300.0);
+    auto contact = [](const std::string& cam_x, const std::string& cam_y, const std::string& lateral, const std::string& twist) {
+        return ContactPairSpec{"cam", MotionProgram::paper_default(), TranslatingRoller(0.03, 0.008, 0.0), HertzContact{},
+                               0.0, cam_x, cam_y, "f", lateral, CamEccentricity{}, twist};
+    };
+    CHECK_THROWS_WITH(b.add_contact(contact("ground", "ground", "f", "ground")),
+                      Catch::Contains("contact 'cam': lateral and follower_dof both name DOF 'f'"));
+    CHECK_THROWS_WITH(b.add_contact(contact("ground", "f", "ground", "ground")),
+                      Catch::Contains("follower_dof and cam_y both name DOF 'f'"));
+    CHECK_THROWS_WITH(b.add_contact(contact("g", "g", "ground", "ground")), Catch::Contains("cam_y and cam_x both name DOF 'g'"));
+    CHECK_THROWS_WITH(b.add_contact(contact("ground", "ground", "g", "g")),
+                      Catch::Contains("cam_twist and lateral both name DOF 'g'"));
+    CHECK(b.contacts.empty());  // nothing half-added
+    // The resolved pair checks indices too (a description that bypassed the builder).
+    CHECK_THROWS_WITH(ContactPair(contact("ground", "ground", "ground", "ground"), -1, 0, 0, -1),
+                      Catch::Contains("cam_y and cam_x") || Catch::Contains("follower_dof and cam_y"));
+    ClearanceSpec guide{"guide", {{"g", 1.0}}, 1e-4, HertzContact{1e8, 1.0, 0.0}, 0.1, "g"};
+    CHECK_THROWS_WITH(b.add_clearance(guide), Catch::Contains("sliding_dof 'g' is also a DOF of the gap coordinate"));
+    b.add_contact(contact("ground", "ground", "ground", "ground"));
+    ClearanceSpec same_name{"cam", {{"g", 1.0}}, 1e-4, HertzContact{1e8, 1.0, 0.0}};
+    CHECK_THROWS_WITH(b.add_clearance(same_name), Catch::Contains("clearance 'cam': the name is taken by contact 'cam'"));
+    CHECK_THROWS_WITH(b.add_spring("cam", "g", "ground", 1.0), Catch::Contains("element 'cam': the name is taken by contact"));
+    CHECK_THROWS_WITH(b.add_contact(contact("ground", "ground", "ground", "ground")),
+                      Catch::Contains("contact 'cam': the name is taken by contact 'cam'"));
+}
+
+TEST_CASE("a model's size is bounded before it is assembled; a shaft mesh absurd for its section is refused") {
+    MechanismBuilder b;
+    ShaftSpec fine{"s", BeamSection::solid_circle(0.03, 210e9, 0.3, 7850.0), 0.05, 1e-6, {}, false, 0.0};
+    CHECK_THROWS_WITH(b.add_shaft(fine), Catch::Contains("radius of gyration") && Catch::Contains("um written for mm"));
+    ShaftSpec many{"s", BeamSection::solid_circle(0.03, 210e9, 0.3, 7850.0), 1.0, 1e-3, {}, false, 0.0};
+    CHECK_THROWS_WITH(b.add_shaft(many), Catch::Contains("limit 500 per shaft"));
+    for (const char* name : {"s", "t"})
+        b.add_shaft({name, BeamSection::solid_circle(0.03, 210e9, 0.3, 7850.0), 0.5, 0.5 / 400, {}, false, 0.0});
+    CHECK(b.structure.size() == 2 * 401 * 5);
+    CHECK_THROWS_WITH(Mechanism<>(b), Catch::Contains("the mechanism has 4010 DOFs, more than the 3000"));
+}

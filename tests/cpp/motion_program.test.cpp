@@ -99,7 +99,7 @@ TEST_CASE("invalid programs are rejected with the parameter named") {
     }
     SECTION("beta <= 0") {
         CHECK_THROWS_WITH(MotionProgram({{dw, 0, 0, 0, 0}, {dw, 0, 2 * pi, 0, 0}}),
-                          Catch::Contains("segments[0]: span beta") && Catch::Contains("> 0"));
+                          Catch::Contains("segments[0] spans 0 rad") && Catch::Contains("must be at least 1e-06 rad"));
     }
     SECTION("levels do not chain") {
         CHECK_THROWS_WITH(
@@ -130,6 +130,25 @@ TEST_CASE("invalid programs are rejected with the parameter named") {
         CHECK_THROWS_WITH(MotionProgram({{mt, 0, 1e-300, 0, 1e-3}, {mt, 1e-300, 2 * pi, 1e-3, 0}}),
                           Catch::Contains("segments[0] spans"));
         CHECK_NOTHROW(MotionProgram({{mt, 0, 2e-6, 0, 1e-9}, {mt, 2e-6, 2 * pi, 1e-9, 0}}));
+    }
+    SECTION("a segment on its own, at construction and evaluation") {
+        CHECK_THROWS_WITH(Segment({mt, 1.0, 0.5, 0, 1e-3}).validate(), Catch::Contains("segment spans -0.5 rad"));
+        CHECK_THROWS_WITH(Segment({mt, NAN, 0.5, 0, 1e-3}).validate(), Catch::Contains("theta_start/theta_end must be finite"));
+        CHECK_THROWS_WITH(Segment({dw, 0.0, 0.5, 0, 1e-3}).validate(), Catch::Contains("a dwell must have h_end == h_start"));
+        CHECK_THROWS_WITH(Segment::polynomial(0.0, 1e-300, {0.0, 0.0}, {1e-3, 0.0}),
+                          Catch::Contains("polynomial segment: theta_end - theta_start"));
+        const Segment rise{mt, 0.0, 1.0, 0.0, 1e-3};
+        CHECK_THROWS_WITH(rise.lift_at(NAN), Catch::Contains("theta = nan rad is outside the segment"));
+        CHECK_THROWS_WITH(rise.lift_at(1.5), Catch::Contains("theta = 1.5 rad is outside the segment [0, 1] rad"));
+        CHECK_THROWS_WITH(MotionLaw::sine_constant_cosine(1e-310, 0.5, 0.5 - 1e-310),
+                          Catch::Contains("b (sine fraction) must be 0 or at least 1e-06"));
+        CHECK_THROWS_WITH(ProfileError::dent(1.0, 5e-324, 1e-5), Catch::Contains("dent width must be in [1e-06 rad"));
+        // The smallest span and fraction allowed still evaluate to finite values.
+        const Segment thin{MotionLaw::sine_constant_cosine(1e-6, 0.5, 0.5 - 1e-6), 0.0, 1e-6, 0.0, 1e-3};
+        for (double x : {0.0, 1e-12, 2.5e-7, 5e-7, 1e-6}) {
+            const FollowerMotion m = thin.lift_at(x);
+            CHECK((std::isfinite(m.h) && std::isfinite(m.dh) && std::isfinite(m.d2h) && std::isfinite(m.d3h)));
+        }
     }
     SECTION("lifts beyond a kilometre") {
         CHECK_THROWS_WITH(MotionProgram({{mt, 0, pi, 0, 1e154}, {mt, pi, 2 * pi, 1e154, 0}}),

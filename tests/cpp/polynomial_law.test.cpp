@@ -94,8 +94,8 @@ TEST_CASE("a polynomial with zero net lift works inside a program") {
 
 TEST_CASE("impossible or bad polynomial conditions are refused, naming the parameter") {
     const double a = 1.0, b = 2.0;
-    REQUIRE_THROWS_WITH(Segment::polynomial(a, a, {0}, {0}), Catch::Contains("theta_end must be > theta_start"));
-    REQUIRE_THROWS_WITH(Segment::polynomial(b, a, {0}, {0}), Catch::Contains("theta_end must be > theta_start"));
+    REQUIRE_THROWS_WITH(Segment::polynomial(a, a, {0}, {0}), Catch::Contains("theta_end - theta_start must be finite and at least 1e-06 rad"));
+    REQUIRE_THROWS_WITH(Segment::polynomial(b, a, {0}, {0}), Catch::Contains("theta_end - theta_start must be finite and at least 1e-06 rad"));
     REQUIRE_THROWS_WITH(Segment::polynomial(std::nan(""), b, {0}, {0}), Catch::Contains("theta_start"));
     REQUIRE_THROWS_WITH(Segment::polynomial(a, b, {}, {0}), Catch::Contains("start must hold at least"));
     REQUIRE_THROWS_WITH(Segment::polynomial(a, b, {0}, {}), Catch::Contains("end must hold at least"));

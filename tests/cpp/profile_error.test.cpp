@@ -329,8 +329,8 @@ TEST_CASE("bad input names the parameter and the allowed range") {
     CHECK_THROWS_WITH(ProfileError::waviness(NAN, 3), Contains("waviness amplitude"));
     CHECK_THROWS_WITH(ProfileError::waviness(1e-6, 0), Contains("waviness order must be an integer >= 1"));
     CHECK_THROWS_WITH(ProfileError::waviness(1e-6, 2, INFINITY), Contains("waviness phase"));
-    CHECK_THROWS_WITH(ProfileError::dent(1.0, 0.0, 1e-5), Contains("dent width must be in (0, 180] deg, got 0"));
-    CHECK_THROWS_WITH(ProfileError::dent(1.0, 4.0, 1e-5), Contains("dent width must be in (0, 180] deg"));
+    CHECK_THROWS_WITH(ProfileError::dent(1.0, 0.0, 1e-5), Contains("dent width must be in [1e-06 rad, 180 deg], got 0"));
+    CHECK_THROWS_WITH(ProfileError::dent(1.0, 4.0, 1e-5), Contains("dent width must be in [1e-06 rad, 180 deg]"));
     CHECK_THROWS_WITH(ProfileError::dent(1.0, NAN, 1e-5), Contains("dent width"));
     CHECK_THROWS_WITH(ProfileError::dent(NAN, 0.1, 1e-5), Contains("dent centre"));
     CHECK_THROWS_WITH(ProfileError::dent(1.0, 0.1, NAN), Contains("dent depth"));

@@ -98,7 +98,7 @@ def test_undercut_and_bad_programs_raise_value_error():
         cf.DiskCam(steep, base_radius=0.010, roller_radius=0.012, offset=0.0)
     with pytest.raises(ValueError, match=r"segments\[1\].theta_start.*gap"):
         cf.MotionProgram([cf.Segment(cyc, 0, 1.0, 0, 0.01), cf.Segment(cyc, 1.1, 2 * np.pi, 0.01, 0)])
-    with pytest.raises(ValueError, match="span beta"):
+    with pytest.raises(ValueError, match=r"segment spans 0 rad .*must be at least"):
         cf.MotionProgram([cf.Segment(cyc, 0, 0, 0, 0.0), cf.Segment(cf.MotionLaw.dwell(), 0, 2 * np.pi, 0, 0)])
     with pytest.raises(ValueError, match="theta must be finite"):
         cf.MotionProgram.paper_default().evaluate(np.array([0.0, np.inf]))

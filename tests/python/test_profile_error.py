@@ -122,8 +122,8 @@ def test_pickling_round_trips_errors_and_programs():
 
 
 @pytest.mark.parametrize("make, message", [
-    (lambda: cf.ProfileError.dent(1.0, 0.0, 1e-5), r"dent width must be in \(0, 180\] deg, got 0"),
-    (lambda: cf.ProfileError.dent(1.0, 3.5, 1e-5), r"dent width must be in \(0, 180\] deg"),
+    (lambda: cf.ProfileError.dent(1.0, 0.0, 1e-5), r"dent width must be in \[1e-06 rad, 180 deg\], got 0"),
+    (lambda: cf.ProfileError.dent(1.0, 3.5, 1e-5), r"dent width must be in \[1e-06 rad, 180 deg\]"),
     (lambda: cf.ProfileError.dent(float("nan"), 0.1, 1e-5), r"dent centre"),
     (lambda: cf.ProfileError.dent(1.0, 0.1, float("inf")), r"dent depth"),
     (lambda: cf.ProfileError.waviness(1e-6, 0), r"waviness order must be an integer >= 1"),

@@ -231,3 +231,70 @@ def test_analysis_is_finite_or_refused_by_name(signal, rate, count):
 
 
 PRESET_MODEL = cf.CamFollowerModel()
+
+
+ROLE_DOFS = st.sampled_from(["ground", "f", "g", "h"])
+
+
+@given(cam_x=ROLE_DOFS, cam_y=ROLE_DOFS, follower=ROLE_DOFS, lateral=ROLE_DOFS)
+def test_contact_roles_are_distinct_dofs_or_refused_naming_them(cam_x, cam_y, follower, lateral):
+    """Any assignment of DOFs to a contact's roles: two roles on one DOF (or the follower on ground) are
+    refused when the contact is added, naming the roles; distinct roles build a finite model."""
+    b = cf.MechanismBuilder()
+    for name, mass in (("f", 0.5), ("g", 2.0), ("h", 2.0)):
+        b.add_dof(name, mass)
+    b.add_spring("kf", "f", "ground", stiffness=2e4, preload=300.0)
+    b.add_spring("kg", "g", "ground", stiffness=1e8)
+    b.add_spring("kh", "h", "ground", stiffness=1e8)
+    roles = {"cam_x": cam_x, "cam_y": cam_y, "follower_dof": follower, "lateral": lateral}
+    used = [d for d in roles.values() if d != "ground"]
+    clash = len(used) != len(set(used)) or follower == "ground"
+    try:
+        b.add_contact("cam", cf.MotionProgram.paper_default(), cf.TranslatingRoller(0.03, 0.008), stiffness=1e8,
+                      cam_x=cam_x, cam_y=cam_y, follower_dof=follower, lateral=lateral)
+    except ValueError as e:
+        assert clash, str(e)
+        assert "contact 'cam'" in str(e) and ("both name DOF" in str(e) or "follower_dof must be a DOF" in str(e))
+        return
+    assert not clash
+    m = raises_naming(b.build, "static equilibrium", "contact 'cam'")
+    assert m is None or finite(m.initial_state)
+
+
+@given(length_=st.floats(min_value=0.01, max_value=2.0), elements=st.integers(1, 3000),
+       outer=st.floats(min_value=0.005, max_value=0.1), shafts=st.integers(1, 3))
+@settings(deadline=None, max_examples=40)
+def test_model_size_is_bounded_before_it_is_built(length_, elements, outer, shafts):
+    """Shafts of any mesh: refused by name at once (too many elements, a mesh finer than the section
+    allows, too many DOFs), or built within the DOF bound."""
+    import time
+
+    b = cf.MechanismBuilder()
+    start = time.monotonic()
+    for k in range(shafts):
+        added = raises_naming(lambda: b.add_shaft(f"s{k}", length=length_, outer_diameter=outer,
+                                                  max_element_length=length_ / elements, stations=[0.0, length_]) or True,
+                              "max_element_length")
+        if added is None:
+            assert time.monotonic() - start < 5.0
+            return
+        b.add_bearing(f"b{k}", f"s{k}", 0.0, stiffness=1e8)
+        b.add_bearing(f"c{k}", f"s{k}", length_, stiffness=1e8)
+        b.add_drive(f"d{k}", f"s{k}", 0.0, stiffness=1e4)
+    m = raises_naming(b.build, "DOFs, more than the 3000")
+    assert m is None or m.size <= 3000
+    assert time.monotonic() - start < 10.0
+
+
+@given(b_=anything, c=anything, width=anything, span=anything)
+def test_motion_parameters_build_finite_laws_or_are_refused(b_, c, width, span):
+    law = raises_naming(lambda: cf.MotionLaw.sine_constant_cosine(b_, c, 1.0 - b_ - c), "fraction", "b + c + d")
+    if law is not None:
+        segment = raises_naming(lambda: cf.Segment(law, 0.0, span, 0.0, 0.01), "span", "theta")
+        if segment is not None:
+            values = segment.lift_at(np.linspace(0.0, span, 9))
+            assert all(finite(v) for v in values.values())
+    dent = raises_naming(lambda: cf.ProfileError.dent(1.0, width, 1e-5), "dent width")
+    if dent is not None:
+        program = cf.MotionProgram.paper_default().with_profile_error(dent)
+        assert all(finite(v) for v in program.evaluate(np.linspace(0.0, 2 * math.pi, 721)).values())

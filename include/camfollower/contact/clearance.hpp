@@ -51,6 +51,10 @@ struct ClearanceSpec {
         detail::require_non_negative(friction, (who + " friction coefficient").c_str());
         if (friction > 0.0 && sliding_dof.empty())
             detail::fail(who, ": friction coefficient ", friction, " > 0 needs the sliding DOF (the rod's axial coordinate)");
+        for (const auto& term : gap)
+            if (friction > 0.0 && term.first == sliding_dof)
+                detail::fail(who, ": sliding_dof '", sliding_dof, "' is also a DOF of the gap coordinate; the rod slides "
+                             "along its axis, across the gap: each role needs a DOF of its own");
         detail::require_positive(slip_velocity, (who + " slip velocity").c_str(), "(m/s)");
     }
 };

@@ -25,6 +25,7 @@
 
 #include "camfollower/contact/eccentricity.hpp"
 #include "camfollower/contact/hertz.hpp"
+#include "camfollower/core/ground.hpp"
 #include "camfollower/error.hpp"
 #include "camfollower/follower/oscillating_flat.hpp"
 #include "camfollower/follower/oscillating_roller.hpp"
@@ -54,6 +55,20 @@ struct ContactPairSpec {
     std::string cam_x = "ground", cam_y = "ground", follower_dof, lateral = "ground";
     CamEccentricity eccentricity;  // none by default
     std::string cam_twist = "ground";  // the shaft's twist DOF at the cam (ground: a rigid camshaft)
+
+    // The roles in the order of require_distinct_roles' messages (and ContactPair's indices).
+    static constexpr const char* role_names[5] = {"cam_x", "cam_y", "follower_dof", "lateral", "cam_twist"};
+    // Each role is a coordinate of its own: two roles on one DOF would add two different kinematic
+    // terms to the same coordinate and give meaningless forces.
+    void require_distinct_roles() const {
+        const std::string* roles[5] = {&cam_x, &cam_y, &follower_dof, &lateral, &cam_twist};
+        if (follower_dof == ground_name) detail::fail("contact '", name, "': follower_dof must be a DOF, not ground");
+        for (int a = 0; a < 5; ++a)
+            for (int b = 0; b < a; ++b)
+                if (*roles[a] != ground_name && *roles[a] == *roles[b])
+                    detail::fail("contact '", name, "': ", role_names[a], " and ", role_names[b], " both name DOF '", *roles[a],
+                                 "'; each role needs a DOF of its own (or ground)");
+    }
 };
 
 // The time-only terms of one pair at one instant: sparse g and its rate (up to four DOFs).
@@ -81,8 +96,13 @@ public:
         : spec_(std::move(spec)), cam_x_(cam_x), cam_y_(cam_y), follower_(follower), lateral_(lateral), twist_(twist) {
         const std::string who = "contact '" + spec_.name + "'";
         if (follower_ < 0) detail::fail(who, ": follower_dof must be a DOF, not ground");
-        for (int role : {cam_x_, cam_y_, follower_, lateral_})
-            if (twist_ >= 0 && role == twist_) detail::fail(who, ": cam_twist must be a DOF of its own, not one of the pair's other roles");
+        spec_.require_distinct_roles();
+        const int indices[] = {cam_x_, cam_y_, follower_, lateral_, twist_};
+        for (int a = 0; a < 5; ++a)
+            for (int b = 0; b < a; ++b)
+                if (indices[a] >= 0 && indices[a] == indices[b])
+                    detail::fail(who, ": ", ContactPairSpec::role_names[a], " and ", ContactPairSpec::role_names[b],
+                                 " are the same DOF; each role needs a DOF of its own (or ground)");
         if (lateral_ >= 0 && !is_translating(spec_.follower))
             detail::fail(who, ": lateral is defined for translating followers only (", follower_type_name(spec_.follower), ")");
         detail::require_positive(spec_.law.stiffness, (who + " contact stiffness").c_str(), "(N/m^n)");
@@ -112,7 +132,7 @@ public:
         }
         if (ecc.unbalance_mass > 0.0 && cam_x_ < 0 && cam_y_ < 0)
             detail::fail(who, ": an unbalance mass loads the cam centre, so cam_x or cam_y must be a DOF");
-        // Where each role's coefficient goes in the sparse g (a DOF in two roles shares one slot).
+        // Where each role's coefficient goes in the sparse g.
         const int roles[4] = {cam_x_, cam_y_, lateral_, follower_};
         for (int r = 0; r < 4; ++r) {
             slot_[r] = -1;

@@ -47,6 +47,7 @@ struct MechanismBuilder {
     }
     void add_spring(const std::string& name, const std::string& a, const std::string& b, double stiffness,
                     double damping = 0.0, double preload = 0.0) {
+        require_unused_name(name, "element");
         structure.add_spring(name, a, b, stiffness, damping, preload);
     }
     void add_damper(const std::string& name, const std::string& a, const std::string& b, double damping) {
@@ -59,15 +60,14 @@ struct MechanismBuilder {
 
     void add_contact(const ContactPairSpec& c) {
         detail::require_name(c.name, "contact");
-        for (const ContactPairSpec& other : contacts)
-            if (other.name == c.name) detail::fail("contact '", c.name, "' is defined twice");
+        require_unused_name(c.name, "contact");
+        c.require_distinct_roles();
         contacts.push_back(c);
     }
     // A radial clearance (contact/clearance.hpp); add_guide adds one per bushing.
     void add_clearance(const ClearanceSpec& c) {
         c.validate();
-        for (const ClearanceSpec& other : clearances)
-            if (other.name == c.name) detail::fail("clearance '", c.name, "' is defined twice");
+        require_unused_name(c.name, "clearance");
         clearances.push_back(c);
     }
     void add_guide(const GuideSpec& g) {
@@ -143,6 +143,7 @@ struct MechanismBuilder {
     void add_spring_chain(const std::string& name, const std::string& a, const std::string& b, double stiffness,
                           double mass, int elements, double damping = 0.0, double preload = 0.0,
                           const Eigen::Vector3d& direction = Eigen::Vector3d::Zero()) {
+        require_unused_name(name, "element");
         structure.add_spring_chain(name, a, b, stiffness, mass, elements, damping, preload, direction);
     }
 
@@ -153,6 +154,16 @@ struct MechanismBuilder {
     double camshaft_speed_rpm() const { return camshaft_speed * 60.0 / two_pi; }
 
 private:
+    // Elements name their channels ("<name>.force", ...): one name, one element, whatever its kind.
+    void require_unused_name(const std::string& name, const char* kind) const {
+        for (const ContactPairSpec& c : contacts)
+            if (c.name == name) detail::fail(kind, " '", name, "': the name is taken by contact '", name, "'");
+        for (const ClearanceSpec& c : clearances)
+            if (c.name == name) detail::fail(kind, " '", name, "': the name is taken by clearance '", name, "'");
+        for (const SpringSpec& s : structure.springs())
+            if (s.name == name) detail::fail(kind, " '", name, "': the name is taken by element '", name, "'");
+    }
+
     struct Mount {
         std::string name, shaft;
         double x;
@@ -188,6 +199,10 @@ public:
         const NetworkSpec& net = spec_.structure;
         n_ = net.size();
         if (n_ == 0) detail::fail("a mechanism needs at least one DOF");
+        if (n_ > max_dofs)
+            detail::fail("the mechanism has ", n_, " DOFs, more than the ", max_dofs, " a Mechanism assembles (dense n x n "
+                         "matrices: ", 24.0 * double(n_) * double(n_) / 1e9, " GB for M, C and K alone); coarsen the shafts' "
+                         "meshes (max_element_length) or split the model");
         if (N != Eigen::Dynamic && n_ != N)
             detail::fail("Mechanism<", N, "> built from a description with ", n_, " DOFs");
         detail::require_camshaft_speed(spec_.camshaft_speed, "camshaft_speed");
@@ -233,6 +248,9 @@ public:
                     "the formulation, not the defect, would open the contact"));
         }
     }
+
+    // Dense assembly and O(n^3) solves at build: this many DOFs build in about a second.
+    static constexpr int max_dofs = 3000;
 
     // --- the system contract ---
     int size() const { return n_; }

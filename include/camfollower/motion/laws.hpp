@@ -63,6 +63,7 @@ public:
     static MotionLaw polynomial_345() { return MotionLaw(LawKind::polynomial_345); }
     static MotionLaw polynomial_4567() { return MotionLaw(LawKind::polynomial_4567); }
     static MotionLaw constant_acceleration() { return MotionLaw(LawKind::constant_acceleration); }
+    static constexpr double min_fraction = 1e-6;
     static MotionLaw modified_trapezoid() { return sine_constant_cosine(0.25, 0.5, 0.25); }
     static MotionLaw modified_sine() { return sine_constant_cosine(0.25, 0.0, 0.75); }
 
@@ -74,6 +75,10 @@ public:
         detail::require_in_range(d, 0.0, 1.0, "d (cosine fraction)");
         if (std::abs(b + c + d - 1.0) > 1e-12)
             detail::fail("b + c + d must equal 1 (to 1e-12), got ", b + c + d);
+        // A part's jerk grows as 1 / fraction^2: a sliver of a part is an overflow, not a law.
+        for (const auto& [value, name] : {std::pair{b, "b (sine fraction)"}, {c, "c (constant fraction)"}, {d, "d (cosine fraction)"}})
+            if (value != 0.0 && value < min_fraction)
+                detail::fail(name, " must be 0 or at least ", min_fraction, ", got ", value);
         MotionLaw law(LawKind::sine_constant_cosine);
         law.b_ = b;
         law.c_ = c;

@@ -60,6 +60,8 @@ public:
 
     ProfileError() = default;  // no error
 
+    static constexpr double min_dent_width = 1e-6;  // rad
+
     static ProfileError waviness(double amplitude, int order, double phase = 0.0) {
         detail::require_finite(amplitude, "waviness amplitude (m)");
         if (order < 1) detail::fail("waviness order must be an integer >= 1 (waves per revolution), got ", order);
@@ -69,8 +71,10 @@ public:
 
     static ProfileError dent(double centre, double width, double depth) {
         detail::require_finite(centre, "dent centre (rad)");
-        if (!(std::isfinite(width) && width > 0.0 && width <= pi))
-            detail::fail("dent width must be in (0, 180] deg, got ", width * 180.0 / pi, " deg (", width, " rad)");
+        // The dent's slopes grow as depth / width^k: below min_dent_width its derivatives overflow.
+        if (!(std::isfinite(width) && width >= min_dent_width && width <= pi))
+            detail::fail("dent width must be in [", min_dent_width, " rad, 180 deg], got ", width * 180.0 / pi, " deg (", width,
+                         " rad)");
         detail::require_finite(depth, "dent depth (m)");
         return ProfileError(Dent{wrap(centre), width, depth});
     }

@@ -42,6 +42,38 @@ struct Segment {
     double span() const { return theta_end - theta_start; }
     double lift() const { return h_end - h_start; }
 
+    // The shortest segment: the derivatives h^(k) scale as lift / span^k (a 1e-300 rad rise overflows
+    // them), and a span near MotionProgram's snapping tolerance would be set by rounding. 1e-6 rad =
+    // 0.2 arc seconds.
+    static constexpr double min_span = 1e-6;
+    // Boundaries (and a custom law's span) may be off by up to this much (rad).
+    static constexpr double angle_tolerance = 1e-9;
+
+    // The segment on its own: finite angles, lifts within reach, a span of at least min_span, a dwell
+    // that does not rise, a custom law matching the span and lift. `at` names it in messages;
+    // `h_scale`: the lift difference taken as zero (m; negative: from the segment's own levels).
+    void validate(const std::string& at = "segment", double h_scale = -1.0) const {
+        if (!std::isfinite(theta_start) || !std::isfinite(theta_end))
+            detail::fail(at, ".theta_start/theta_end must be finite, got ", theta_start, ", ", theta_end);
+        if (!(std::abs(h_start) <= detail::max_part_length && std::abs(h_end) <= detail::max_part_length))
+            detail::fail(at, ".h_start/h_end must be in [", -detail::max_part_length, ", ", detail::max_part_length,
+                         "] m, got ", h_start, ", ", h_end);
+        if (!(span() >= min_span))
+            detail::fail(at, " spans ", span(), " rad (", span() * 180.0 / pi, " deg): span theta_end - theta_start must be "
+                         "at least ", min_span, " rad");
+        if (h_scale < 0.0) h_scale = 1e-12 + 1e-9 * std::max(std::abs(h_start), std::abs(h_end));
+        if (law.is_dwell() && std::abs(lift()) > h_scale)
+            detail::fail(at, ": a dwell must have h_end == h_start, got a lift of ", lift(), " m");
+        if (law.is_custom()) {
+            if (std::abs(span() - law.custom_span()) > angle_tolerance)
+                detail::fail(at, ": its ", law.name(), " law spans ", law.custom_span() * 180.0 / pi, " deg but the segment spans ",
+                             span() * 180.0 / pi, " deg (theta_end - theta_start must match the law)");
+            if (std::abs(lift() - law.custom_lift()) > h_scale)
+                detail::fail(at, ": its ", law.name(), " law lifts by ", law.custom_lift(), " m but h_end - h_start = ", lift(),
+                             " m (the segment's levels must match the law)");
+        }
+    }
+
     // A lift table as one segment, a B-spline (lift_spline.hpp): theta absolute (rad, strictly
     // increasing), the segment spans [theta.front(), theta.back()] from h.front() to h.back() (m). The
     // end values and the end derivatives h', h'', ... (m/rad^k, up to degree - 1 per end) are imposed;
@@ -60,6 +92,9 @@ struct Segment {
     // Degree = number of conditions - 1: {h0, 0, 0} / {h1, 0, 0} gives the 3-4-5 polynomial.
     static Segment polynomial(double theta_start, double theta_end, std::vector<double> start,
                               std::vector<double> end, std::vector<std::pair<double, double>> interior = {}) {
+        if (!(std::isfinite(theta_start) && std::isfinite(theta_end) && theta_end - theta_start >= min_span))
+            detail::fail("polynomial segment: theta_end - theta_start must be finite and at least ", min_span, " rad, got [",
+                         theta_start, ", ", theta_end, "] rad");
         auto law = std::make_shared<const LiftPolynomial>(LiftPolynomial::from_conditions(
             theta_start, theta_end, std::move(start), std::move(end), std::move(interior)));
         const double h0 = law->start().front(), h1 = law->end().front();
@@ -68,6 +103,8 @@ struct Segment {
 
     // The design lift at theta in [theta_start, theta_end] (rad), whatever the law.
     FollowerMotion lift_at(double theta) const {
+        if (!(theta >= theta_start - angle_tolerance && theta <= theta_end + angle_tolerance))
+            detail::fail("theta = ", theta, " rad is outside the segment [", theta_start, ", ", theta_end, "] rad");
         if (!law.is_custom()) {  // the built-in fast path: a normalized law scaled by the segment
             const double beta = span(), dh = lift();
             const LawValue v = law.evaluate((theta - theta_start) / beta);
@@ -82,11 +119,9 @@ struct Segment {
 class MotionProgram {
 public:
     // Boundaries may be off by up to this much (rad) and are then snapped to exact tiling.
-    static constexpr double angle_tolerance = 1e-9;
-    // The shortest segment, checked after snapping: a span near the snapping tolerance would be set by
-    // rounding (zero or negative spans carrying a step in the lift), and the derivatives h^(k) scale as
-    // lift / span^k (a 1e-300 rad rise overflows them). 1e-6 rad = 0.2 arc seconds.
-    static constexpr double min_span = 1e-6;
+    static constexpr double angle_tolerance = Segment::angle_tolerance;
+    // The shortest segment (Segment::min_span), checked again after snapping.
+    static constexpr double min_span = Segment::min_span;
 
     explicit MotionProgram(std::vector<Segment> segments) : segments_(std::move(segments)) {
         validate();
@@ -263,25 +298,7 @@ private:
         for (std::size_t i = 0; i < segments_.size(); ++i) {
             const Segment& s = segments_[i];
             const std::string at = detail::concat("segments[", i, "]");
-            if (!std::isfinite(s.theta_start) || !std::isfinite(s.theta_end))
-                detail::fail(at, ".theta_start/theta_end must be finite");
-            if (!(std::abs(s.h_start) <= detail::max_part_length && std::abs(s.h_end) <= detail::max_part_length))
-                detail::fail(at, ".h_start/h_end must be in [", -detail::max_part_length, ", ", detail::max_part_length,
-                             "] m, got ", s.h_start, ", ", s.h_end);
-            if (!(s.span() > 0.0))
-                detail::fail(at, ": span beta = theta_end - theta_start must be > 0 rad, got ",
-                             s.span(), " rad (", radians_to_degrees(s.span()), " deg)");
-            if (s.law.is_dwell() && std::abs(s.lift()) > h_scale)
-                detail::fail(at, ": a dwell must have h_end == h_start, got a lift of ", s.lift(), " m");
-            if (s.law.is_custom()) {
-                if (std::abs(s.span() - s.law.custom_span()) > angle_tolerance)
-                    detail::fail(at, ": its ", s.law.name(), " law spans ", radians_to_degrees(s.law.custom_span()),
-                                 " deg but the segment spans ", radians_to_degrees(s.span()),
-                                 " deg (theta_end - theta_start must match the law)");
-                if (std::abs(s.lift() - s.law.custom_lift()) > h_scale)
-                    detail::fail(at, ": its ", s.law.name(), " law lifts by ", s.law.custom_lift(),
-                                 " m but h_end - h_start = ", s.lift(), " m (the segment's levels must match the law)");
-            }
+            s.validate(at, h_scale);
             const double expected_start = i == 0 ? 0.0 : segments_[i - 1].theta_end;
             const double gap = s.theta_start - expected_start;
             if (std::abs(gap) > angle_tolerance)

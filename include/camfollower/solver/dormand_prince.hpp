@@ -43,6 +43,7 @@
 #include "camfollower/solver/dop853_tableau.hpp"
 #include "camfollower/solver/error_scales.hpp"
 #include "camfollower/solver/events.hpp"
+#include "camfollower/solver/interrupt.hpp"
 #include "camfollower/solver/newmark.hpp"
 
 namespace camfollower {
@@ -175,7 +176,10 @@ public:
     // Moves the reported state one output interval on (dense output between integration steps).
     void step(StateType& s, SolverStatistics& stats) {
         const double target = s.t + s_.time_step;
-        while (!reaches(t_, target)) take_step(target, stats);
+        while (!reaches(t_, target)) {
+            interrupt_();
+            take_step(target, stats);
+        }
         interpolate(target, s.q, s.v);
         s.t = target;
         // The reported state carries the integration's path memory (e.g. contact losses so far).
@@ -185,6 +189,9 @@ public:
         acceleration(s.q, s.v, s.f, s.a);
         ++stats.evaluations;
     }
+
+    // Polled every few integration steps within an output interval (solver/interrupt.hpp).
+    void set_interrupt(std::function<bool()> keep_going) { interrupt_.set(std::move(keep_going)); }
 
     // Contact losses and re-contacts since start(); each ended an integration step (solver/events.hpp).
     const std::vector<Event>& events() const { return events_.events(); }
@@ -485,6 +492,7 @@ private:
     std::array<Vector, K> kq_, kv_;
     std::array<Vector, R> rq_, rv_;
     LowRank<Vector> uvq_, uvv_;
+    InterruptPoll interrupt_;
     EventWatch<System> events_{system_};
 };
 

@@ -69,6 +69,7 @@ public:
         if (!fox_goodwin_.events().empty()) give_way(t0, stats);
     }
 
+    void set_interrupt(std::function<bool()> keep_going) { fox_goodwin_.set_interrupt(std::move(keep_going)); }
     const std::vector<Event>& events() const { return fox_goodwin_.events(); }  // empty: it gives way at the first
     std::vector<Event> take_events() { return fox_goodwin_.take_events(); }
     double highest_angular_frequency(const StateType& s) { return fox_goodwin_.highest_angular_frequency(s); }

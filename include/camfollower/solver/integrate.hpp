@@ -2,13 +2,15 @@
 // The integrate driver (odeint's split: stepper / driver / observers): advance a stepper's state to
 // t_end in steps of the stepper's size, calling the observer after the start and after every accepted
 // step. The observer returns false to stop the run early (cancellation); integrate then returns with
-// `cancelled` set and the state at the last accepted step.
+// `cancelled` set and the state at the last accepted step. A stepper may also stop within a step
+// (solver/interrupt.hpp: Interrupted), with the same outcome.
 #pragma once
 
 #include <cmath>
 #include <cstdint>
 
 #include "camfollower/error.hpp"
+#include "camfollower/solver/interrupt.hpp"
 #include "camfollower/solver/newmark.hpp"
 
 namespace camfollower {
@@ -44,7 +46,12 @@ IntegrationReport integrate(Stepper& stepper, typename Stepper::StateType& state
     // steps at t = 80 s), a phase error that keeps exciting lightly damped modes of long runs.
     const double t0 = state.t;
     for (std::uint64_t n = 1; n <= report.planned_steps; ++n) {
-        stepper.step(state, report.stats);
+        try {
+            stepper.step(state, report.stats);
+        } catch (const Interrupted&) {  // asked to stop within the interval: the state where it stopped
+            report.cancelled = true;
+            break;
+        }
         state.t = t0 + double(n) * stepper.time_step();
         if (!observer(state, n)) {
             report.cancelled = true;

@@ -36,6 +36,7 @@
 #include "camfollower/error.hpp"
 #include "camfollower/solver/error_scales.hpp"
 #include "camfollower/solver/events.hpp"
+#include "camfollower/solver/interrupt.hpp"
 
 namespace camfollower {
 
@@ -330,6 +331,10 @@ public:
     using Tangent = LowRank<Vector>;
     // Ranks up to this are solved by Woodbury with a fixed-capacity k x k matrix (no allocation).
     static constexpr int max_woodbury_rank = 8;
+    // Above this the levels' factorizations alone take seconds to minutes: the sparse backend's job.
+    static constexpr int max_dofs = 1000;
+    // The eigen solve bounding the inverse (a Newton shortcut) only where it is cheap.
+    static constexpr int max_eigen_dofs = 200;
 
     DenseNewtonSolve(const System& system, const NewmarkSettings& s)
         : system_(system), s_(s), n_(system.size()), uv_(n_, std::max(1, max_rank(system))) {
@@ -339,6 +344,22 @@ public:
             detail::fail("system: mass, damping and stiffness must be ", n_, " x ", n_, " (size())");
         for (int k = 0; k < n_; ++k)
             if (!(M(k, k) > 0.0)) detail::fail("system: mass matrix diagonal must be > 0, got M(", k, ", ", k, ") = ", M(k, k));
+        if (n_ > max_dofs)
+            detail::fail("linear_solver '", linear_solver_name(s_), "' (dense) is limited to ", max_dofs, " DOFs (it factorizes n x n "
+                         "matrices for every step size); this system has ", n_, ": use 'sparse' or 'auto'");
+        // The cheap refusal first: sqrt(K_kk / M_kk), a Rayleigh quotient, bounds omega_max from below,
+        // so a fixed step beyond the scheme's limit for it is beyond the true limit too; O(n), before the
+        // O(n^3) factorizations below (start() checks the exact limit).
+        if (s_.method != Method::newmark_adaptive && s_.beta < 0.5 * s_.gamma) {
+            double omega_low = 0.0;
+            for (int k = 0; k < n_; ++k)
+                omega_low = std::max(omega_low, std::sqrt(std::max(system.stiffness()(k, k), 0.0) / M(k, k)));
+            const double limit = newmark_step_limit(s_.gamma, s_.beta, omega_low);
+            if (s_.time_step > limit)
+                detail::fail("time_step = ", s_.time_step, " s exceeds the stability limit of Newmark with beta = ", s_.beta,
+                             " < gamma / 2: at most ", limit, " s (a mode at ", omega_low / (2.0 * pi), " Hz or faster); reduce "
+                             "time_step, use beta = 1/4 or method 'auto'");
+        }
         const int levels = s_.max_halvings + 1;
         for (int level = 0; level < levels; ++level) {
             const double dt = s_.time_step / double(1 << level);
@@ -350,7 +371,7 @@ public:
             A0_inv_[level] = A0_[level].partialPivLu().inverse();
             // 1 / lambda_min(A0) when A0 is symmetric positive definite (0 disables the bound).
             inverse_bound_[level] = 0.0;
-            if ((A0_[level] - A0_[level].transpose()).cwiseAbs().maxCoeff() <= 1e-14 * A0_[level].cwiseAbs().maxCoeff()) {
+            if (n_ <= max_eigen_dofs && (A0_[level] - A0_[level].transpose()).cwiseAbs().maxCoeff() <= 1e-14 * A0_[level].cwiseAbs().maxCoeff()) {
                 const Eigen::SelfAdjointEigenSolver<Matrix> eig(A0_[level], Eigen::EigenvaluesOnly);
                 if (eig.info() == Eigen::Success && eig.eigenvalues()[0] > 0.0)
                     inverse_bound_[level] = 1.0 / eig.eigenvalues()[0];
@@ -551,6 +572,9 @@ public:
         else step_at_level(state, stats, 0);
     }
 
+    // Polled every few steps within an output interval under a tolerance (solver/interrupt.hpp).
+    void set_interrupt(std::function<bool()> keep_going) { interrupt_.set(std::move(keep_going)); }
+
     // The step level (step time_step / 2^level) the error control holds (0 without it).
     int level() const { return level_; }
 
@@ -742,6 +766,7 @@ private:
         int level = level_;
         double largest_error = 0.0;  // of the interval's accepted steps
         while (done < end) {
+            interrupt_();
             int iterations = 0;
             double residual = 0.0;
             const bool ok = try_step(s, level, iterations, residual);
@@ -822,6 +847,7 @@ private:
     ErrorScales scales_;
     Vector eq_, ev_, da_, da_old_, ef_;
     LowRank<Vector> uvq_, uvv_;
+    InterruptPoll interrupt_;
     double force_scale_ = 1.0;
     double norm_M_ = 0.0, norm_C_ = 0.0, norm_K_ = 0.0;  // infinity norms, for the rounding floor
     // Scratch, sized once: nothing is allocated inside the time loop.

@@ -78,6 +78,14 @@ public:
         first_step_ = none ? planned_steps + 1 : first <= 0.0 ? 0 : static_cast<std::uint64_t>(first);
         first_step_ = (first_step_ + decimation_ - 1) / decimation_ * decimation_;
         const std::uint64_t rows = none || first_step_ > planned_steps ? 0 : (planned_steps - first_step_) / decimation_ + 1;
+        // A run that records nothing (or one row, nothing to draw) was asked wrongly: say so now, by the
+        // option's name, rather than hand back an empty table.
+        if (planned_steps > 0 && rows == 0)
+            detail::fail("record_from = ", options.from_time, " s: the recording window starts after the run ends (t = ",
+                         t0 + double(planned_steps) * dt, " s); nothing would be recorded");
+        if (planned_steps > 0 && rows == 1)
+            detail::fail("decimation = ", decimation_, " steps with the recording window from step ", first_step_,
+                         " of ", planned_steps, " leaves a single row to record; lower decimation or record a longer window");
         const double bytes = double(rows) * 8.0 * double(out_.names.size());
         if (bytes > options.max_bytes)
             detail::fail(planned_steps, " steps at decimation ", decimation_, " would store ", rows, " rows of ",

@@ -36,6 +36,7 @@
 #include "camfollower/error.hpp"
 #include "camfollower/solver/error_scales.hpp"
 #include "camfollower/solver/events.hpp"
+#include "camfollower/solver/interrupt.hpp"
 #include "camfollower/solver/newmark.hpp"
 
 namespace camfollower {
@@ -165,10 +166,16 @@ public:
         return s;
     }
 
+    // Polled every few integration steps within an output interval (solver/interrupt.hpp).
+    void set_interrupt(std::function<bool()> keep_going) { interrupt_.set(std::move(keep_going)); }
+
     // Moves the reported state one output interval on (dense output between integration steps).
     void step(StateType& s, SolverStatistics& stats) {
         const double target = s.t + s_.time_step;
-        while (!reaches(t_, target)) take_step(stats);
+        while (!reaches(t_, target)) {
+            interrupt_();
+            take_step(stats);
+        }
         polynomial(Qq_, Qv_, target, t_old_, h_last_, q_old_, v_old_, s.q, s.v);
         s.t = target;
         s.workspace = ws_;  // the integration's path memory (e.g. contact losses so far)
@@ -495,6 +502,7 @@ private:
     LowRank<Vector> uvq_, uvv_;
     Eigen::PartialPivLU<Matrix> lu_real_;
     Eigen::PartialPivLU<ComplexMatrix> lu_pair_;
+    InterruptPoll interrupt_;
     EventWatch<System> events_{system_};
 };
 

@@ -29,7 +29,9 @@ namespace camfollower {
 struct RunOptions {
     double duration = 0.0;  // s
     RecordOptions record;
-    // Called every `progress_every` steps with (steps done, steps planned); return false to cancel.
+    // Called every `progress_every` steps with (steps done, steps planned), and by the adaptive methods
+    // every few hundred integration steps within an output interval (solver/interrupt.hpp); return
+    // false to cancel.
     std::function<bool(std::uint64_t, std::uint64_t)> progress;
     std::uint64_t progress_every = 100000;
     // First settle on the periodic response (solver/settle.hpp); `duration` and record.from_time then
@@ -70,6 +72,12 @@ struct has_sparse_matrices<S, void_t<decltype(std::declval<const S&>().sparse_ma
                                      decltype(std::declval<const S&>().tangent_pattern())>>
     : std::bool_constant<S::Vector::RowsAtCompileTime == Eigen::Dynamic> {};
 
+template <class S, class = void>
+struct has_set_interrupt : std::false_type {};
+template <class S>
+struct has_set_interrupt<S, void_t<decltype(std::declval<S&>().set_interrupt(std::function<bool()>()))>>
+    : std::true_type {};
+
 template <class Stepper, class System>
 RunResult<System> run(const System& system, const NewmarkSettings& settings, const RunOptions& options,
                       const std::optional<typename System::Vector>& q0,
@@ -105,9 +113,13 @@ RunResult<System> run(const System& system, const NewmarkSettings& settings, con
     Recorder<System> recorder(system, record, steps, t0, settings.time_step);
     const std::uint64_t every = options.progress ? options.progress_every : 0;
     const SolverStatistics settling = result.report.stats;
+    std::uint64_t done = 0;  // output steps, for the polls within an interval
+    if constexpr (has_set_interrupt<Stepper>::value)
+        if (options.progress) stepper.set_interrupt([&] { return options.progress(done, steps); });
     result.report = integrate(stepper, result.final_state, options.duration,
                               [&](const State<System>& s, std::uint64_t n) {
                                   recorder(s, n);
+                                  done = n;
                                   if (every && n % every == 0 && n > 0) return options.progress(n, steps);
                                   return true;
                               });

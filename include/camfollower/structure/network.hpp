@@ -12,12 +12,11 @@
 #include <Eigen/SparseCore>
 
 #include "camfollower/error.hpp"
+#include "camfollower/core/ground.hpp"
 #include "camfollower/structure/shaft_spec.hpp"
 #include "camfollower/structure/timoshenko_beam.hpp"
 
 namespace camfollower {
-
-inline const std::string ground_name = "ground";
 
 struct DofSpec {
     std::string name;

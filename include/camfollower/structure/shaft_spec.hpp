@@ -50,11 +50,18 @@ struct ShaftSpec {
         for (double x : stations)
             if (!(std::isfinite(x) && x >= 0.0 && x <= length))
                 detail::fail(who, ": station x = ", x, " m is outside the shaft [0, ", length, "] m");
+        // Beam theory has nothing to say below a fraction of the section's size: an element much
+        // shorter than its radius of gyration is a unit slip (um for mm) far more often than a plan.
+        const double gyration = std::sqrt(section.second_moment_y / section.area);
+        if (max_element_length > 0.0 && max_element_length < 0.1 * gyration)
+            detail::fail(who, " max_element_length = ", max_element_length, " m is below a tenth of the section's radius of gyration (",
+                         gyration, " m), far finer than a beam model can use (um written for mm? that would be ",
+                         max_element_length * 1e3, " m); 0 gives one element between stations");
         if (max_element_length > 0.0 && length / max_element_length + double(stations.size()) > max_elements)
             detail::fail(who, " max_element_length = ", max_element_length, " m would make about ", length / max_element_length,
-                         " elements (limit ", max_elements, ")");
+                         " elements (limit ", max_elements, " per shaft: 5 or 6 DOFs each, and a mechanism's matrices are dense)");
     }
-    static constexpr double max_elements = 1e5;
+    static constexpr double max_elements = 500;
 
     // Node positions: 0, length and the stations (merged within 1 um), each interval split into equal
     // elements no longer than max_element_length.
