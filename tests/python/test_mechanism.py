@@ -4,8 +4,6 @@ paper preset against the original model, and the examples against closed forms."
 
 import pickle
 import runpy
-import signal
-import threading
 import time
 from pathlib import Path
 
@@ -119,20 +117,12 @@ def test_recording_window_and_progress_and_cancellation():
     assert stopped.stats["cancelled"] and len(calls) == 2 and stopped.rows < full.rows * 64
 
 
-def test_ctrl_c_stops_a_long_run_quickly():
+def test_ctrl_c_stops_a_long_run_quickly(ctrl_c):
     mech = cf.presets.paper()
-    # A shell that starts the tests in the background (`cmd &` without job control) has SIGINT ignored:
-    # Python then raises no KeyboardInterrupt at all. Ctrl-C's own handler, for this test.
-    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
-    try:
-        timer = threading.Timer(0.5, lambda: signal.raise_signal(signal.SIGINT))
-        start = time.monotonic()
-        timer.start()
-        with pytest.raises(KeyboardInterrupt):
-            cf.simulate(mech, revolutions=2000, decimation=1000)  # ~3 min if not stopped
-        assert time.monotonic() - start < 1.5
-    finally:
-        signal.signal(signal.SIGINT, previous)
+    start = ctrl_c(0.5)
+    with pytest.raises(KeyboardInterrupt):
+        cf.simulate(mech, revolutions=2000, decimation=1000)  # ~3 min if not stopped
+    assert time.monotonic() - start < 1.5
 
 
 @pytest.mark.parametrize("change, message", [
