@@ -23,9 +23,9 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Optional
+from typing import Optional, Union
 
-from ._core import MotionProgram, OscillatingFlat, OscillatingRoller, TranslatingFlat, TranslatingRoller
+from ._core import ArmTurn, MotionProgram, OscillatingFlat, OscillatingRoller, TranslatingFlat, TranslatingRoller
 
 
 @dataclass(frozen=True)
@@ -132,12 +132,28 @@ def _positive(name: str, v, unit: str) -> float:
     return float(v)
 
 
+_TURNS = {"counter_clockwise": "counter_clockwise", "ccw": "counter_clockwise", "clockwise": "clockwise",
+          "cw": "clockwise"}
+
+
+def _turn(turn) -> str:
+    """An arm's turn as the followers take it: the ArmTurn enum or its name; returned as the name."""
+    if isinstance(turn, ArmTurn):
+        return turn.name
+    if not isinstance(turn, str):
+        raise TypeError(f"turn must be an ArmTurn or one of 'counter_clockwise', 'clockwise', got {type(turn).__name__}")
+    if turn not in _TURNS:
+        raise ValueError(f"turn must be 'counter_clockwise' or 'clockwise' (or an ArmTurn), got {turn!r}")
+    return _TURNS[turn]
+
+
 def smallest_base_radius(program: MotionProgram, follower: str = "translating_roller", *,
                          max_pressure_angle: float = math.radians(30.0), min_surface_radius: float = 0.0,
                          roller_radius: Optional[float] = None, offset: Optional[float] = 0.0,
                          arm_length: Optional[float] = None, dwell_pressure_angle: Optional[float] = 0.0,
                          pivot_distance_ratio: Optional[float] = 2.0, face_offset: float = 0.0,
-                         turn: str = "counter_clockwise", upper: float = 1.0, tolerance: float = 1e-6) -> Sizing:
+                         turn: Union[str, ArmTurn] = "counter_clockwise", upper: float = 1.0,
+                         tolerance: float = 1e-6) -> Sizing:
     """Smallest base radius (m) for which the cam is followable (no undercut, no cusp, |alpha| < 90
     deg), its largest |pressure angle| is at most ``max_pressure_angle`` (rad; not for the translating
     flat face, whose pressure angle is its face angle) and its smallest convex surface radius of
@@ -149,7 +165,8 @@ def smallest_base_radius(program: MotionProgram, follower: str = "translating_ro
     - ``"translating_roller"``: ``roller_radius`` (m), ``offset`` (m, or None: the offset minimizing
       the largest |alpha|);
     - ``"translating_flat"``: ``offset`` (m; it does not change the cam);
-    - ``"oscillating_roller"``: ``roller_radius`` and ``arm_length`` (m), ``turn``, and
+    - ``"oscillating_roller"``: ``roller_radius`` and ``arm_length`` (m), ``turn`` (an ``ArmTurn`` or its
+      name, as for the followers), and
       ``dwell_pressure_angle`` a0 (rad, default 0), the pressure angle on the base circle, which sets
       the pivot distance d = sqrt(L^2 + r^2 + 2 sigma L r sin a0) (r = r_b + r_r; a0 = 0 puts the arm
       at right angles to the cam radius through the roller), or None: the a0 minimizing the largest
@@ -177,8 +194,7 @@ def smallest_base_radius(program: MotionProgram, follower: str = "translating_ro
             raise ValueError("offset=None (best offset) applies to the translating roller only")
         variable = offset
     else:
-        if turn not in ("counter_clockwise", "clockwise"):
-            raise ValueError(f"turn must be 'counter_clockwise' or 'clockwise', got {turn!r}")
+        turn = _turn(turn)
         if follower == "oscillating_roller":
             arm_length = _positive("arm_length", arm_length, "m for an oscillating roller")
             if dwell_pressure_angle is not None and not (

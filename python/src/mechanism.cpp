@@ -123,7 +123,14 @@ std::string turn_name(ArmTurn t) { return t == ArmTurn::counter_clockwise ? "cou
 ArmTurn turn_from(const std::string& s) {
     if (s == "counter_clockwise" || s == "ccw") return ArmTurn::counter_clockwise;
     if (s == "clockwise" || s == "cw") return ArmTurn::clockwise;
-    detail::fail("turn must be 'counter_clockwise' or 'clockwise', got '", s, "'");
+    detail::fail("turn must be 'counter_clockwise' or 'clockwise', got '", detail::printable(s), "'");
+}
+// A turn as given from Python: the ArmTurn enum or its name ("counter_clockwise"/"ccw", "clockwise"/"cw").
+ArmTurn turn_argument(const py::object& turn) {
+    if (py::isinstance<ArmTurn>(turn)) return turn.cast<ArmTurn>();
+    if (py::isinstance<py::str>(turn)) return turn_from(turn.cast<std::string>());
+    throw py::type_error(detail::concat("turn must be an ArmTurn or one of 'counter_clockwise', 'clockwise', got ",
+                                        std::string(py::str(py::type::of(turn).attr("__name__")))));
 }
 
 // Builder state as plain, self-describing Python data (pickling, and Mechanism.__reduce__).
@@ -286,8 +293,8 @@ void bind_mechanism(py::module_& m) {
     bind_follower<OscillatingRoller>(m, "OscillatingRoller",
                                      "Oscillating (swing-arm) roller follower: pivot (x, y) in m in the ground frame, arm "
                                      "length (m); its lift program is the arm rotation in rad.")
-        .def(py::init([](double rb, double rr, const Eigen::Vector2d& pivot, double arm, const std::string& turn) {
-                 return OscillatingRoller(rb, rr, pivot, arm, turn_from(turn));
+        .def(py::init([](double rb, double rr, const Eigen::Vector2d& pivot, double arm, const py::object& turn) {
+                 return OscillatingRoller(rb, rr, pivot, arm, turn_argument(turn));
              }),
              py::arg("base_radius"), py::arg("roller_radius"), py::arg("pivot"), py::arg("arm_length"),
              py::arg("turn") = "counter_clockwise")
@@ -309,8 +316,8 @@ void bind_mechanism(py::module_& m) {
     bind_follower<OscillatingFlat>(m, "OscillatingFlat",
                                    "Oscillating flat-faced follower: pivot (x, y) in m, face offset from the pivot (m); its "
                                    "lift program is the arm rotation in rad.")
-        .def(py::init([](double rb, const Eigen::Vector2d& pivot, double face_offset, const std::string& turn) {
-                 return OscillatingFlat(rb, pivot, face_offset, turn_from(turn));
+        .def(py::init([](double rb, const Eigen::Vector2d& pivot, double face_offset, const py::object& turn) {
+                 return OscillatingFlat(rb, pivot, face_offset, turn_argument(turn));
              }),
              py::arg("base_radius"), py::arg("pivot"), py::arg("face_offset") = 0.0, py::arg("turn") = "counter_clockwise")
         .def_property_readonly("base_radius", &OscillatingFlat::base_radius)

@@ -176,3 +176,35 @@ def test_oscillating_flat_face_sized_by_its_radius_of_curvature():
 def test_bad_oscillating_sizing_input(follower, kwargs, message):
     with pytest.raises(ValueError, match=message):
         sizing.smallest_base_radius(ANGULAR, follower, **kwargs)
+
+
+@pytest.mark.parametrize("make", [
+    lambda turn: cf.OscillatingRoller(0.03, 0.008, [0.06, 0.05], 0.06, turn=turn),
+    lambda turn: cf.OscillatingFlat(0.03, [0.06, 0.05], 0.0, turn),
+])
+def test_a_turn_is_the_arm_turn_enum_or_its_name(make):
+    theta = np.linspace(0, 2 * math.pi, 73)
+    for enum, names in ((cf.ArmTurn.clockwise, ("clockwise", "cw")),
+                        (cf.ArmTurn.counter_clockwise, ("counter_clockwise", "ccw"))):
+        by_enum = make(enum)
+        assert by_enum.turn == enum.name
+        for name in names:
+            by_name = make(name)
+            assert by_name.turn == enum.name
+            assert np.array_equal(by_enum.profile(ANGULAR, theta)["surface_x"], by_name.profile(ANGULAR, theta)["surface_x"])
+    # The two senses are different cams.
+    assert not np.allclose(make(cf.ArmTurn.clockwise).profile(ANGULAR, theta)["surface_x"],
+                           make(cf.ArmTurn.counter_clockwise).profile(ANGULAR, theta)["surface_x"])
+    with pytest.raises(TypeError, match="turn must be an ArmTurn or one of 'counter_clockwise', 'clockwise', got int"):
+        make(1)
+    with pytest.raises(ValueError, match="turn must be 'counter_clockwise' or 'clockwise', got 'up'"):
+        make("up")
+
+
+def test_sizing_takes_the_arm_turn_enum_as_the_followers_do():
+    kwargs = dict(roller_radius=0.01, arm_length=0.1)
+    for enum in (cf.ArmTurn.clockwise, cf.ArmTurn.counter_clockwise):
+        assert (sizing.smallest_base_radius(ANGULAR, "oscillating_roller", turn=enum, **kwargs)
+                == sizing.smallest_base_radius(ANGULAR, "oscillating_roller", turn=enum.name, **kwargs))
+    with pytest.raises(TypeError, match="turn must be an ArmTurn"):
+        sizing.smallest_base_radius(ANGULAR, "oscillating_roller", turn=0, **kwargs)
