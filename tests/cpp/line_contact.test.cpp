@@ -105,6 +105,18 @@ TEST_CASE("crowned roller: the ellipse is long across the width and swaps for a 
     CHECK(t.approach == Approx(s.approach).epsilon(1e-12));
 }
 
+TEST_CASE("crowned roller: the result reports the radius ratio the fits were evaluated at") {
+    // alpha = Ry/Rx (swapped to >= 1), to compare with the fits' range 1 to 100.
+    const LineContact crown{0.010, Elastic::steel(), Elastic::steel(), 1.0};
+    const double rx = 1.0 / (1.0 / 0.0125 + 1.0 / 0.040);  // 12.5 mm roller on a 40 mm base circle
+    const ContactStress s = crown.stress(1000.0, 0.0125, 0.040);
+    CHECK(s.radius_ratio == Approx(1.0 / rx).epsilon(1e-12));  // 105: beyond the range
+    CHECK(s.radius_ratio > hamrock_brewe_max_ratio);
+    const LineContact tight{0.010, Elastic::steel(), Elastic::steel(), 0.0125};
+    CHECK(tight.stress(1000.0, 0.5).radius_ratio == Approx(40.0).epsilon(1e-12));  // Rx/Ry: within
+    CHECK(std::isnan(LineContact{0.010, Elastic::steel(), Elastic::steel()}.stress(1000.0, 0.0125).radius_ratio));
+}
+
 TEST_CASE("Palmgren's roller law in SI reproduces the formula in mm and N") {
     const double L_mm = 10.0, Q = 1000.0;
     const double delta_mm = 3.84e-5 * std::pow(Q, 0.9) / std::pow(L_mm, 0.8);

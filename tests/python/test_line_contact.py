@@ -112,3 +112,61 @@ def test_profile_stress_over_the_paper_cam():
 def test_bad_input(make, match):
     with pytest.raises(ValueError, match=match):
         make()
+
+
+def _exact_hertz(alpha):
+    """Exact elliptical Hertz contact for the radius ratio alpha = Ry/Rx >= 1: the ellipticity k = a/b
+    from Johnson's relation alpha = (E(e)/(1 - e^2) - K(e)) / (K(e) - E(e)) (m = e^2 = 1 - 1/k^2) and
+    the complete elliptic integrals E(e), K(e) (SciPy), independent of the fits under test."""
+    special = pytest.importorskip("scipy.special")
+    optimize = pytest.importorskip("scipy.optimize")
+    if alpha == 1.0:
+        return 1.0, math.pi / 2, math.pi / 2
+
+    def ratio(m):
+        K, E = special.ellipk(m), special.ellipe(m)
+        return (E / (1 - m) - K) / (K - E) - alpha
+
+    m = optimize.brentq(ratio, 1e-12, 1 - 1e-15, xtol=1e-16, rtol=1e-15)
+    return 1 / math.sqrt(1 - m), special.ellipe(m), special.ellipk(m)
+
+
+def _semi_axes(force, rx, ry, k, Ee, Fe):
+    """a, b, p_max and the approach of an elliptical contact from k, E(e), F(e) (Hamrock's forms)."""
+    rc, ep = 1 / (1 / rx + 1 / ry), 2 * E_STAR
+    a = (6 * k * k * Ee * force * rc / (math.pi * ep)) ** (1 / 3)
+    b = (6 * Ee * force * rc / (math.pi * k * ep)) ** (1 / 3)
+    return a, b, 3 * force / (2 * math.pi * a * b), Fe * ((9 / (2 * Ee * rc)) * (force / (math.pi * k * ep)) ** 2) ** (1 / 3)
+
+
+def test_crowned_fits_hold_their_documented_accuracy_inside_their_range_and_warn_outside():
+    import warnings
+
+    F, rx = 1000.0, 0.0125
+    worst = np.zeros(4)
+    for alpha in np.concatenate([np.linspace(1, 3, 9), np.geomspace(3, 100, 15)]):
+        c = cf.LineContact(0.010, crown_radius=alpha * rx)
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")  # inside the range: no warning
+            s = c.stress(F, rx)
+        assert s["radius_ratio"] == pytest.approx(alpha, rel=1e-12)
+        exact = _semi_axes(F, rx, alpha * rx, *_exact_hertz(alpha))
+        got = (s["a"], s["b"], s["max_pressure"], s["approach"])
+        worst = np.maximum(worst, np.abs(np.array(got) / np.array(exact) - 1))
+    # docs/contact_stress.md: within 4.2 % (a), 2.0 % (b), 2.2 % (p_max), 5.4 % (approach) for 1-100.
+    assert np.all(worst <= [0.0425, 0.0205, 0.0225, 0.0545]), worst
+    # A 1 m crown on the 12.5 mm roller against a 40 mm base circle: alpha = 105, beyond the range.
+    c = cf.LineContact(0.010, crown_radius=1.0)
+    with pytest.warns(UserWarning, match=r"radius ratio 105 .*beyond the Hamrock-Brewe fits' range 1 to 100"):
+        s = c.stress(F, 0.0125, 0.040)
+    assert s["radius_ratio"] == pytest.approx(105.0)
+    exact = _semi_axes(F, 1 / (1 / 0.0125 + 1 / 0.040), 1.0, *_exact_hertz(105.0))
+    assert s["a"] / exact[0] - 1 > 0.043  # the documented drift beyond the range (+4.4 % here)
+    # Along a cam: one warning for the call, naming how many angles and the largest ratio.
+    theta = np.linspace(0, 2 * math.pi, 181)
+    with pytest.warns(UserWarning, match=r"at \d+ angles, up to \d") as record:
+        c.profile_stress(cf.TranslatingRoller(0.04, 0.0125, 0.01), cf.MotionProgram.paper_default(), F, theta)
+    assert len(record) == 1
+    with warnings.catch_warnings():  # a straight roller has no fit to leave
+        warnings.simplefilter("error")
+        assert "radius_ratio" not in cf.LineContact(0.010).stress(F, 0.0125, 0.040)

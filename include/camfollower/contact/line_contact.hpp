@@ -15,8 +15,12 @@
 //   k = a/b ~ 1.0339 alpha^0.636,  E(e) ~ 1.0003 + 0.5968/alpha,  F(e) ~ 1.5277 + 0.6023 ln alpha,
 //   a = (6 k^2 E W R / (pi E'))^(1/3),  b = (6 E W R / (pi k E'))^(1/3),   E' = 2 E*,
 //   delta = F [ (9 / (2 E R)) (W / (pi k E'))^2 ]^(1/3),   p_max = 3 W / (2 pi a b),
-// with 1/R = 1/Rx + 1/Ry. The fits are good to a few per cent: at alpha = 1 (k 3.4 %, E 1.7 %, F 2.7 %
-// off the exact 1, pi/2, pi/2) they give the sphere's a, b and p_max within 3 %, delta 5.4 % low.
+// with 1/R = 1/Rx + 1/Ry. The fits hold for 1 <= alpha <= 100 (Hamrock & Brewe's range): there they
+// give a within 4.2 %, b 2.0 %, p_max 2.2 % and delta 5.4 % of exact elliptical Hertz (the worst at
+// alpha = 1 or 100; at alpha = 1, k 3.4 %, E 1.7 %, F 2.7 % off the exact 1, pi/2, pi/2). Beyond 100
+// (a long crown on a small roller: a 1 m crown on R = 9.5 mm gives 105) the error grows: a +5.7 %,
+// p_max -2.8 %, delta -5.0 % at 150; +6.9 %, -3.3 %, -5.9 % at 200; +15 %, -6.8 %, -12 % at 1000.
+// ContactStress::radius_ratio reports alpha so a caller can tell (Python warns beyond 100).
 //
 // SI units: m, N, Pa.
 #pragma once
@@ -33,6 +37,9 @@
 #include "camfollower/motion/program.hpp"
 
 namespace camfollower {
+
+// Upper end of the radius ratio alpha = Ry/Rx (>= 1) for which the Hamrock-Brewe fits are made.
+inline constexpr double hamrock_brewe_max_ratio = 100.0;
 
 struct Elastic {
     double youngs_modulus = 210e9;  // E, Pa
@@ -77,6 +84,9 @@ struct ContactStress {
     double max_pressure;      // p_max, Pa
     double approach;          // delta: mutual approach of distant points, m (crowned only)
     double effective_radius;  // R in the rolling plane (Rx), m
+    // Crowned: alpha = Ry/Rx (or Rx/Ry, >= 1) at which the fits were evaluated; beyond
+    // hamrock_brewe_max_ratio they leave their range. NaN for a straight roller.
+    double radius_ratio = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct LineContact {
@@ -105,7 +115,7 @@ struct LineContact {
         if (!crowned()) {
             const double b = std::sqrt(4.0 * force * R / (pi * length * E));
             // sqrt(F E* / (pi L R)) equals 2F / (pi b L) and stays finite at F = 0.
-            return {b, 0.5 * length, std::sqrt(force * E / (pi * length * R)), nan, R};
+            return {b, 0.5 * length, std::sqrt(force * E / (pi * length * R)), nan, R, nan};
         }
         // Crowned: across the width only the crown curves (the cam is straight along its axis).
         const double Rx = R, Ry = crown_radius;
@@ -121,7 +131,7 @@ struct LineContact {
         const double w = force / (pi * k * Ep);
         const double delta = Fe * std::cbrt(9.0 / (2.0 * Ee * Rc) * w * w);
         const double p = force > 0.0 ? 3.0 * force / (2.0 * pi * major * minor) : 0.0;
-        return {wide ? minor : major, wide ? major : minor, p, delta, Rx};
+        return {wide ? minor : major, wide ? major : minor, p, delta, Rx, alpha};
     }
 };
 
