@@ -22,7 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import _files
+from . import _files, _text
 from .config import load_config
 from .executors import _check_scheduler
 from .speed import _MAX_RPM, _MIN_RPM
@@ -384,7 +384,8 @@ def main(argv=None) -> int:
         print(f"{len(study['files'])} files -> {args.out}")
         return 0
     for name, c in summary["contacts"].items():
-        print(f"{name}: force {c['min_force_N']:.1f} to {c['max_force_N']:.1f} N, contact lost {c['contact_lost_s']:.3g} s, "
+        print(f"{name}: force {c['min_force_N']:.1f} to {c['max_force_N']:.1f} N, contact lost "
+              f"{_text.seconds(c['contact_lost_s'], 3)} s, "
               f"max |a| {c['max_abs_acceleration']:.4g} (rigid {c['max_abs_rigid_acceleration']:.4g})")
     print(f"{len(summary['files'])} files -> {args.out}")
     return 0

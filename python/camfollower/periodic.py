@@ -18,7 +18,7 @@ from typing import Any, Dict, Optional, Tuple
 
 import numpy as np
 
-from . import _core
+from . import _core, _text
 from .results import Result
 from .simulation import simulate
 
@@ -57,6 +57,12 @@ class PeriodicOrbit:
     v_scale: float = math.nan
     method: str = "shooting"
     scheme: Dict[str, Any] = field(default_factory=dict)
+
+    def __repr__(self) -> str:  # the facts, not the state vectors and the 2n x 2n monodromy
+        return (f"PeriodicOrbit(method={self.method!r}, converged={self.converged}, period={_text.g(self.period)} s, "
+                f"mismatch={_text.g(self.mismatch, 3)}, iterations={self.iterations}, "
+                f"revolutions={_text.g(self.revolutions)}, spectral_radius={_text.g(self.spectral_radius, 6)}, "
+                f"{len(self.dof_names)} DOFs)")
 
     @property
     def spectral_radius(self) -> float:

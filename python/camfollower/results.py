@@ -8,11 +8,11 @@ import json
 import math
 import os
 from pathlib import Path
-from typing import Any, Dict, List, Optional, Sequence, Tuple
+from typing import Any, Dict, List, NamedTuple, Optional, Sequence, Tuple
 
 import numpy as np
 
-from . import _files
+from . import _files, _text
 
 _FORMAT = "camfollower.Result/1"
 _STAT_TYPES = {"steps": int, "newton_iterations": int, "max_iterations_in_a_step": int, "halvings": int,
@@ -31,6 +31,18 @@ def _settle_from_json(text: str) -> Optional[Dict[str, Any]]:
     return settle
 
 
+class Event(NamedTuple):
+    """A contact event located within a step: (time in s, name, "lost" | "made"), a plain tuple that
+    prints its time to the picosecond (an event at the start prints at 0, not at 8.2e-294 s)."""
+
+    time: float
+    name: str
+    kind: str
+
+    def __repr__(self) -> str:
+        return f"Event(time={_text.seconds(self.time)}, name={self.name!r}, kind={self.kind!r})"
+
+
 class Result:
     """Time histories of one run.
 
@@ -39,7 +51,7 @@ class Result:
     ``stats`` holds the solver statistics, ``contact_loss`` maps each contact's name to the (start, end)
     times in s of its intervals without contact (checked at every step, not only at recorded rows).
     ``events`` lists the contact losses and re-contacts located within the steps, in time order, as
-    ``(time in s, name, "lost" | "made")``; the name is the contact's ``<contact>.contact`` (a
+    ``Event(time in s, name, "lost" | "made")`` tuples; the name is the contact's ``<contact>.contact`` (a
     clearance's ``<clearance>.wall``; ``"contact"`` on a CamFollowerModel). Arrays are read-only views on
     the run's buffer; ``save(path)`` / ``Result.load(path)`` round-trip through an NPZ file.
     ``settle`` is None, or (after ``simulate(..., settle=True)``) a dict: ``settled`` (bool),
@@ -63,7 +75,7 @@ class Result:
         self.contact_loss: Dict[str, List[Tuple[float, float]]] = {
             str(name): [(float(a), float(b)) for a, b in intervals] for name, intervals in dict(contact_loss).items()}
         self.settle: Optional[Dict[str, Any]] = None if settle is None else dict(settle)
-        self.events: List[Tuple[float, str, str]] = [(float(t), str(n), str(k)) for t, n, k in events]
+        self.events: List[Event] = [Event(float(t), str(n), str(k)) for t, n, k in events]
 
     # --- channels ---
     @property
@@ -126,7 +138,11 @@ class Result:
         return key in self._index or key in ("q", "v", "a", "stats", "contact_loss")
 
     def __repr__(self) -> str:
-        return (f"Result({self.rows} rows, {len(self.dof_names)} DOFs, channels: "
+        t = self.channel("t") if "t" in self._index and self.rows else ()
+        span = f"t = {_text.seconds(t[0])} to {_text.seconds(t[-1])} s, " if len(t) else ""
+        lost = sum(b - a for intervals in self.contact_loss.values() for a, b in intervals)
+        return (f"Result({self.rows} rows, {span}{len(self.dof_names)} DOFs, {len(self.events)} contact events, "
+                f"contact lost {_text.seconds(lost)} s, channels: "
                 f"{', '.join(n for n in self._names if '.' not in n or not n.startswith(('q.', 'v.', 'a.')))})")
 
     # --- files ---

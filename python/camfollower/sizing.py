@@ -25,6 +25,7 @@ import math
 from dataclasses import dataclass
 from typing import Optional, Union
 
+from . import _text
 from ._core import ArmTurn, MotionProgram, OscillatingFlat, OscillatingRoller, TranslatingFlat, TranslatingRoller
 
 
@@ -41,6 +42,10 @@ class Sizing:
     pivot_distance: Optional[float] = None  # m, |P|
     arm_length: Optional[float] = None  # m (oscillating roller)
     dwell_pressure_angle: Optional[float] = None  # rad, the pressure angle on the base circle (oscillating roller)
+
+    def __repr__(self) -> str:  # SI values to 6 significant digits, not the float's last bits
+        fields = {k: getattr(self, k) for k in self.__dataclass_fields__ if getattr(self, k) is not None}
+        return f"Sizing({_text.values(fields)})"
 
 
 KINDS = ("translating_roller", "translating_flat", "oscillating_roller", "oscillating_flat")

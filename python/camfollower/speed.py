@@ -19,6 +19,7 @@ from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 import numpy as np
 
 from . import _core
+from ._text import g
 from .executors import run_cases
 from .response import STUDY_STEPS_PER_REVOLUTION, steady_response
 
@@ -82,6 +83,16 @@ class JumpSpeed:
     min_force_below_N: float
     evaluations: List[Dict[str, Any]] = field(default_factory=list)
 
+    def __repr__(self) -> str:  # the answer, not every evaluation's 64 harmonics
+        return (f"JumpSpeed(rpm={g(self.rpm)}, angle_deg={g(self.angle_deg, 4)}, "
+                f"bracket=({g(self.bracket[0])}, {g(self.bracket[1])}), "
+                f"min_force_below_N={g(self.min_force_below_N, 4)}, evaluations={len(self.evaluations)})")
+
+    def __str__(self) -> str:
+        return (f"jump speed {g(self.rpm)} rpm (bracket {g(self.bracket[0])} to {g(self.bracket[1])} rpm): the "
+                f"follower leaves the cam at {g(self.angle_deg, 4)} deg; min contact force just below "
+                f"{g(self.min_force_below_N, 4)} N; {len(self.evaluations)} evaluations")
+
 
 def jump_speed(system, bracket: Tuple[float, float], *, contact: Optional[str] = None, tolerance: float = 1e-3,
                steps_per_revolution: int = STUDY_STEPS_PER_REVOLUTION, max_evaluations: int = 40) -> JumpSpeed:
@@ -139,6 +150,11 @@ class SpringSize:
     min_force_angle_deg: float
     max_spring_force_N: float
     evaluations: int
+
+    def __repr__(self) -> str:
+        return (f"SpringSize(rate={g(self.rate)}, preload={g(self.preload)}, min_force_N={g(self.min_force_N, 4)}, "
+                f"min_force_angle_deg={g(self.min_force_angle_deg, 4)}, max_spring_force_N={g(self.max_spring_force_N)}, "
+                f"evaluations={self.evaluations})")
 
 
 def size_spring(build: Callable[[float, float], Any], rpm: float, margin: float, rates: Sequence[float], *,

@@ -549,7 +549,7 @@ def print_summary(summary: dict) -> None:
         print(f"{key:30s} {str(s['settled']):>8s} {s['revolutions']:5d} {s['change']:8.1e} "
               f"{c['peak_follower_acceleration_m_s2']:9.1f} {c['dwell_deviation_peak_m_s2']:7.2f} "
               f"{c['rise_deviation_rms_m_s2']:6.2f} {c['return_deviation_rms_m_s2']:6.2f} {lo:7.1f} {hi:8.1f} "
-              f"{c['contact_loss_time_per_revolution_s']:8.1e} "
+              f"{round(c['contact_loss_time_per_revolution_s'], 12) + 0.0:8.1e} "  # rounding noise of 0 s: 0
               f"{c['shaft_acceleration_sidebands'].get('defect_modulation', 0.0):7.4f} {impacts:7.1f}")
     print("  (m/s^2 and N; settled/revs/change: periodic steady state reached, revolutions to reach it, last relative\n"
           "   change of a4; dwell = peak |a4 - omega^2 h''| on the dwells, rise/return = its RMS; mod. = added\n"

@@ -35,7 +35,7 @@ from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
 
-from . import _core
+from . import _core, _text
 from .executors import check_executor, run_cases
 from .response import STUDY_STEPS_PER_REVOLUTION, steady_response
 
@@ -177,7 +177,8 @@ class PaperCase:
                              element_damping_ratio=extra.get("element_damping_ratio", 0.0))
 
     def __repr__(self) -> str:
-        return f"PaperCase(waviness_order={self.waviness_order}, **{self.fixed})"
+        fixed = "".join(f", {k}={_text.g(v)}" for k, v in self.fixed.items())
+        return f"PaperCase(waviness_order={self.waviness_order}{fixed})"
 
 
 class ConfigCase:
@@ -269,6 +270,14 @@ class MonteCarloResult:
 
     def failed(self) -> List[Dict[str, Any]]:
         return [r for r in self.rows if not r["ok"]]
+
+    def __repr__(self) -> str:  # a line, not every row
+        ok = [r for r in self.rows if r["ok"]]
+        lost = sum(bool(r.get("contact_lost")) for r in ok)
+        forces = [r["min_force_N"] for r in ok if isinstance(r.get("min_force_N"), float) and math.isfinite(r["min_force_N"])]
+        spread = (f", min_force_N {_text.g(min(forces), 4)} to {_text.g(max(forces), 4)}" if forces else "")
+        return (f"MonteCarloResult({len(self.rows)} cases, {len(self.rows) - len(ok)} failed, {lost} lost contact"
+                f"{spread}; seed {self.seed}; parameters: {', '.join(self.parameters)})")
 
     def _matrix(self, names: Sequence[str]) -> np.ndarray:
         ok = [r for r in self.rows if r["ok"]]
