@@ -221,7 +221,8 @@ def sweep(config: str, out: str, *, rpm=None, jump=None, executor=None, workers=
     from .studies import sweep_settings
 
     case = load_config(config)
-    st = sweep_settings(case.data.get("sweep", {}), rpm=rpm, jump=jump, path=case.path)
+    st = sweep_settings(case.data.get("sweep", {}), rpm=rpm, jump=jump, path=case.path,
+                        contacts=case.mechanism.contact_names)
     folder = _folder(config, out)
     m = case.mechanism
     result = sp.speed_sweep(m, st["rpm"], contact=st["contact"], steps_per_revolution=st["steps_per_revolution"],
@@ -265,9 +266,11 @@ def montecarlo(config: str, out: str, *, cases=None, seed=None, executor=None, w
     from .studies import montecarlo_settings
 
     case = load_config(config)
-    st = montecarlo_settings(case.data.get("montecarlo"), cases=cases, seed=seed, path=case.path)
     data = {k: v for k, v in case.data.items() if k not in ("sweep", "montecarlo")}
     build = tol.ConfigCase(data, case.path.parent if case.path else ".")
+    # Given the model, the table's check covers each tolerance's value and range, located at its block.
+    st = montecarlo_settings(case.data.get("montecarlo"), cases=cases, seed=seed, path=case.path, build=build,
+                             contacts=case.mechanism.contact_names)
     folder = _folder(config, out)
     result = tol.monte_carlo(build, st["tolerances"], cases=st["cases"], seed=st["seed"], contact=st["contact"],
                              steps_per_revolution=st["steps_per_revolution"], executor=executor, workers=workers,

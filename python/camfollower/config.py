@@ -8,26 +8,22 @@ same files with the same rules, so a config means the same thing in both.
 >>> case = cf.load_config("examples/flat_faced_table.toml")     # doctest: +SKIP
 >>> result = case.run()                                           # doctest: +SKIP
 
-``load_config`` parses the file with the standard library's ``tomllib`` (``case.data`` is that dict,
-to inspect or change and pass to ``config_from_dict``) and builds the case with the library's reader.
-Errors are ``ValueError`` naming the file, the line and the key.
+``load_config`` parses the file with the library's TOML parser (toml++, the command line's), so a file
+reads the same in both, byte order mark, nesting limits and messages included; ``case.data`` is the
+parsed table as a dict (tables as dicts in the file's order, arrays as lists, dates as ``datetime``
+objects), to inspect or change and pass to ``config_from_dict``. Errors are ``ValueError`` naming the
+file, the line and the key.
 """
 
 from __future__ import annotations
 
 import os
 import stat
-import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Dict, Optional
 
 from . import _core
-
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover - Python 3.9/3.10
-    import tomli as tomllib  # type: ignore[no-redef]
 
 _MAX_BYTES = 64 << 20
 
@@ -101,17 +97,9 @@ def load_config(path: os.PathLike | str) -> Config:
         raise ValueError(f"config '{p}' is empty")
     if st.st_size > _MAX_BYTES:
         raise ValueError(f"config '{p}' is larger than 64 MiB; put large lift tables in a data file")
-    raw_bytes = p.read_bytes()
-    try:
-        text = raw_bytes.decode("utf-8")
-    except UnicodeDecodeError as e:
-        raise ValueError(f"config '{p}': not UTF-8 text ({e.reason} at byte {e.start})") from None
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as e:
-        raise ValueError(f"{p}: TOML syntax: {e}") from None
-    # The library's reader works on the text too, so its messages carry line numbers.
-    raw = _core._case_from_text(text, str(p), str(p.parent))
+    # The bytes go to the library's reader as they are: it checks the UTF-8, parses and builds, with
+    # the command line's messages (file:line:key) and limits.
+    data, raw = _core._read_config(p.read_bytes(), str(p), str(p.parent))
     return _case(raw, data, p)
 
 
@@ -119,6 +107,7 @@ def config_from_dict(data: Dict[str, Any], base_dir: os.PathLike | str = ".") ->
     """Build a case from a dict shaped like a parsed config (e.g. ``load_config(...).data``, changed).
 
     Keys and values follow docs/config.md; errors name the key path (there are no line numbers).
+    Tables and lists nested more than 64 levels deep (a cyclic dict among them) are refused.
     """
     if not isinstance(data, dict):
         raise ValueError(f"data must be a dict shaped like a config file, got {type(data).__name__}")

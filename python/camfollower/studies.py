@@ -16,18 +16,24 @@
     std = 0.05
     relative = true
 
-Unknown keys and bad values are refused, naming the file and the key.
+Unknown keys and bad values are refused, naming the file, the line and the key (the line from the
+library's TOML parser, the one the file was read with); given the case's ``build`` (a
+:class:`camfollower.tolerance.ConfigCase`) and ``contacts``, so are a tolerance on a value the config
+does not hold or the model refuses, and a contact the mechanism does not have.
 """
 
 from __future__ import annotations
 
+import dataclasses
+import datetime
 import math
 import re
-from typing import Any, Dict, Optional
+from typing import Any, Dict, Optional, Sequence
 
+from . import _core
 from .response import STUDY_STEPS_PER_REVOLUTION
 from .speed import _MAX_RPM, _MIN_RPM
-from .tolerance import DISTRIBUTIONS, distribution
+from .tolerance import DISTRIBUTIONS, _check_ranges
 
 
 def _shown(value, limit: int = 60) -> str:
@@ -38,31 +44,27 @@ def _shown(value, limit: int = 60) -> str:
     return text if len(text) <= limit else text[:limit] + f"... ({len(text)} characters)"
 
 
-def _line(path, key: str) -> Optional[int]:
-    """The line of `key` ("sweep.rpm[0]", "montecarlo.tolerance[1].std") in the file, found by its
-    table header and `name =` (tomllib keeps no positions); None when not found."""
-    try:
-        lines = open(path, encoding="utf-8", errors="replace").read(1 << 20).splitlines()
-    except (OSError, TypeError):
-        return None
-    parts = [re.match(r"([^\[]*)(?:\[(\d+)\])?", p).groups() for p in key.split(".")]
-    *table, (leaf, _) = parts
-    header = ".".join(name for name, _ in table)
-    index = int(table[-1][1]) if table and table[-1][1] is not None else 0
-    start, seen = None, -1
-    for i, line in enumerate(lines):
-        stripped = line.strip()
-        if re.fullmatch(r"\[\[?\s*" + re.escape(header) + r"\s*\]\]?\s*(#.*)?", stripped):
-            seen += 1
-            if seen == index:
-                start = i
-        elif start is not None and stripped.startswith("["):
+def _a(value) -> str:
+    """The TOML type of a value as messages name it: "a table", "an array", ..."""
+    name = type(value).__name__
+    for kind, toml_name in ((bool, "boolean"), (int, "integer"), (float, "float"), (str, "string"), (list, "array"),
+                            (dict, "table"), (datetime.date, "date"), (datetime.time, "time")):
+        if isinstance(value, kind):
+            name = toml_name
             break
-        elif start is not None and re.match(re.escape(leaf) + r"\s*=", stripped):
-            return i + 1
-    if start is not None:
-        return start + 1
-    return None
+    return ("an " if name[0] in "aeiou" else "a ") + name
+
+
+def _line(path, key: str) -> Optional[int]:
+    """The line of `key` ("sweep.rpm[0]", "montecarlo.tolerance[1].std") in the file, or of its
+    deepest part that is there: positions from the library's TOML parser; None when not found."""
+    try:
+        with open(path, "rb") as f:
+            text = f.read(64 << 20)
+    except (OSError, TypeError, ValueError):
+        return None
+    parts = [int(index) if index else name for name, index in re.findall(r"([^.\[\]]+)|\[(\d+)\]", key)]
+    return _core._toml_line(text, parts)
 
 
 def _where(path, key: str) -> str:
@@ -87,6 +89,48 @@ def _int(table, key, default, lo, hi, path, prefix):
     return v
 
 
+def _contact(table, key: str, path, contacts: Optional[Sequence[str]]):
+    contact = table.get("contact")
+    if contact is not None and not isinstance(contact, str):
+        raise ValueError(f"{_where(path, key)}: must be a contact's name (a string), got {_a(contact)}")
+    if contact is not None and contacts is not None and contact not in contacts:
+        raise ValueError(f"{_where(path, key)}: no contact named {_shown(contact)}; the mechanism's contacts: "
+                         f"{', '.join(_shown(c) for c in contacts[:20])}")
+    return contact
+
+
+def _tolerance(block, key: str, path):
+    """One [[montecarlo.tolerance]] block: (parameter, distribution). Every key of the block is
+    checked here, so a message names the one at fault, its line and what it must be."""
+    if not isinstance(block, dict):
+        raise ValueError(f"{_where(path, key)}: must be a table, got {_a(block)}")
+    for required in ("parameter", "distribution"):
+        if required not in block:
+            raise ValueError(f"{_where(path, key)}: the key {required!r} is required here")
+    name = block["parameter"]
+    if not isinstance(name, str) or not name:
+        got = "an empty string" if name == "" else _a(name)
+        raise ValueError(f"{_where(path, key + '.parameter')}: must name a numeric value of this file by its key path "
+                         f"(a string), got {got}")
+    kind = block["distribution"]
+    if not isinstance(kind, str) or kind not in DISTRIBUTIONS:
+        got = _shown(kind) if isinstance(kind, str) else _a(kind)
+        raise ValueError(f"{_where(path, key + '.distribution')}: must be one of {', '.join(DISTRIBUTIONS)} (a string), "
+                         f"got {got}")
+    cls = DISTRIBUTIONS[kind]
+    fields = [f.name for f in dataclasses.fields(cls)]
+    _unknown(block, ("parameter", "distribution", *fields), path, key)
+    for f in dataclasses.fields(cls):
+        if f.name not in block and f.default is dataclasses.MISSING:
+            raise ValueError(f"{_where(path, key)}: a {kind} distribution needs the key {f.name!r}")
+    try:
+        return name, cls(**{k: block[k] for k in fields if k in block})
+    except ValueError as e:
+        # The distribution's message names its field ("Normal std must be ..."): locate it there.
+        field = next((k for k in fields if k in block and re.search(rf"\b{k}\b", str(e))), None)
+        raise ValueError(f"{_where(path, key + '.' + field if field else key)}: {_shown(str(e), 400)}") from None
+
+
 def _speed(v, key, path) -> float:
     if isinstance(v, bool) or not isinstance(v, (int, float)) or not (math.isfinite(v) and _MIN_RPM <= v <= _MAX_RPM):
         raise ValueError(f"{_where(path, key)}: must be a camshaft speed in [{_MIN_RPM:.6g}, {_MAX_RPM:.6g}] rpm, "
@@ -94,11 +138,12 @@ def _speed(v, key, path) -> float:
     return float(v)
 
 
-def sweep_settings(table: Dict[str, Any], *, rpm=None, jump=None, path=None) -> Dict[str, Any]:
+def sweep_settings(table: Dict[str, Any], *, rpm=None, jump=None, path=None, contacts=None) -> Dict[str, Any]:
     """Speeds, optional jump bracket, steps per revolution and contact from a [sweep] table, with
-    command-line overrides (``rpm``, ``jump``)."""
+    command-line overrides (``rpm``, ``jump``); ``contacts``: the mechanism's contact names, to check
+    ``contact`` against."""
     if not isinstance(table, dict):
-        raise ValueError(f"{_where(path, 'sweep')}: must be a table")
+        raise ValueError(f"{_where(path, 'sweep')}: must be a table, got {_a(table)}")
     _unknown(table, ("rpm", "rpm_from", "rpm_to", "count", "jump", "steps_per_revolution", "contact"), path, "sweep")
     if rpm:
         speeds = [_speed(float(r), "--rpm", None) for r in rpm]
@@ -106,7 +151,8 @@ def sweep_settings(table: Dict[str, Any], *, rpm=None, jump=None, path=None) -> 
         if "rpm_from" in table or "rpm_to" in table or "count" in table:
             raise ValueError(f"{_where(path, 'sweep.rpm')}: give rpm (a list) or rpm_from/rpm_to/count, not both")
         if not isinstance(table["rpm"], list) or not table["rpm"]:
-            raise ValueError(f"{_where(path, 'sweep.rpm')}: must be a non-empty list of speeds (rpm)")
+            raise ValueError(f"{_where(path, 'sweep.rpm')}: must be a non-empty array of speeds (rpm), got "
+                             f"{'an empty array' if table['rpm'] == [] else _a(table['rpm'])}")
         speeds = [_speed(r, f"sweep.rpm[{i}]", path) for i, r in enumerate(table["rpm"])]
     elif "rpm_from" in table or "rpm_to" in table:
         lo, hi = _speed(table.get("rpm_from"), "sweep.rpm_from", path), _speed(table.get("rpm_to"), "sweep.rpm_to", path)
@@ -125,50 +171,46 @@ def sweep_settings(table: Dict[str, Any], *, rpm=None, jump=None, path=None) -> 
         if not bracket[0] < bracket[1]:
             raise ValueError(f"{_where(where, key)}: the low speed {bracket[0]:g} must be below the high speed "
                              f"{bracket[1]:g} rpm")
-    contact = table.get("contact")
-    if contact is not None and not isinstance(contact, str):
-        raise ValueError(f"{_where(path, 'sweep.contact')}: must be a contact's name")
+    contact = _contact(table, "sweep.contact", path, contacts)
     return {"rpm": speeds, "jump": bracket, "contact": contact,
             "steps_per_revolution": _int(table, "steps_per_revolution", STUDY_STEPS_PER_REVOLUTION, 64, 1 << 22, path, "sweep")}
 
 
-def montecarlo_settings(table: Optional[Dict[str, Any]], *, cases=None, seed=None, path=None) -> Dict[str, Any]:
+def montecarlo_settings(table: Optional[Dict[str, Any]], *, cases=None, seed=None, path=None, build=None,
+                        contacts=None) -> Dict[str, Any]:
     """Cases, seed, steps per revolution, contact and the tolerances {key path: distribution} from a
-    [montecarlo] table, with command-line overrides."""
+    [montecarlo] table, with command-line overrides. Given the model's ``build`` (a ConfigCase), each
+    tolerance's value is looked up and the model built at the distribution's ends, as monte_carlo
+    does, so that a refusal names the block's ``parameter`` line; ``contacts`` as in sweep_settings."""
     if table is None:
         raise ValueError(f"{_where(path, 'montecarlo')}: the config has no [montecarlo] table with its tolerances "
                          "(docs/studies.md)")
     if not isinstance(table, dict):
-        raise ValueError(f"{_where(path, 'montecarlo')}: must be a table")
+        raise ValueError(f"{_where(path, 'montecarlo')}: must be a table, got {_a(table)}")
     _unknown(table, ("cases", "seed", "steps_per_revolution", "contact", "tolerance"), path, "montecarlo")
     blocks = table.get("tolerance")
     if not isinstance(blocks, list) or not blocks:
-        raise ValueError(f"{_where(path, 'montecarlo.tolerance')}: give at least one [[montecarlo.tolerance]] block")
+        got = "" if blocks is None or blocks == [] else f", got {_a(blocks)}"
+        raise ValueError(f"{_where(path, 'montecarlo.tolerance')}: give at least one [[montecarlo.tolerance]] block{got}")
     tolerances = {}
     for i, b in enumerate(blocks):
         key = f"montecarlo.tolerance[{i}]"
-        if not isinstance(b, dict):
-            raise ValueError(f"{_where(path, key)}: must be a table")
-        name = b.get("parameter")
-        if not isinstance(name, str) or not name:
-            raise ValueError(f"{_where(path, key + '.parameter')}: must name a numeric value of this file by its key path")
+        name, dist = _tolerance(b, key, path)
         if name in tolerances:
             raise ValueError(f"{_where(path, key + '.parameter')}: {_shown(name)} has two tolerances")
-        kind = b.get("distribution")
-        if kind not in DISTRIBUTIONS:
-            raise ValueError(f"{_where(path, key + '.distribution')}: must be one of {list(DISTRIBUTIONS)}, got {_shown(kind)}")
-        try:
-            tolerances[name] = distribution({k: v for k, v in b.items() if k != "parameter"})
-        except ValueError as e:
-            raise ValueError(f"{_where(path, key)}: {_shown(str(e), 400)}") from None
+        tolerances[name] = dist
+        if build is not None:
+            try:
+                _check_ranges(build, {name: dist}, {name: build.nominal(name)})
+            except (ValueError, RuntimeError) as e:  # RuntimeError: a model whose equilibrium is not found
+                kind = ValueError if isinstance(e, ValueError) else RuntimeError
+                raise kind(f"{_where(path, key + '.parameter')}: {_shown(str(e), 1000)}") from None
     # Overrides (the command line's --cases, --seed) obey the table's ranges, named as options.
     cases = _int(table, "cases", 100, 1, 10_000_000, path, "montecarlo") if cases is None else \
         _int({"--cases": cases}, "--cases", None, 1, 10_000_000, None, "")
     seed = _int(table, "seed", 0, 0, 2 ** 63 - 1, path, "montecarlo") if seed is None else \
         _int({"--seed": seed}, "--seed", None, 0, 2 ** 63 - 1, None, "")
-    contact = table.get("contact")
-    if contact is not None and not isinstance(contact, str):
-        raise ValueError(f"{_where(path, 'montecarlo.contact')}: must be a contact's name")
+    contact = _contact(table, "montecarlo.contact", path, contacts)
     return {"tolerances": tolerances, "cases": cases, "seed": seed, "contact": contact,
             "steps_per_revolution": _int(table, "steps_per_revolution", STUDY_STEPS_PER_REVOLUTION, 64, 1 << 22, path,
                                          "montecarlo")}

@@ -27,6 +27,7 @@ statistics, sensitivities, plots).
 from __future__ import annotations
 
 import copy
+import dataclasses
 import functools
 import math
 import os
@@ -46,8 +47,19 @@ METRICS = ("min_force_N", "min_force_angle_deg", "max_force_N", "contact_lost", 
 
 def _finite(name: str, v) -> float:
     if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
-        raise ValueError(f"{name} must be a finite number, got {v!r}")
+        raise ValueError(f"{name} must be a finite number, got {_echo(v)}")
     return float(v)
+
+
+def _flag(name: str, v) -> None:
+    # `relative = "no"` would be truthy: a flag is a bool or nothing.
+    if not isinstance(v, bool):
+        raise ValueError(f"{name} must be True or False, got {_echo(v)}")
+
+
+def _echo(v) -> str:
+    text = "".join(c if c.isprintable() else "?" for c in repr(v))
+    return text if len(text) <= 60 else text[:60] + "..."
 
 
 @dataclass(frozen=True)
@@ -62,6 +74,7 @@ class Normal:
         if _finite("Normal std", self.std) < 0:
             raise ValueError(f"Normal std must be >= 0 (a spread), got {self.std}")
         _finite("Normal mean", self.mean)
+        _flag("Normal relative", self.relative)
 
     def sample(self, rng) -> float:
         return self.mean + self.std * rng.standard_normal()
@@ -81,6 +94,7 @@ class Uniform:
     def __post_init__(self):
         if _finite("Uniform high", self.high) < _finite("Uniform low", self.low):
             raise ValueError(f"Uniform needs low <= high (a non-negative spread), got low {self.low}, high {self.high}")
+        _flag("Uniform relative", self.relative)
 
     def sample(self, rng) -> float:
         return self.low + (self.high - self.low) * rng.random()
@@ -106,6 +120,7 @@ class TruncatedNormal:
         if _finite("TruncatedNormal high", self.high) <= _finite("TruncatedNormal low", self.low):
             raise ValueError(f"TruncatedNormal needs low < high, got low {self.low}, high {self.high}")
         _finite("TruncatedNormal mean", self.mean)
+        _flag("TruncatedNormal relative", self.relative)
         cdf = lambda x: 0.5 * (1 + math.erf((x - self.mean) / (self.std * math.sqrt(2))))  # noqa: E731
         if cdf(self.high) - cdf(self.low) < 1e-3:
             raise ValueError(f"TruncatedNormal [{self.low}, {self.high}] holds less than 1e-3 of N({self.mean}, "
@@ -128,12 +143,17 @@ def distribution(spec: Mapping[str, Any]):
     """A distribution from a dict (config files): {"distribution": "normal", "std": ..., ...}."""
     spec = dict(spec)
     kind = spec.pop("distribution", None)
-    if kind not in DISTRIBUTIONS:
-        raise ValueError(f"distribution must be one of {list(DISTRIBUTIONS)}, got {kind!r}")
-    try:
-        return DISTRIBUTIONS[kind](**spec)
-    except TypeError as e:
-        raise ValueError(f"{kind} distribution: {e}") from None
+    if not isinstance(kind, str) or kind not in DISTRIBUTIONS:  # a dict or list is unhashable: no `in` first
+        raise ValueError(f"distribution must be one of {list(DISTRIBUTIONS)}, got {_echo(kind)}")
+    cls = DISTRIBUTIONS[kind]
+    fields = [f.name for f in dataclasses.fields(cls)]
+    for key in spec:
+        if key not in fields:
+            raise ValueError(f"{kind} distribution: unknown key {_echo(key)}; known: {', '.join(fields)}")
+    for f in dataclasses.fields(cls):
+        if f.name not in spec and f.default is dataclasses.MISSING:
+            raise ValueError(f"{kind} distribution: the key {f.name!r} is required")
+    return cls(**spec)
 
 
 class PaperCase:

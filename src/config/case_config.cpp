@@ -19,22 +19,28 @@ namespace camfollower::config {
 
 namespace {
 
-// Runs f and returns its result; an error f throws without a location gets this table's (one that
-// already names the file passes through). A ConvergenceError (a preset's calibration or static
-// equilibrium that cannot be found) stays one, located the same way.
+// Runs f and returns its result; an error f throws without a location gets one in this table: the
+// line and path of the key the message names ("stiffness of 'rod' must ..." -> spring[0].stiffness),
+// else the table's (one that already names the file passes through). A ConvergenceError (a preset's
+// calibration or static equilibrium that cannot be found) stays one, located at the table. With two
+// tables, the keys are looked up in `keys` ([preset.parameters]) and a ConvergenceError is `s`'s.
 template <class F>
-decltype(auto) located(const Section& s, F&& f) {
+decltype(auto) located(const Section& keys, const Section& s, F&& f) {
     try {
         return f();
     } catch (const std::invalid_argument& e) {
         const std::string what = e.what();
         if (what.rfind(s.origin(), 0) == 0) throw;
-        s.fail_here(what);
+        keys.fail_named(what);
     } catch (const ConvergenceError& e) {
         const std::string what = e.what();
         if (what.rfind(s.origin(), 0) == 0) throw;
         throw ConvergenceError(detail::concat(detail::message_text(s.here()), ": ", what));
     }
+}
+template <class F>
+decltype(auto) located(const Section& s, F&& f) {
+    return located(s, s, std::forward<F>(f));
 }
 
 
@@ -294,11 +300,7 @@ CamEccentricity read_eccentricity(const Section& s) {
                                               : EccentricityFormulation::paper_force_both;
     e.unbalance_mass = s.quantity("unbalance_mass", "kg", 0.0);
     s.finish({"radius", "phase", "formulation", "unbalance_mass"});
-    try {
-        e.validate("eccentricity");
-    } catch (const std::invalid_argument& x) {
-        s.fail_here(x.what());
-    }
+    located(s, [&] { e.validate("eccentricity"); });
     return e;
 }
 
@@ -510,6 +512,11 @@ void read_parts(const Section& root, const CaseConfig& c, const Dimensions& dims
         if (s->has("modal_ratios")) {
             const std::vector<double> r = s->quantities("modal_ratios", "-");
             located(*s, [&] { b.set_modal_damping(r); });
+            // Every DOF is defined by now: the count is checked here, where the key's line is known,
+            // rather than when the mechanism is built.
+            const std::size_t n = std::size_t(b.structure.size());
+            if (r.size() != 1 && r.size() != n)
+                s->fail("modal_ratios", detail::concat("give one ratio or one per mode (", n, "), got ", r.size()));
         }
         s->finish({"rayleigh_alpha", "rayleigh_beta", "modal_ratios"});
     }
@@ -526,7 +533,8 @@ void read_parts(const Section& root, const CaseConfig& c, const Dimensions& dims
 // camshaft speed is [camshaft] speed (the engine turns twice as fast).
 MechanismBuilder read_valve_train(const Section& s, double rpm) {
     presets::ValveTrainParameters p;
-    if (const std::optional<Section> ps = s.table("parameters")) {
+    const std::optional<Section> ps = s.table("parameters");
+    if (ps) {
         for (const std::string& key : ps->keys()) {
             if (key == "cylinders") p.cylinders = int(ps->integer(key, p.cylinders, 1, 64));
             else if (key == "valves_per_cylinder") p.valves_per_cylinder = int(ps->integer(key, p.valves_per_cylinder, 1, 2));
@@ -551,7 +559,8 @@ MechanismBuilder read_valve_train(const Section& s, double rpm) {
     p.engine_speed_rpm = 2.0 * rpm;
     s.finish({"name", "parameters"});
     MechanismBuilder b;
-    located(s, [&] { b = presets::valve_train(p); });
+    // The preset's messages name its parameters: located at the one in [preset.parameters].
+    located(ps ? *ps : s, s, [&] { b = presets::valve_train(p); });
     return b;
 }
 
@@ -559,7 +568,8 @@ MechanismBuilder read_preset(const Section& s, const CaseConfig& c, const Dimens
     const std::string name = s.choice("name", "", {"paper", "paper_damped", "valve_train"});
     if (name == "valve_train") return read_valve_train(s, rpm);
     CamFollowerParameters p;
-    if (const std::optional<Section> ps = s.table("parameters")) {
+    const std::optional<Section> ps = s.table("parameters");
+    if (ps) {
         for (const std::string& key : ps->keys()) {
             if (key == "contact_damping") continue;  // a choice, read below
             if (key == "camshaft_speed_rpm") ps->fail(key, "set the speed once, in [camshaft] speed");
@@ -581,7 +591,7 @@ MechanismBuilder read_preset(const Section& s, const CaseConfig& c, const Dimens
         }
     }
     p.camshaft_speed_rpm = rpm;
-    located(s, [&] { p.validate(); });
+    located(ps ? *ps : s, s, [&] { p.validate(); });  // "offset must satisfy ...": at preset.parameters.offset
     presets::PaperOptions o;
     if (const std::optional<Section> e = s.table("eccentricity")) o.eccentricity = read_eccentricity(*e);
     o.guide_clearance = s.quantity("guide_clearance", "m", 0.0);
@@ -687,6 +697,25 @@ void check_recording(const Section& s, const SolverConfig& solver, const OutputC
                               " s) holds fewer than two rows at decimation ", o.decimation, " x time step ", dt, " s"));
 }
 
+// The element table ([[contact]], [[clearance]], ...) whose name the message quotes first ("clearance
+// 'gap' ...", or 'g.bushing1' for a guide's bushing), if any.
+std::optional<Section> element_named_in(const Section& root, const std::string& message) {
+    std::optional<Section> found;
+    std::size_t first = std::string::npos;
+    for (const char* kind : {"dof", "shaft", "bearing", "drive", "motor", "spring", "damper", "spring_chain", "load",
+                             "contact", "clearance", "guide"}) {
+        for (const Section& s : root.tables(kind)) {
+            if (!s.has("name")) continue;
+            const std::string name = s.text("name");
+            for (const std::string& quoted : {"'" + name + "'", "'" + name + "."}) {
+                const std::size_t at = message.find(quoted);
+                if (at < first) first = at, found.emplace(s);
+            }
+        }
+    }
+    return found;
+}
+
 }  // namespace
 
 const MotionProgram& CaseConfig::program(const std::string& name) const {
@@ -742,11 +771,13 @@ CaseConfig build_case(const toml::table& table, const std::string& origin, const
     root.finish({"camshaft", "program", "preset", "dof", "spring", "damper", "load", "contact", "clearance", "guide",
                  "damping", "gravity", "solver", "output", "shaft", "bearing", "drive", "motor", "spring_chain",
                  "sweep", "montecarlo"});
-    // The description must build (DOF references, contact geometry): fail now, located at the file.
+    // The description must build (DOF references, contact geometry): fail now, located at the table
+    // of the element the message names, else at the file (a fault of the whole structure).
     try {
         if (c.mechanism.structure.size() == presets::paper_dofs) (void)Mechanism<presets::paper_dofs>(c.mechanism);
         else (void)Mechanism<Eigen::Dynamic>(c.mechanism);
     } catch (const std::invalid_argument& e) {
+        if (const std::optional<Section> s = element_named_in(root, e.what())) s->fail_named(e.what());
         detail::fail(origin, ": ", e.what());
     } catch (const ConvergenceError& e) {  // e.g. a static equilibrium that cannot be found
         throw ConvergenceError(detail::concat(detail::message_text(origin), ": ", e.what()));

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "section.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -52,6 +54,59 @@ void Section::fail(std::string_view key, const std::string& message) const {
 
 void Section::fail_here(const std::string& message) const {
     detail::fail(here(), ": ", message);
+}
+
+namespace {
+
+bool word_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
+
+// The message with its quoted names ('rod', 'ground') blanked: a name is the user's, never a key. A
+// quote opens after a non-word character only, so "the cam's" stays text.
+std::string unquoted(std::string_view message) {
+    std::string out(message);
+    for (std::size_t i = 0; i < out.size(); ++i) {
+        if (out[i] != '\'' || (i > 0 && word_char(out[i - 1]))) continue;
+        const std::size_t close = out.find('\'', i + 1);
+        if (close == std::string::npos) break;
+        std::fill(out.begin() + std::ptrdiff_t(i), out.begin() + std::ptrdiff_t(close) + 1, ' ');
+        i = close;
+    }
+    return out;
+}
+
+// Where `word` first stands alone in `text` (npos if nowhere), skipping a kind word before a quoted
+// name ("clearance 'gap'": the element, not its key `clearance`); `original` is `text` unblanked.
+std::size_t find_word(const std::string& text, std::string_view original, const std::string& word) {
+    for (std::size_t at = text.find(word); at != std::string::npos; at = text.find(word, at + 1)) {
+        const std::size_t end = at + word.size();
+        if ((at > 0 && word_char(text[at - 1])) || (end < text.size() && word_char(text[end]))) continue;
+        if (original.substr(end, 2) == " '") continue;
+        return at;
+    }
+    return std::string::npos;
+}
+
+}  // namespace
+
+void Section::fail_named(const std::string& message) const {
+    const std::string text = unquoted(message);
+    std::string best;
+    std::size_t best_at = std::string::npos;
+    for (auto&& [k, v] : table_) {
+        const std::string key(k.str());
+        std::string spaced = key;
+        std::replace(spaced.begin(), spaced.end(), '_', ' ');
+        for (const std::string& form : {key, spaced}) {
+            const std::size_t at = find_word(text, message, form);
+            // A one-letter key (a spring's a, b) only where the message starts: "a" is a word too.
+            if (at == std::string::npos || (key.size() < 2 && at != 0)) continue;
+            if (at < best_at || (at == best_at && key.size() > best.size())) best = key, best_at = at;
+        }
+    }
+    if (best.empty()) fail_here(message);
+    // "offset must ..." at the key offset reads "...offset: must ...".
+    const std::string lead = best + " must ";
+    fail(best, message.compare(0, lead.size(), lead) == 0 ? message.substr(best.size() + 1) : message);
 }
 
 std::string Section::here() const {
@@ -255,13 +310,64 @@ void Section::finish(std::initializer_list<std::string_view> known) const {
     }
 }
 
+std::string key_path_text(const std::vector<std::string>& parts) {
+    std::string out;
+    // A key after another part takes a dot; an index, and the first part after the elision, none.
+    const auto add = [&](std::size_t i, bool first) {
+        const std::string& p = parts[i];
+        out += (!first && p.rfind('[', 0) != 0 ? "." : "") + detail::printable(p, 40);
+    };
+    if (parts.size() <= 6) {
+        for (std::size_t i = 0; i < parts.size(); ++i) add(i, i == 0);
+        return out;
+    }
+    for (std::size_t i = 0; i < 3; ++i) add(i, i == 0);
+    out += detail::concat(" ... (", parts.size() - 5, " more) ... ");
+    for (std::size_t i = parts.size() - 2; i < parts.size(); ++i) add(i, i == parts.size() - 2);
+    return out;
+}
+
+void fail_nesting(const std::string& origin, std::size_t line, const std::vector<std::string>& parts) {
+    detail::fail(line > 0 ? detail::concat(origin, ":", line) : origin, ": ", key_path_text(parts),
+                 ": nested deeper than ", max_nesting, " levels of tables and arrays (a config needs fewer than 6)");
+}
+
+namespace {
+
+// Depth-first over tables and arrays, refusing the first one below max_nesting levels; the recursion
+// stops there, so it is bounded whatever the input.
+void check_nesting(const toml::node& node, int depth, std::vector<std::string>& parts, const std::string& origin) {
+    if (!node.is_table() && !node.is_array()) return;
+    if (depth > max_nesting) fail_nesting(origin, node.source().begin.line, parts);
+    if (const toml::table* t = node.as_table()) {
+        for (auto&& [k, v] : *t) {
+            parts.emplace_back(k.str());
+            check_nesting(v, depth + 1, parts, origin);
+            parts.pop_back();
+        }
+    } else {
+        const toml::array& a = *node.as_array();
+        for (std::size_t i = 0; i < a.size(); ++i) {
+            parts.push_back(detail::concat("[", i, "]"));
+            check_nesting(*a.get(i), depth + 1, parts, origin);
+            parts.pop_back();
+        }
+    }
+}
+
+}  // namespace
+
 toml::table parse_toml(std::string_view text, const std::string& origin) {
+    toml::table root;
     try {
-        return toml::parse(text, origin);
+        root = toml::parse(text, origin);
     } catch (const toml::parse_error& e) {
         const toml::source_position p = e.source().begin;
         detail::fail(origin, ":", p.line, ":", p.column, ": TOML syntax: ", e.description());
     }
+    std::vector<std::string> parts;
+    check_nesting(root, 0, parts, origin);
+    return root;
 }
 
 }  // namespace camfollower::config

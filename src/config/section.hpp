@@ -52,6 +52,10 @@ public:
 
     [[noreturn]] void fail(std::string_view key, const std::string& message) const;
     [[noreturn]] void fail_here(const std::string& message) const;
+    // A model builder's message (it names its parameter, "stiffness of 'rod' must be ..."), located at
+    // the key of this table it names first (underscores may be spaces; quoted names and a kind word
+    // before one, "clearance 'gap'", do not count), else at the table itself.
+    [[noreturn]] void fail_named(const std::string& message) const;
     std::string where(std::string_view key) const;  // "file:line: path.key"
     std::string here() const;                       // "file:line: path" of the table itself
 
@@ -68,8 +72,21 @@ private:
     mutable std::set<std::string, std::less<>> read_;
 };
 
-// Parse TOML text; a syntax error (duplicate keys included) becomes std::invalid_argument
-// "origin:line:column: message".
+// Tables and arrays nested deeper than this are refused, by every route into the reader (a file, a
+// Python dict): a config needs fewer than 6 levels, and the bound keeps every recursive walk over a
+// config (conversions to and from Python, copies) far from the stack's end and ends a cyclic dict.
+inline constexpr int max_nesting = 64;
+
+// A key path as messages show it ("contact[0].follower.offset"): each part printable and short, a
+// path of more than 6 parts shown by its first 3 and last 2. Parts are keys, or "[i]" for an index.
+std::string key_path_text(const std::vector<std::string>& parts);
+
+// "origin[:line]: path: nested deeper than 64 levels ...": the refusal of a too deep value.
+[[noreturn]] void fail_nesting(const std::string& origin, std::size_t line, const std::vector<std::string>& parts);
+
+// Parse TOML text (a UTF-8 byte order mark is skipped, as toml++ does); a syntax error (duplicate
+// keys included) becomes std::invalid_argument "origin:line:column: message", a table nested deeper
+// than max_nesting "origin:line: key.path: nested deeper than ...".
 toml::table parse_toml(std::string_view text, const std::string& origin);
 
 }  // namespace camfollower::config

@@ -231,10 +231,52 @@ TEST_CASE("config: errors name the file, the line and the key") {
     fails(ok + "[[contact]]\nname = \"c\"\nprogram = \"a\"\nfollower_dof = \"f\"\nstiffness = 1e8\n", "a contact needs a follower table");
     fails(ok + "[[contact]]\nname = \"c\"\nprogram = \"a\"\nfollower_dof = \"f\"\nstiffness = 1e8\n"
                "follower = { type = \"translating_roller\", base_radius = \"-3 mm\", roller_radius = \"5 mm\" }\n",
-          "c.toml:13: contact[0].follower: base_radius must be finite and > 0");
+          "c.toml:13: contact[0].follower.base_radius: must be finite and > 0");
     fails(ok + "[[contact]]\nname = \"c\"\nprogram = \"a\"\nfollower_dof = \"f\"\nstiffness = 1e8\n"
                "follower = { type = \"translating_roler\", base_radius = \"3 mm\" }\n",
           "contact[0].follower.type: must be one of \"translating_roller\"");
+}
+
+TEST_CASE("config: a model's error is located at the key it names") {
+    // The builders name their parameter; the reader gives that key's line and path (it gave the
+    // table's, or for the mechanism's final checks the file alone).
+    const std::string ok = "[camshaft]\nspeed = 600\n[program.a]\nsegments = [{ law = \"cycloidal\", end = \"180 deg\", h = \"1 mm\" },"
+                           "{ law = \"cycloidal\", end = \"360 deg\", h = 0 }]\n[[dof]]\nname = \"f\"\nmass = 0.1\n";
+    const std::string contact = "[[contact]]\nname = \"c\"\nprogram = \"a\"\nfollower_dof = \"f\"\nstiffness = 1e8\n"
+                                "follower = { type = \"translating_roller\", base_radius = \"30 mm\", roller_radius = \"5 mm\" }\n";
+    const auto fails = [&](const std::string& text, const std::string& expected) {
+        CHECK_THROWS_WITH(parse_case(text, "c.toml"), Catch::Contains(expected));
+    };
+    fails(ok + "[[dof]]\nname = \"g\"\n\nmass = -1\n", "c.toml:11: dof[1].mass: mass of DOF 'g' must be finite and > 0");
+    fails(ok + "[[spring]]\nname = \"s\"\na = \"f\"\n\nstiffness = -1\n",
+          "c.toml:12: spring[0].stiffness: stiffness of 's' must be finite and >= 0");
+    // Checked when the whole mechanism is built: the element named in the message, then its key.
+    fails(ok + "[[spring]]\nname = \"s\"\na = \"f\"\nstiffness = 1e4\n" + contact +
+              "[[clearance]]\nname = \"gap\"\ngap_dofs = [\"f\"]\ngap_coefficients = [1]\nclearance = 0.001\nstiffness = 1e6\n"
+              "friction = 0.1\nsliding_dof = \"nope\"\n",
+          "c.toml:25: clearance[0].sliding_dof: clearance 'gap' sliding_dof refers to DOF 'nope'");
+    fails(ok + "[[spring]]\nname = \"s\"\na = \"f\"\nstiffness = 1e4\n[damping]\nmodal_ratios = [0.1, 0.2]\n",
+          "c.toml:13: damping.modal_ratios: give one ratio or one per mode (1), got 2");
+    fails("[camshaft]\nspeed = 600\n[preset]\nname = \"paper\"\n[preset.parameters]\nfollower_mass = 1\noffset = 0.5\n",
+          "c.toml:7: preset.parameters.offset: must satisfy |offset| < base_radius + roller_radius");
+}
+
+TEST_CASE("config: nesting is bounded, a byte order mark is read") {
+    // A BOM (what Windows editors write) is skipped, as Python's reader does (the same parser).
+    const std::string text = "[camshaft]\nspeed = 600\n[preset]\nname = \"paper\"\n";
+    CHECK(parse_case("\xEF\xBB\xBF" + text, "bom.toml").preset == "paper");
+    std::string dotted = "k";
+    for (int i = 0; i < 9999; ++i) dotted += ".k";
+    CHECK_THROWS_WITH(parse_case(dotted + " = 1\n" + text, "c.toml"),
+                      Catch::Contains("c.toml:1: k.k.k ... (60 more) ... k.k: nested deeper than 64 levels"));
+    CHECK_THROWS_WITH(parse_case("x = " + std::string(100, '[') + std::string(100, ']') + "\n" + text, "c.toml"),
+                      Catch::Contains("c.toml:1: x[0][0] ... (60 more) ... [0][0]: nested deeper than 64 levels"));
+    CHECK_THROWS_WITH(parse_case("x = " + std::string(5000, '[') + std::string(5000, ']') + "\n" + text, "c.toml"),
+                      Catch::Contains("c.toml:1:") && Catch::Contains("TOML syntax"));
+    // 64 levels are read (and then refused as an unknown key, not for their depth).
+    std::string deep = "k";
+    for (int i = 0; i < 63; ++i) deep += ".k";
+    CHECK_THROWS_WITH(parse_case(deep + " = 1\n" + text, "c.toml"), Catch::Contains("c.toml:1: k: unknown key"));
 }
 
 TEST_CASE("config: files: a directory, an empty file, a missing lift table") {

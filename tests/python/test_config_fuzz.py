@@ -53,6 +53,13 @@ def mutate(text: str, op: int, line_pick: int, token: int, cut: float) -> bytes:
         headers = [j for j, l in enumerate(lines) if l.startswith("[") and not l.startswith("[[")]
         if headers:
             lines.append(lines[headers[line_pick % len(headers)]])
+    elif op == 6:  # a byte order mark (what Windows editors write), once or twice
+        return b"\xef\xbb\xbf" * (1 + token % 2) + ("\n".join(lines) + "\n").encode()
+    elif op == 7:  # a value nested deep: past the reader's 64 levels, or toml++'s 256
+        depth = [65, 300, 5000][token % 3]
+        lines[i] = ASSIGNMENT.sub(lambda m: m.group(1) + "[" * depth + "1" + "]" * depth, lines[i])
+    elif op == 8:  # a key of many dotted parts
+        lines.insert(i, ".".join(["k"] * [70, 10_000][token % 2]) + " = 1")
     return ("\n".join(lines) + "\n").encode()
 
 
@@ -62,7 +69,7 @@ def check_message(message: str, path: Path) -> None:
     assert not re.search(r"[\x00-\x08\x0b-\x1f\x7f]", message), repr(message)
 
 
-mutation = st.tuples(st.sampled_from(EXAMPLES), st.integers(0, 5), st.integers(0, 500), st.integers(0, 100),
+mutation = st.tuples(st.sampled_from(EXAMPLES), st.integers(0, 8), st.integers(0, 500), st.integers(0, 100),
                      st.floats(0.0, 1.0))
 
 
@@ -97,6 +104,91 @@ def test_the_command_line_never_crashes_on_mutated_configs(tmp_path, m):
     assert r.returncode in (0, 1), (r.returncode, r.stderr[-2000:])
     if r.returncode == 1:
         check_message(r.stderr.decode("utf-8", "replace").strip(), path)
+
+
+@pytest.mark.skipif(not CLI.exists(), reason="the command line is built by scripts/test.sh (ctest)")
+@settings(deadline=None, max_examples=40, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(mutation)
+def test_python_and_the_command_line_give_one_answer(tmp_path, m):
+    """One reader: a mutated config that Python refuses, the command line refuses with the same
+    message; one Python reads, the command line reads too (a byte order mark, deep nesting)."""
+    example, op, line_pick, token, cut = m
+    if (example.parent / "data").is_dir():
+        shutil.copytree(example.parent / "data", tmp_path / "data", dirs_exist_ok=True)
+    path = tmp_path / example.name
+    path.write_bytes(mutate(example.read_text(), op, line_pick, token, cut))
+    try:
+        cf.load_config(path)
+        python = None
+    except (ValueError, RuntimeError) as e:
+        python = str(e)
+    r = subprocess.run([str(CLI), "kinematics", str(path)], capture_output=True, timeout=60,
+                       env={**os.environ, "LC_ALL": "C"})
+    if python is None:
+        assert r.returncode == 0, r.stderr[-2000:]
+    else:
+        assert r.returncode == 1 and r.stderr.decode("utf-8", "replace").strip() == f"camfollower: error: {python}"
+
+
+# Values a Python dict may hold that a TOML table cannot, or only by a bounded walk.
+def _cyclic():
+    d = {"a": 1}
+    d["self"] = d
+    return d
+
+
+def _laughs():
+    d = {"v": 1.0}
+    for _ in range(40):
+        d = {"a": d, "b": d}
+    return d
+
+
+def _deep(n):
+    d = node = {}
+    for _ in range(n):
+        node["d"] = {}
+        node = node["d"]
+    return d
+
+
+HOSTILE_VALUES = [_cyclic, _laughs, lambda: _deep(30_000), lambda: _deep(70), lambda: [[[]] * 3] * 3, lambda: {1: "x"},
+                  lambda: 2 ** 70, lambda: -(2 ** 63), lambda: None, lambda: b"bytes", lambda: {"x"}, lambda: "\udc80",
+                  lambda: float("nan"), lambda: "\x1b[2J", lambda: object()]
+
+
+@settings(deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(st.sampled_from(EXAMPLES), st.integers(0, 10_000), st.sampled_from(range(len(HOSTILE_VALUES))),
+       st.booleans())
+def test_mutated_dicts_build_or_are_refused_naming_the_key(tmp_path, example, pick, hostile, replace):
+    """config_from_dict on an example's data with one value replaced (or one key added) by a value
+    a TOML table cannot hold: a cycle, 2**40 values by shared sub-dicts, 30,000 levels, a non-string key, an integer beyond 64 bits, a
+    lone surrogate, None, bytes, a set. Oracle: the case builds, or a ValueError naming the key path
+    under "<dict>", short and printable; never a crash, a hang or another exception."""
+    data = cf.load_config(example).data
+    slots = []  # (container, key) of every value in the tree
+
+    def walk(node):
+        for k, v in (node.items() if isinstance(node, dict) else enumerate(node)):
+            slots.append((node, k))
+            if isinstance(v, (dict, list)):
+                walk(v)
+
+    walk(data)
+    container, key = slots[pick % len(slots)]
+    value = HOSTILE_VALUES[hostile]()
+    if replace or not isinstance(container, dict):
+        container[key] = value
+    else:
+        container["added"] = value
+    try:
+        case = cf.config_from_dict(data, base_dir=example.parent)
+    except (ValueError, RuntimeError) as e:
+        message = str(e)
+        assert message.startswith("<dict>"), message
+        assert len(message) < 2000 and not re.search(r"[\x00-\x08\x0b-\x1f\x7f]", message), repr(message)
+        return
+    assert case.mechanism.size >= 1
 
 
 def test_names_with_control_characters_or_megabytes_are_refused():
