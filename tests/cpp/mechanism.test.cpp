@@ -235,10 +235,10 @@ TEST_CASE("each role of an element names a DOF of its own, each element a name o
     // The resolved pair checks indices too (a description that bypassed the builder).
     CHECK_THROWS_WITH(ContactPair(contact("ground", "ground", "ground", "ground"), -1, 0, 0, -1),
                       Catch::Contains("cam_y and cam_x") || Catch::Contains("follower_dof and cam_y"));
-    ClearanceSpec guide{"guide", {{"g", 1.0}}, 1e-4, HertzContact{1e8, 1.0, 0.0}, 0.1, "g"};
+    ClearanceSpec guide{"guide", {{"g", 1.0}}, 1e-4, HertzContact{1e8, 1.0, 0.0}, 0.1, "g", 1e-3};
     CHECK_THROWS_WITH(b.add_clearance(guide), Catch::Contains("sliding_dof 'g' is also a DOF of the gap coordinate"));
     b.add_contact(contact("ground", "ground", "ground", "ground"));
-    ClearanceSpec same_name{"cam", {{"g", 1.0}}, 1e-4, HertzContact{1e8, 1.0, 0.0}};
+    ClearanceSpec same_name{"cam", {{"g", 1.0}}, 1e-4, HertzContact{1e8, 1.0, 0.0}, 0.0, "", 1e-3};
     CHECK_THROWS_WITH(b.add_clearance(same_name), Catch::Contains("clearance 'cam': the name is taken by contact 'cam'"));
     CHECK_THROWS_WITH(b.add_spring("cam", "g", "ground", 1.0), Catch::Contains("element 'cam': the name is taken by contact"));
     CHECK_THROWS_WITH(b.add_contact(contact("ground", "ground", "ground", "ground")),
