@@ -91,6 +91,8 @@ def check_arguments(args: argparse.Namespace) -> None:
             if args.workers is not None:
                 raise ValueError("give --workers (a local process pool) or --scheduler (a Dask scheduler), not both")
     if args.command == "montecarlo":
+        if args.rpm is not None:
+            _speeds([args.rpm], "--rpm")
         if args.cases is not None:
             _integer(args.cases, "--cases", 1, 10_000_000)
         if args.seed is not None:
@@ -255,10 +257,12 @@ def sweep(config: str, out: str, *, rpm=None, jump=None, executor=None, workers=
     return summary
 
 
-def montecarlo(config: str, out: str, *, cases=None, seed=None, executor=None, workers=None, progress=True) -> dict:
+def montecarlo(config: str, out: str, *, cases=None, seed=None, rpm=None, executor=None, workers=None,
+               progress=True) -> dict:
     """A Monte-Carlo tolerance study of the config's mechanism (camfollower.tolerance) with the
-    tolerances of its [montecarlo] table: cases.csv (and cases.parquet with pyarrow), histogram.png,
-    summary.json last (statistics, sensitivities, failed cases)."""
+    tolerances of its [montecarlo] table, at camshaft speed ``rpm`` (default: the table's ``rpm``, else
+    the config's): cases.csv (and cases.parquet with pyarrow), histogram.png, summary.json last
+    (speed, statistics, sensitivities in the metrics' units, failed cases)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -267,12 +271,13 @@ def montecarlo(config: str, out: str, *, cases=None, seed=None, executor=None, w
 
     case = load_config(config)
     data = {k: v for k, v in case.data.items() if k not in ("sweep", "montecarlo")}
-    build = tol.ConfigCase(data, case.path.parent if case.path else ".")
-    # Given the model, the table's check covers each tolerance's value and range, located at its block.
-    st = montecarlo_settings(case.data.get("montecarlo"), cases=cases, seed=seed, path=case.path, build=build,
+    # Given the model, the table's check sets its speed and roller tolerance and covers each tolerance's
+    # value and range, located at its block.
+    st = montecarlo_settings(case.data.get("montecarlo"), cases=cases, seed=seed, rpm=rpm, path=case.path,
+                             build=tol.ConfigCase(data, case.path.parent if case.path else "."),
                              contacts=case.mechanism.contact_names)
     folder = _folder(config, out)
-    result = tol.monte_carlo(build, st["tolerances"], cases=st["cases"], seed=st["seed"], contact=st["contact"],
+    result = tol.monte_carlo(st["build"], st["tolerances"], cases=st["cases"], seed=st["seed"], contact=st["contact"],
                              steps_per_revolution=st["steps_per_revolution"], executor=executor, workers=workers,
                              progress=progress)
     columns = ["case", "seed"] + result.parameters + list(result.metrics) + ["ok", "error"]
@@ -283,7 +288,9 @@ def montecarlo(config: str, out: str, *, cases=None, seed=None, executor=None, w
         files.append("cases.parquet")
     except ImportError:
         pass
-    summary = {"config": str(case.path), **result.summary(), "parameters": result.parameters}
+    speed = st["rpm"] if st["rpm"] is not None else case.mechanism.camshaft_speed_rpm
+    summary = {"config": str(case.path), "camshaft_speed_rpm": speed, "roller_tolerance": st["roller_tolerance"],
+               **result.summary(), "parameters": result.parameters}
     ok = [r for r in result.rows if r["ok"]]
     if len(ok) >= len(result.parameters) + 2:
         summary["sensitivities"] = {m: result.sensitivities(m) for m in ("min_force_N", "max_abs_acceleration", "dwell_residual")}
@@ -333,6 +340,8 @@ def main(argv=None) -> int:
     mc.add_argument("config", help="config file with a [montecarlo] table (docs/studies.md)")
     mc.add_argument("--cases", type=int, help="number of cases (default: the config's)")
     mc.add_argument("--seed", type=int, help="study seed (default: the config's)")
+    mc.add_argument("--rpm", type=float,
+                    help="camshaft speed of every case (default: the table's rpm, else the config's)")
     _add_executor_options(mc)
     mc.add_argument("-o", "--out", default="out", help="output folder (default: ./out)")
     args = parser.parse_args(argv)
@@ -344,8 +353,8 @@ def main(argv=None) -> int:
             result = sweep(args.config, args.out, rpm=args.rpm, jump=args.jump, executor=_executor(args),
                            workers=args.workers, progress=not args.no_progress)
         elif args.command == "montecarlo":
-            result = montecarlo(args.config, args.out, cases=args.cases, seed=args.seed, executor=_executor(args),
-                                workers=args.workers, progress=not args.no_progress)
+            result = montecarlo(args.config, args.out, cases=args.cases, seed=args.seed, rpm=args.rpm,
+                                executor=_executor(args), workers=args.workers, progress=not args.no_progress)
         else:
             summary = figures(args.config, args.out)
     except (ValueError, TypeError, RuntimeError, OSError, ImportError) as e:
@@ -367,12 +376,14 @@ def main(argv=None) -> int:
         return 0
     if args.command == "montecarlo":
         f = result["metrics"].get("min_force_N", {})
-        print(f"{result['cases']} cases, {result['failed']} failed, {result['contact_lost']} lost contact; min contact "
-              f"force {f.get('mean', float('nan')):.2f} +- {f.get('std', float('nan')):.2f} N "
-              f"(5 % {f.get('p5', float('nan')):.2f} N, nominal {f.get('nominal', float('nan')):.2f} N)")
+        print(f"{result['cases']} cases at {_text.g(result['camshaft_speed_rpm'], 6)} rpm, {result['failed']} failed, "
+              f"{result['contact_lost']} lost contact; min contact force {f.get('mean', float('nan')):.2f} +- "
+              f"{f.get('std', float('nan')):.2f} N (5 % {f.get('p5', float('nan')):.2f} N, nominal "
+              f"{f.get('nominal', float('nan')):.2f} N)")
         for s_ in result.get("sensitivities", {}).get("min_force_N", [])[:3]:
-            print(f"  {s_['parameter']}: correlation {s_['correlation']:+.2f}, standardized coefficient "
-                  f"{s_['standardized_coefficient']:+.2f}")
+            print(f"  {s_['parameter']}: {s_['effect_of_one_std']:+.3g} N per std of {_text.g(s_['parameter_std'], 3)} "
+                  f"(slope {_text.g(s_['slope'], 4)} N per unit), standardized {s_['standardized_coefficient']:+.2f}, "
+                  f"correlation {s_['correlation']:+.2f}")
         print(f"{len(result['files'])} files -> {args.out}")
         return 0
     if args.command == "camshaft":

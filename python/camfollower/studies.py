@@ -10,6 +10,8 @@
     [montecarlo]
     cases = 200
     seed = 1
+    rpm = 900                         # optional: every case at this camshaft speed (default: the config's)
+    roller_tolerance = "fixed_cam"    # optional: or "regenerated_cam" (camfollower.tolerance)
     [[montecarlo.tolerance]]
     parameter = "preset.parameters.contact_stiffness"   # key path of a numeric value in this file
     distribution = "normal"                             # normal | uniform | truncated_normal
@@ -33,7 +35,7 @@ from typing import Any, Dict, Optional, Sequence
 from . import _core
 from .response import STUDY_STEPS_PER_REVOLUTION
 from .speed import _MAX_RPM, _MIN_RPM
-from .tolerance import DISTRIBUTIONS, _check_ranges
+from .tolerance import DISTRIBUTIONS, ROLLER_TOLERANCES, _check_ranges
 
 
 def _shown(value, limit: int = 60) -> str:
@@ -176,18 +178,36 @@ def sweep_settings(table: Dict[str, Any], *, rpm=None, jump=None, path=None, con
             "steps_per_revolution": _int(table, "steps_per_revolution", STUDY_STEPS_PER_REVOLUTION, 64, 1 << 22, path, "sweep")}
 
 
-def montecarlo_settings(table: Optional[Dict[str, Any]], *, cases=None, seed=None, path=None, build=None,
+def montecarlo_settings(table: Optional[Dict[str, Any]], *, cases=None, seed=None, rpm=None, path=None, build=None,
                         contacts=None) -> Dict[str, Any]:
-    """Cases, seed, steps per revolution, contact and the tolerances {key path: distribution} from a
-    [montecarlo] table, with command-line overrides. Given the model's ``build`` (a ConfigCase), each
-    tolerance's value is looked up and the model built at the distribution's ends, as monte_carlo
-    does, so that a refusal names the block's ``parameter`` line; ``contacts`` as in sweep_settings."""
+    """Cases, seed, camshaft speed, roller tolerance, steps per revolution, contact and the tolerances
+    {key path: distribution} from a [montecarlo] table, with command-line overrides (``cases``, ``seed``,
+    ``rpm``). Given the model's ``build`` (a ConfigCase), it is set to the table's speed and roller
+    tolerance (returned as ``build``), each tolerance's value is looked up and the model built at the
+    distribution's ends, as monte_carlo does, so that a refusal names the block's ``parameter`` line;
+    ``contacts`` as in sweep_settings. ``rpm`` is None when neither the table nor the override gives it
+    (the config's own speed)."""
     if table is None:
         raise ValueError(f"{_where(path, 'montecarlo')}: the config has no [montecarlo] table with its tolerances "
                          "(docs/studies.md)")
     if not isinstance(table, dict):
         raise ValueError(f"{_where(path, 'montecarlo')}: must be a table, got {_a(table)}")
-    _unknown(table, ("cases", "seed", "steps_per_revolution", "contact", "tolerance"), path, "montecarlo")
+    _unknown(table, ("cases", "seed", "rpm", "roller_tolerance", "steps_per_revolution", "contact", "tolerance"), path,
+             "montecarlo")
+    # The speed: --rpm (named so) over the table's rpm; checked before any model is built.
+    if rpm is not None:
+        speed = _speed(rpm, "--rpm", None)
+    elif "rpm" in table:
+        speed = _speed(table["rpm"], "montecarlo.rpm", path)
+    else:
+        speed = None
+    mode = table.get("roller_tolerance", "fixed_cam")
+    if not isinstance(mode, str) or mode not in ROLLER_TOLERANCES:
+        got = _shown(mode) if isinstance(mode, str) else _a(mode)
+        raise ValueError(f"{_where(path, 'montecarlo.roller_tolerance')}: must be one of "
+                         f"{', '.join(ROLLER_TOLERANCES)} (a string), got {got}")
+    if build is not None:
+        build = build.with_options(roller_tolerance=mode, camshaft_speed_rpm=speed)
     blocks = table.get("tolerance")
     if not isinstance(blocks, list) or not blocks:
         got = "" if blocks is None or blocks == [] else f", got {_a(blocks)}"
@@ -211,9 +231,13 @@ def montecarlo_settings(table: Optional[Dict[str, Any]], *, cases=None, seed=Non
     seed = _int(table, "seed", 0, 0, 2 ** 63 - 1, path, "montecarlo") if seed is None else \
         _int({"--seed": seed}, "--seed", None, 0, 2 ** 63 - 1, None, "")
     contact = _contact(table, "montecarlo.contact", path, contacts)
-    return {"tolerances": tolerances, "cases": cases, "seed": seed, "contact": contact,
-            "steps_per_revolution": _int(table, "steps_per_revolution", STUDY_STEPS_PER_REVOLUTION, 64, 1 << 22, path,
-                                         "montecarlo")}
+    out = {"tolerances": tolerances, "cases": cases, "seed": seed, "contact": contact, "rpm": speed,
+           "roller_tolerance": mode,
+           "steps_per_revolution": _int(table, "steps_per_revolution", STUDY_STEPS_PER_REVOLUTION, 64, 1 << 22, path,
+                                        "montecarlo")}
+    if build is not None:
+        out["build"] = build
+    return out
 
 
 __all__ = ["montecarlo_settings", "sweep_settings"]
