@@ -303,7 +303,9 @@ def roller_on_fixed_cam(follower, program, roller_radius: float, *, step: float 
     the cam, 0.1 deg) with its end slope and curvature; the pieces start and end where the new roller
     meets the old segment ends (a few hundredths of a degree from them for 0.1 mm). A profile error the
     program carries is kept as it is (as measured with the nominal roller). The same radius gives back
-    ``follower`` and ``program``.
+    ``follower`` and ``program``. The lift is measured from the new roller's own rest on the base circle
+    (which moves by about the radius difference): a spring set against fixed geometry rather than at
+    assembly would change its preload by that shift, which this does not model.
 
     A roller larger than a concave flank's radius cannot follow it (it would bridge the hollow) and a
     radius outside (0, 1 m] is refused: ValueError naming ``roller_radius``.
