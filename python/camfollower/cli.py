@@ -18,6 +18,7 @@ import argparse
 import io
 import math
 import sys
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -25,6 +26,7 @@ import numpy as np
 from . import _files, _text
 from .config import load_config
 from .executors import _check_scheduler
+from .response import STUDY_ACCURACY
 from .speed import _MAX_RPM, _MIN_RPM
 
 
@@ -227,32 +229,40 @@ def sweep(config: str, out: str, *, rpm=None, jump=None, executor=None, workers=
                         contacts=case.mechanism.contact_names)
     folder = _folder(config, out)
     m = case.mechanism
-    result = sp.speed_sweep(m, st["rpm"], contact=st["contact"], steps_per_revolution=st["steps_per_revolution"],
-                            executor=executor, workers=workers, progress=progress)
+    accuracy = dict(accuracy=st["accuracy"], steps_per_revolution=st["steps_per_revolution"])
+    result = sp.speed_sweep(m, st["rpm"], contact=st["contact"], executor=executor, workers=workers, progress=progress,
+                            **accuracy)
     jump_result = None
     if st["jump"] is not None:
-        jump_result = sp.jump_speed(m, tuple(st["jump"]), contact=st["contact"],
-                                    steps_per_revolution=st["steps_per_revolution"])
+        with warnings.catch_warnings():  # said once, in the summary and on stderr below
+            warnings.simplefilter("ignore", sp.StudyWarning)
+            jump_result = sp.jump_speed(m, tuple(st["jump"]), contact=st["contact"], executor=executor,
+                                        workers=workers, **accuracy)
+        for w in jump_result.warnings:
+            print(f"warning: {w}", file=sys.stderr)
     columns = ["rpm", "method", "converged", "revolutions", "min_force_N", "min_force_angle_deg", "max_force_N",
                "contact_lost", "lost_fraction", "first_loss_angle_deg", "max_abs_acceleration",
                "rigid_max_abs_acceleration", "dwell_residual", "dwell_residual_at_deg", "spectral_radius",
-               "instability", "error"]
+               "instability", "steps_per_revolution", "accuracy", "accuracy_reached", "force_error_N", "error"]
     _write(config, folder / "sweep.csv", _csv(result["rows"], columns))
     spec_rows = [{"rpm": r["rpm"], **{f"order_{k}": float(result["spectrum"][k - 1, j]) for k in result["orders"]}}
                  for j, r in enumerate(result["rows"])]
     _write(config, folder / "spectrum.csv", _csv(spec_rows, ["rpm"] + [f"order_{k}" for k in result["orders"]]))
-    _save(config, sp.plot_margin(result["rows"], jump_result), folder / "margin.png")
+    # The margin figure shows the jump scan's speeds too: the dips between the sweep's speeds.
+    margin_rows = sorted(result["rows"] + (jump_result.margin if jump_result else []), key=lambda r: r["rpm"])
+    _save(config, sp.plot_margin(margin_rows, jump_result), folder / "margin.png")
     _save(config, sp.plot_waterfall(result), folder / "waterfall.png")
+    reached = [r["accuracy"] for r in result["rows"] if "accuracy" in r]
     summary = {"config": str(case.path), "contact": st["contact"] or m.contact_names[0],
-               "steps_per_revolution": st["steps_per_revolution"],
+               "accuracy_target": st["accuracy"] if st["accuracy"] is not None else (
+                   None if st["steps_per_revolution"] else STUDY_ACCURACY),
+               "steps_per_revolution": st["steps_per_revolution"], "accuracy": max(reached, default=None),
                "speeds": [{k: r.get(k) for k in columns if k in r} for r in result["rows"]],
                "natural_frequencies_hz": result["natural_hz"],
                "resonances": [{"order": k, "mode_hz": f, "rpm": r} for k, f, r in result["resonances"]],
                "files": ["sweep.csv", "spectrum.csv", "margin.png", "waterfall.png", "summary.json"]}
     if jump_result is not None:
-        summary["jump"] = {"rpm": jump_result.rpm, "angle_deg": jump_result.angle_deg, "bracket": list(jump_result.bracket),
-                           "min_force_below_N": jump_result.min_force_below_N,
-                           "evaluations": len(jump_result.evaluations)}
+        summary["jump"] = jump_result.summary()
     _write(config, folder / "summary.json", _files.json_text(summary).encode())
     return summary
 
@@ -278,8 +288,8 @@ def montecarlo(config: str, out: str, *, cases=None, seed=None, rpm=None, execut
                              contacts=case.mechanism.contact_names)
     folder = _folder(config, out)
     result = tol.monte_carlo(st["build"], st["tolerances"], cases=st["cases"], seed=st["seed"], contact=st["contact"],
-                             steps_per_revolution=st["steps_per_revolution"], executor=executor, workers=workers,
-                             progress=progress)
+                             accuracy=st["accuracy"], steps_per_revolution=st["steps_per_revolution"],
+                             executor=executor, workers=workers, progress=progress)
     columns = ["case", "seed"] + result.parameters + list(result.metrics) + ["ok", "error"]
     _write(config, folder / "cases.csv", _csv(result.rows, columns))
     files = ["cases.csv"]

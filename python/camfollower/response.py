@@ -1,24 +1,64 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """What a designer reads off one periodic steady state: contact margin, where it is smallest, contact
-loss, accelerations, residual vibration in the dwells and the contact force's harmonics.
+loss, accelerations, residual vibration in the dwells and the contact force's harmonics, at a stated
+accuracy.
 
 :func:`steady_response` finds the periodic orbit (camfollower.periodic), records its revolution and
-measures it; every study (speed sweeps, jump speed, spring sizing, Monte-Carlo) is built on it.
+measures it; every study (speed sweeps, jump speed, spring sizing, Monte-Carlo) is built on it. The
+orbit is found at a step that halves until the contact force and the follower's acceleration change by
+less than the accuracy asked (docs/studies.md, "Accuracy of the studies").
 """
 
 from __future__ import annotations
 
 import math
-from typing import Any, Dict, Optional
+import numbers
+from typing import Any, Dict, Optional, Sequence
 
 import numpy as np
 
 from .periodic import PeriodicOrbit, periodic_steady_state
 
-#: Steps per revolution of the studies' default scheme (the time step is period / this).
+#: The studies' default accuracy: estimated error of the contact force and of the follower's
+#: acceleration over the revolution, relative to their peaks.
+STUDY_ACCURACY = 1e-3
+#: Steps per revolution the studies start from; halved steps from there until the accuracy holds.
 STUDY_STEPS_PER_REVOLUTION = 4096
+#: The finest step the accuracy search takes (steps per revolution).
+MAX_STUDY_STEPS_PER_REVOLUTION = 1 << 18
 #: Contact-force harmonics (shaft orders) kept per speed.
 HARMONICS = 64
+#: The schemes are second order at least: halving the step divides the error by 4 or more, so the
+#: finer of two solutions is off by at most about their difference / (2^2 - 1).
+_RICHARDSON = 3.0
+#: Fox-Goodwin (Newmark gamma = 1/2, beta = 1/12) is stable below dt = sqrt(6) / omega_max; the studies
+#: keep half of that, for contacts that stiffen under load.
+_FOX_GOODWIN_MARGIN = 0.5
+
+
+def study_scheme(system, steps: int) -> Dict[str, Any]:
+    """The time-stepping scheme of the studies at ``steps`` per revolution: Fox-Goodwin (fourth-order
+    phase: the lightly damped fast modes that ring through a whole revolution keep their phase, where
+    the average-acceleration rule's period error would need ~50x the steps) when the step is within
+    half its stability limit for the system's highest mode (at cam angle 0), else Newmark's average
+    acceleration (unconditionally stable)."""
+    try:
+        omega_max = 2.0 * math.pi * float(np.max(system.modal_analysis(0.0)["frequencies_hz"]))
+    except (AttributeError, RuntimeError, ValueError):
+        omega_max = math.inf
+    if system.period / steps * omega_max <= _FOX_GOODWIN_MARGIN * math.sqrt(6.0):
+        return {"name": "fox_goodwin", "gamma": 0.5, "beta": 1.0 / 12.0}
+    return {"name": "newmark", "gamma": 0.5, "beta": 0.25}
+
+
+def _fox_goodwin_steps(system, steps: int, finest: int) -> int:
+    """The first of steps, 2 steps, 4 steps, ... at which Fox-Goodwin is within its margin (else steps)."""
+    n = steps
+    while n <= finest:
+        if study_scheme(system, n)["name"] == "fox_goodwin":
+            return n
+        n *= 2
+    return steps
 
 
 def contact_of(system, contact: Optional[str]) -> Dict[str, Any]:
@@ -41,50 +81,161 @@ def _dwells(program):
             yield seg
 
 
-def steady_response(system, *, contact: Optional[str] = None, steps_per_revolution: int = STUDY_STEPS_PER_REVOLUTION,
-                    guess: Optional[PeriodicOrbit] = None, multipliers: bool = True, fallback: Optional[str] = None,
-                    tolerance: float = 1e-9, harmonics: int = HARMONICS, keep_orbit: bool = False) -> Dict[str, Any]:
+def check_accuracy(accuracy, name: str = "accuracy") -> float:
+    """An accuracy (relative error of force and acceleration) the studies can reach: in [1e-6, 0.1]."""
+    if isinstance(accuracy, bool) or not isinstance(accuracy, numbers.Real) or not 1e-6 <= float(accuracy) <= 0.1:
+        raise ValueError(f"{name} must be a relative error in [1e-06, 0.1] of the peak contact force and follower "
+                         f"acceleration (e.g. 1e-3), got {accuracy!r}")
+    return float(accuracy)
+
+
+def _check_steps(steps, name: str) -> int:
+    if isinstance(steps, bool) or not isinstance(steps, numbers.Integral) or not 64 <= steps <= 1 << 22:
+        raise ValueError(f"{name} must be an integer in [64, 4194304], got {steps!r}")
+    return int(steps)
+
+
+def _measured(system, orbit: PeriodicOrbit, name: str, dof: str):
+    """(contact force, follower acceleration, the recording) over one revolution: rows 1..N (row 0
+    repeats row N)."""
+    r = orbit.record(system)
+    return np.asarray(r[f"{name}.force"])[1:], np.asarray(r[f"a.{dof}"])[1:], r
+
+
+def _change(fine: np.ndarray, coarse: np.ndarray) -> float:
+    """Largest change between two recordings of a channel on the coarse grid, relative to its peak."""
+    peak = float(np.max(np.abs(fine)))
+    if peak == 0.0:
+        return 0.0
+    return float(np.max(np.abs(fine[1::2] - coarse))) / peak
+
+
+def steady_response(system, *, contact: Optional[str] = None, accuracy: Optional[float] = None,
+                    steps_per_revolution: Optional[int] = None, guess: Optional[PeriodicOrbit] = None,
+                    multipliers: bool = True, fallback: Optional[str] = None, tolerance: float = 1e-9,
+                    harmonics: int = HARMONICS, channels: Sequence[str] = (), keep_orbit: bool = False,
+                    max_steps_per_revolution: int = MAX_STUDY_STEPS_PER_REVOLUTION,
+                    stop_at_loss: bool = False) -> Dict[str, Any]:
     """The periodic steady state of ``system`` at its own camshaft speed, measured on ``contact``.
 
+    **Accuracy.** The orbit is found with Newmark's average acceleration at ``steps_per_revolution``
+    (default 4096) and again at half the step, and so on, until the contact force and the follower's
+    acceleration of the finer orbit are within ``accuracy`` (default 1e-3) of their peaks: the estimate
+    is the largest change between the last two orbits divided by 3 (the method is second order). Each
+    finer orbit starts from the coarser one. The row says what it reached: ``accuracy`` (the estimate),
+    ``accuracy_target``, ``accuracy_reached`` (False when ``max_steps_per_revolution`` came first: the
+    row is then the finest orbit computed) and ``steps_per_revolution`` (of the orbit reported).
+    ``steps_per_revolution`` alone (no ``accuracy``): that step, its accuracy estimated from an orbit at
+    twice the step.
+
     Returns a flat dict (one table row): ``rpm``; the orbit's ``converged``, ``method``, ``revolutions``
-    (cost), ``iterations``, ``spectral_radius`` (nan without a monodromy at the orbit: ``multipliers``
-    False), ``instability``; ``min_force_N`` and the cam angle ``min_force_angle_deg`` where it occurs
-    (the margin against contact loss, and where the follower would leave first), ``max_force_N``,
-    ``contact_lost`` (any instant without contact), ``lost_fraction`` of the revolution and
-    ``first_loss_angle_deg``; ``max_abs_acceleration`` of the follower DOF and the rigid follower's
-    ``rigid_max_abs_acceleration`` (m/s^2 or rad/s^2); ``dwell_residual`` (the largest peak-to-peak
-    follower displacement over a dwell: the residual vibration, m or rad) with ``dwell_residual_at_deg``
-    (the dwell's start) and per dwell (``dwells``: start, end, peak-to-peak displacement and largest
-    |acceleration|); ``harmonics``: contact-force amplitude (N) of shaft orders 1..``harmonics``
-    (a list). ``keep_orbit`` adds the PeriodicOrbit as ``orbit``.
+    and ``steps`` (the cost: revolutions and time steps of every orbit computed), ``iterations``,
+    ``spectral_radius`` (nan without a monodromy at the orbit: ``multipliers`` False),
+    ``instability``; ``min_force_N`` and the cam angle ``min_force_angle_deg`` where it occurs (the
+    margin against contact loss, and where the follower would leave first), ``max_force_N``,
+    ``force_error_N`` (the accuracy estimate in N), ``contact_lost`` (any instant without contact),
+    ``lost_fraction`` of the revolution and ``first_loss_angle_deg``; ``max_abs_acceleration`` of the
+    follower DOF and the rigid follower's ``rigid_max_abs_acceleration`` (m/s^2 or rad/s^2);
+    ``dwell_residual`` (the largest peak-to-peak follower displacement over a dwell: the residual
+    vibration, m or rad) with ``dwell_residual_at_deg`` (the dwell's start) and per dwell (``dwells``:
+    start, end, peak-to-peak displacement and largest |acceleration|); ``harmonics``: contact-force
+    amplitude (N) of shaft orders 1..``harmonics`` (a list). ``channels``: any recorded channels of the
+    result (``"q.slide"``, ``"a.slide"``, ``"spring.force"``, ...) measured the same way, as
+    ``row["channels"][name]``: ``min``, ``min_angle_deg``, ``max``, ``dwell_residual`` (largest
+    peak-to-peak over a dwell) and ``dwell_residual_at_deg``. ``keep_orbit`` adds the PeriodicOrbit
+    as ``orbit``. ``stop_at_loss``: end the search at the first step whose response loses contact
+    without settling to a periodic state, after at most 12 shooting iterations and 60 transient
+    revolutions (a jump scan only needs to know that contact is lost).
     """
-    if not (isinstance(steps_per_revolution, int) and 64 <= steps_per_revolution <= 1 << 22):
-        raise ValueError(f"steps_per_revolution must be an integer in [64, 4194304], got {steps_per_revolution!r}")
+    if accuracy is None:
+        target = STUDY_ACCURACY if steps_per_revolution is None else None
+    else:
+        target = check_accuracy(accuracy)
+    start = _check_steps(STUDY_STEPS_PER_REVOLUTION if steps_per_revolution is None else steps_per_revolution,
+                         "steps_per_revolution")
+    finest = _check_steps(max_steps_per_revolution, "max_steps_per_revolution")
+    if finest < start:
+        raise ValueError(f"max_steps_per_revolution ({finest}) must be >= steps_per_revolution ({start})")
+    if isinstance(channels, str) or not all(isinstance(c, str) for c in channels):
+        raise ValueError(f"channels must be a list of channel names, got {channels!r}")
     c = contact_of(system, contact)
     period = system.period
-    orbit = periodic_steady_state(system, time_step=period / steps_per_revolution, guess=guess, multipliers=multipliers,
-                                  fallback=fallback, tolerance=tolerance, warmup_revolutions=0 if guess else 1)
-    r = orbit.record(system)
     name, dof = c["name"], c["dof"]
-    force = np.asarray(r[f"{name}.force"])[1:]  # one revolution: rows 1..N (row 0 repeats row N)
+    cost = {"revolutions": 0.0, "steps": 0}
+    # Knowing that contact is lost takes less search than the periodic state itself.
+    search = dict(max_shooting_iterations=12, transient_max_revolutions=60) if stop_at_loss else {}
+    if target is not None:
+        start = _fox_goodwin_steps(system, start, finest)
+    scheme = study_scheme(system, start if target is not None else start // 2)
+
+    def orbit_at(steps: int, seed: Optional[PeriodicOrbit], with_multipliers: bool) -> PeriodicOrbit:
+        o = periodic_steady_state(system, time_step=period / steps, guess=seed, multipliers=with_multipliers,
+                                  fallback=fallback, tolerance=tolerance, warmup_revolutions=0 if seed else 1,
+                                  gamma=scheme["gamma"], beta=scheme["beta"], **search)
+        cost["revolutions"] += o.revolutions + 1.0  # + the recorded revolution
+        cost["steps"] += int(round((o.revolutions + 1.0) * steps))
+        return o
+
+    if target is None:  # a fixed step: its accuracy from the orbit at twice the step
+        coarse_steps, steps = start // 2, start
+        if coarse_steps * 2 != start:
+            raise ValueError(f"steps_per_revolution must be even to estimate its accuracy, got {start}")
+        coarse = orbit_at(coarse_steps, guess, False)
+        orbit = orbit_at(steps, coarse, multipliers)
+    else:
+        steps = start
+        coarse = None
+        orbit = orbit_at(steps, guess, False)
+    force, acc, rec = _measured(system, orbit, name, dof)
+    estimate, previous = math.inf, math.inf
+    while True:
+        if coarse is not None:
+            f_c, a_c, _ = _measured(system, coarse, name, dof)
+            previous, estimate = estimate, max(_change(force, f_c), _change(acc, a_c)) / _RICHARDSON
+        if target is None or estimate <= target or 2 * steps > finest:
+            break
+        if stop_at_loss and not orbit.converged and float(np.min(force)) <= 0.0:
+            break
+        # Refining no longer pays: the change did not halve between converged orbits (impacts), or the
+        # transient route settles no better at a finer step (no periodic response: chatter).
+        settled = orbit.converged and (coarse is None or coarse.converged)
+        if settled and estimate > 0.5 * previous:
+            break
+        if not orbit.converged and coarse is not None and not coarse.converged and \
+                not orbit.mismatch <= 0.25 * coarse.mismatch:
+            break
+        coarse, steps = orbit, 2 * steps
+        orbit = orbit_at(steps, coarse, False)
+        force, acc, rec = _measured(system, orbit, name, dof)
+    if multipliers and not orbit.monodromy_at_orbit and orbit.method == "shooting":
+        orbit = orbit_at(steps, orbit, True)  # the multipliers of the orbit reported (2n revolutions)
+    reached = target is None or estimate <= target
+    return _row(system, c, orbit, rec, force, acc, harmonics, channels, keep_orbit, cost,
+                {"accuracy": estimate, "accuracy_target": target if target is not None else math.nan,
+                 "accuracy_reached": reached, "steps_per_revolution": steps, "scheme": scheme["name"]})
+
+
+def _row(system, c, orbit, r, force, a, harmonics, channels, keep_orbit, cost, accuracy) -> Dict[str, Any]:
+    name = c["name"]
     theta = np.mod(np.asarray(r["theta"])[1:], 2 * math.pi)
     touching = np.asarray(r[f"{name}.in_contact"])[1:] > 0.5
-    q = np.asarray(r[f"q.{dof}"])[1:]
-    a = np.asarray(r[f"a.{dof}"])[1:]
+    q = np.asarray(r[f"q.{c['dof']}"])[1:]
     k = int(np.argmin(force))
     lost = ~touching
     row: Dict[str, Any] = {
         "rpm": float(system.camshaft_speed_rpm), "converged": orbit.converged, "method": orbit.method,
-        "revolutions": orbit.revolutions, "iterations": orbit.iterations,
+        "revolutions": cost["revolutions"], "steps": cost["steps"], "iterations": orbit.iterations,
         "spectral_radius": orbit.spectral_radius if orbit.monodromy_at_orbit else math.nan,
         "instability": orbit.instability() if orbit.monodromy_at_orbit else "unknown",
         "min_force_N": float(force[k]), "min_force_angle_deg": math.degrees(float(theta[k])),
-        "max_force_N": float(force.max()), "contact_lost": bool(lost.any()),
-        "lost_fraction": float(lost.mean()),
+        "max_force_N": float(force.max()),
+        "force_error_N": accuracy["accuracy"] * float(np.max(np.abs(force))),
+        "contact_lost": bool(lost.any()), "lost_fraction": float(lost.mean()),
         "first_loss_angle_deg": math.degrees(float(theta[np.argmax(lost)])) if lost.any() else math.nan,
         "max_abs_acceleration": float(np.abs(a).max()),
         "rigid_max_abs_acceleration": float(system.omega ** 2 * np.abs(
             np.asarray(c["program"].evaluate(np.linspace(0, 2 * math.pi, 4097))["d2h"])).max()),
+        **accuracy,
     }
     dwells = []
     for seg in _dwells(c["program"]):
@@ -96,6 +247,8 @@ def steady_response(system, *, contact: Optional[str] = None, steps_per_revoluti
     row["dwell_residual"] = worst["peak_to_peak"] if worst else 0.0
     row["dwell_residual_at_deg"] = worst["start_deg"] if worst else math.nan
     row["dwells"] = dwells
+    if channels:
+        row["channels"] = {ch: _channel_measures(r, ch, theta, c["program"]) for ch in channels}
     spectrum = np.abs(np.fft.rfft(force)) * 2.0 / force.size
     row["harmonics"] = [float(x) for x in spectrum[1:harmonics + 1]]
     if keep_orbit:
@@ -103,4 +256,23 @@ def steady_response(system, *, contact: Optional[str] = None, steps_per_revoluti
     return row
 
 
-__all__ = ["STUDY_STEPS_PER_REVOLUTION", "contact_of", "steady_response"]
+def _channel_measures(r, channel: str, theta: np.ndarray, program) -> Dict[str, Any]:
+    try:
+        x = np.asarray(r[channel], dtype=float)
+    except KeyError:
+        raise ValueError(f"channels: no channel {channel!r} in the result; recorded: {', '.join(r.channels)}") from None
+    if x.ndim != 1:
+        raise ValueError(f"channels: {channel!r} is not a single channel (give e.g. 'q.<dof>')")
+    x = x[1:]
+    k = int(np.argmin(x))
+    worst, at = 0.0, math.nan
+    for seg in _dwells(program):
+        inside = (theta >= seg.theta_start) & (theta < seg.theta_end)
+        if inside.sum() > 1 and float(np.ptp(x[inside])) > worst:
+            worst, at = float(np.ptp(x[inside])), math.degrees(seg.theta_start)
+    return {"min": float(x[k]), "min_angle_deg": math.degrees(float(theta[k])), "max": float(x.max()),
+            "dwell_residual": worst, "dwell_residual_at_deg": at}
+
+
+__all__ = ["HARMONICS", "MAX_STUDY_STEPS_PER_REVOLUTION", "STUDY_ACCURACY", "STUDY_STEPS_PER_REVOLUTION",
+           "check_accuracy", "contact_of", "steady_response"]

@@ -3,8 +3,9 @@
 
     [sweep]
     rpm = [500, 750, 1000]            # or rpm_from / rpm_to / count (evenly spaced)
-    jump = [1000, 2000]               # optional: find the jump speed in this bracket (rpm)
-    steps_per_revolution = 4096       # optional
+    jump = [1000, 2000]               # optional: the first contact loss in this speed range (rpm)
+    accuracy = 1e-3                   # optional: of force and acceleration, relative to their peaks
+    steps_per_revolution = 16384      # optional: a fixed step instead of the accuracy
     contact = "cam"                   # optional: the contact to measure (default: the first)
 
     [montecarlo]
@@ -33,7 +34,7 @@ import re
 from typing import Any, Dict, Optional, Sequence
 
 from . import _core
-from .response import STUDY_STEPS_PER_REVOLUTION
+from .response import check_accuracy
 from .speed import _MAX_RPM, _MIN_RPM
 from .tolerance import DISTRIBUTIONS, ROLLER_TOLERANCES, _check_ranges
 
@@ -146,7 +147,8 @@ def sweep_settings(table: Dict[str, Any], *, rpm=None, jump=None, path=None, con
     ``contact`` against."""
     if not isinstance(table, dict):
         raise ValueError(f"{_where(path, 'sweep')}: must be a table, got {_a(table)}")
-    _unknown(table, ("rpm", "rpm_from", "rpm_to", "count", "jump", "steps_per_revolution", "contact"), path, "sweep")
+    _unknown(table, ("rpm", "rpm_from", "rpm_to", "count", "jump", "accuracy", "steps_per_revolution", "contact"), path,
+             "sweep")
     if rpm:
         speeds = [_speed(float(r), "--rpm", None) for r in rpm]
     elif "rpm" in table:
@@ -174,8 +176,20 @@ def sweep_settings(table: Dict[str, Any], *, rpm=None, jump=None, path=None, con
             raise ValueError(f"{_where(where, key)}: the low speed {bracket[0]:g} must be below the high speed "
                              f"{bracket[1]:g} rpm")
     contact = _contact(table, "sweep.contact", path, contacts)
-    return {"rpm": speeds, "jump": bracket, "contact": contact,
-            "steps_per_revolution": _int(table, "steps_per_revolution", STUDY_STEPS_PER_REVOLUTION, 64, 1 << 22, path, "sweep")}
+    steps = _int(table, "steps_per_revolution", None, 64, 1 << 22, path, "sweep") if "steps_per_revolution" in table else None
+    return {"rpm": speeds, "jump": bracket, "contact": contact, "accuracy": _accuracy(table, path, "sweep"),
+            "steps_per_revolution": steps}
+
+
+def _accuracy(table, path, prefix) -> Optional[float]:
+    """The table's study accuracy (None: the default, or the fixed steps_per_revolution)."""
+    accuracy = table.get("accuracy")
+    if accuracy is None:
+        return None
+    try:
+        return check_accuracy(accuracy, "accuracy")
+    except ValueError as e:
+        raise ValueError(f"{_where(path, prefix + '.accuracy')}: {str(e).removeprefix('accuracy ')}") from None
 
 
 def montecarlo_settings(table: Optional[Dict[str, Any]], *, cases=None, seed=None, rpm=None, path=None, build=None,
@@ -192,7 +206,8 @@ def montecarlo_settings(table: Optional[Dict[str, Any]], *, cases=None, seed=Non
                          "(docs/studies.md)")
     if not isinstance(table, dict):
         raise ValueError(f"{_where(path, 'montecarlo')}: must be a table, got {_a(table)}")
-    _unknown(table, ("cases", "seed", "rpm", "roller_tolerance", "steps_per_revolution", "contact", "tolerance"), path,
+    _unknown(table, ("cases", "seed", "rpm", "roller_tolerance", "accuracy", "steps_per_revolution", "contact",
+                     "tolerance"), path,
              "montecarlo")
     # The speed: --rpm (named so) over the table's rpm; checked before any model is built.
     if rpm is not None:
@@ -233,8 +248,9 @@ def montecarlo_settings(table: Optional[Dict[str, Any]], *, cases=None, seed=Non
     contact = _contact(table, "montecarlo.contact", path, contacts)
     out = {"tolerances": tolerances, "cases": cases, "seed": seed, "contact": contact, "rpm": speed,
            "roller_tolerance": mode,
-           "steps_per_revolution": _int(table, "steps_per_revolution", STUDY_STEPS_PER_REVOLUTION, 64, 1 << 22, path,
-                                        "montecarlo")}
+           "accuracy": _accuracy(table, path, "montecarlo"),
+           "steps_per_revolution": _int(table, "steps_per_revolution", None, 64, 1 << 22, path, "montecarlo")
+           if "steps_per_revolution" in table else None}
     if build is not None:
         out["build"] = build
     return out

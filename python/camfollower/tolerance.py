@@ -44,11 +44,12 @@ import numpy as np
 
 from . import _core, _text
 from .executors import check_executor, run_cases
-from .response import STUDY_STEPS_PER_REVOLUTION, steady_response
+from .response import check_accuracy, steady_response
 
 #: Metrics of each case kept in the table (from camfollower.response.steady_response).
 METRICS = ("min_force_N", "min_force_angle_deg", "max_force_N", "contact_lost", "lost_fraction",
-           "max_abs_acceleration", "dwell_residual", "converged", "revolutions", "iterations")
+           "max_abs_acceleration", "dwell_residual", "converged", "revolutions", "iterations", "accuracy",
+           "steps_per_revolution")
 
 
 def _finite(name: str, v) -> float:
@@ -705,13 +706,16 @@ def _check_ranges(build, tolerances, nominal) -> None:
 
 
 def monte_carlo(build: Callable[[Mapping[str, float]], Any], tolerances: Mapping[str, Any], *, cases: int = 100,
-                seed: int = 0, contact: Optional[str] = None, steps_per_revolution: int = STUDY_STEPS_PER_REVOLUTION,
-                executor=None, workers: Optional[int] = None, progress: bool = True) -> MonteCarloResult:
+                seed: int = 0, contact: Optional[str] = None, accuracy: Optional[float] = None,
+                steps_per_revolution: Optional[int] = None, executor=None, workers: Optional[int] = None,
+                progress: bool = True) -> MonteCarloResult:
     """``cases`` random variants of the model ``build`` describes (module docstring), each solved to
     its periodic steady state and measured (:data:`METRICS`), on ``executor`` (camfollower.executors).
 
     ``tolerances``: {parameter: Normal | Uniform | TruncatedNormal}. The nominal model is solved first
-    first (its row is ``nominal``). A case that fails (non-periodic response after the transient
+    (its row is ``nominal``). Each case at ``accuracy`` (steady_response: default 1e-3 of the peak force
+    and acceleration; ``steps_per_revolution`` to fix the step instead); each row says the ``accuracy``
+    it reached. A case that fails (non-periodic response after the transient
     fallback, a model error, a crashed worker) is kept as a row with ``ok`` False, its values, seed and
     the error.
     """
@@ -727,9 +731,11 @@ def monte_carlo(build: Callable[[Mapping[str, float]], Any], tolerances: Mapping
     check_executor(executor, workers)  # before the nominal model is solved
     nominal = {name: build.nominal(name) for name in tolerances}
     _check_ranges(build, tolerances, nominal)
-    options = dict(contact=contact, steps_per_revolution=steps_per_revolution, fallback="transient", multipliers=False)
-    nominal_row = steady_response(build({}), contact=contact, steps_per_revolution=steps_per_revolution,
-                                  fallback="transient")
+    if accuracy is not None:
+        check_accuracy(accuracy)
+    options = dict(contact=contact, accuracy=accuracy, steps_per_revolution=steps_per_revolution, fallback="transient",
+                   multipliers=False)
+    nominal_row = steady_response(build({}), **{**options, "multipliers": True})
     values = [_draw(tolerances, nominal, seed, i) for i in range(cases)]
     fn = functools.partial(_mc_case, build, options)
     outcomes = run_cases(fn, values, executor=executor, workers=workers, progress=progress, desc="Monte-Carlo")

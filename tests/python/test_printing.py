@@ -29,7 +29,7 @@ def test_jump_speed_prints_the_answer_in_one_short_line():
     text = repr(j)
     assert len(text) < 200 and "harmonics" not in text and not NOISE.search(text)
     assert text == ("JumpSpeed(rpm=1329.1, angle_deg=121.1, bracket=(1328.1, 1329.1), min_force_below_N=0.4, "
-                    "evaluations=14)")
+                    "windows=0, warnings=0, evaluations=14)")
     assert str(j) == ("jump speed 1329.1 rpm (bracket 1328.1 to 1329.1 rpm): the follower leaves the cam at 121.1 deg; "
                       "min contact force just below 0.4 N; 14 evaluations")
     assert j.evaluations == evaluations  # the data stay whole

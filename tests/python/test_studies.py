@@ -131,8 +131,6 @@ def test_jump_speed_of_the_paper_mechanism_against_transients_and_the_rigid_foll
     # equally close to leaving at both decelerations; the flexible one leaves at one of them.
     critical = np.degrees(th[ratio <= 1.0001 * ratio[k]])
     assert np.min(np.abs(critical - j.angle_deg)) < 10
-    with pytest.raises(ValueError, match="does not bracket the jump.*kept at 1000"):
-        speed.jump_speed(m, (500, 1000))
     with pytest.raises(ValueError, match="two increasing speeds"):
         speed.jump_speed(m, (2000, 1000))
 
