@@ -668,7 +668,8 @@ def plot_waterfall(sweep: Dict[str, Any], *, labels: int = 12, ax=None):
 
 def plot_margin(rows: Sequence[Dict[str, Any]], jump: Optional[JumpSpeed] = None, ax=None):
     """The margin curve: minimum contact force against speed, contact loss marked, the jump speed
-    (if given) as a vertical line inside the axes. Returns the figure."""
+    (if given: the first loss) as a vertical line inside the axes and its loss windows shaded. Returns
+    the figure."""
     import matplotlib.pyplot as plt
 
     fig = ax.figure if ax is not None else plt.figure(figsize=(7, 4.5))
@@ -682,7 +683,11 @@ def plot_margin(rows: Sequence[Dict[str, Any]], jump: Optional[JumpSpeed] = None
         ax.plot(rpm[lost], f[lost], "x", color="tab:red", ms=9, label="contact lost")
     speeds = list(rpm)
     if jump is not None:
-        ax.axvline(jump.rpm, color="tab:red", ls="--", label=f"jump {jump.rpm:.0f} rpm at {jump.angle_deg:.0f} deg")
+        for i, w in enumerate(jump.windows):
+            end = w.end_rpm if math.isfinite(w.end_rpm) else max(speeds + [w.start_rpm])
+            ax.axvspan(w.start_rpm, max(end, w.start_rpm), color="tab:red", alpha=0.12, lw=0,
+                       label="contact lost (windows)" if i == 0 else None)
+        ax.axvline(jump.rpm, color="tab:red", ls="--", label=f"first loss {jump.rpm:.0f} rpm at {jump.angle_deg:.0f} deg")
         speeds.append(jump.rpm)
     if speeds:  # the jump line off the last speed stays inside, clear of the frame
         lo, hi = min(speeds), max(speeds)
