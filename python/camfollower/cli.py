@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from . import _files, _text
-from .config import load_config
+from .config import ForceClosureWarning, load_config
 from .executors import _check_scheduler
 from .response import STUDY_ACCURACY
 from .speed import _MAX_RPM, _MIN_RPM
@@ -37,6 +37,22 @@ def _write(config: str, path: Path, content: bytes) -> None:
 
 def _save(config: str, fig, path: Path) -> None:
     _files.save_figure(fig, path, protect=[config])
+
+
+def _load(config: str):
+    """load_config, its force-closure warnings left to _closure (printed as the commands' own lines)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ForceClosureWarning)
+        return load_config(config)
+
+
+def _closure(case, rpm=None) -> list:
+    """The case's force-closure warnings at `rpm` (default: the config's speed), each printed on stderr
+    as ``camfollower: warning: ...``; the summary's ``warnings`` list (docs/config.md, "Force closure")."""
+    found = list(case.warnings) if rpm is None else list(case.force_closure(rpm)["warnings"])
+    for w in found:
+        print(f"camfollower: warning: {_message(w)}", file=sys.stderr)
+    return found
 
 
 def _folder(config: str, out: str) -> Path:
@@ -108,7 +124,8 @@ def figures(config: str, out: str) -> dict:
     matplotlib.use("Agg")
     from . import plot
 
-    case = load_config(config)
+    case = _load(config)
+    closure = _closure(case)
     folder = _folder(config, out)
     m = case.mechanism
     rpm = m.camshaft_speed_rpm
@@ -153,6 +170,7 @@ def figures(config: str, out: str) -> dict:
             "min_convex_surface_radius_mm": float(1e3 * follower.min_surface_radius(program)[1]),
         }
     summary["files"] = written + ["summary.json"]
+    summary["warnings"] = closure
     _write(config, folder / "summary.json", _files.json_text(summary).encode())
     return summary
 
@@ -170,7 +188,8 @@ def camshaft(config: str, out: str, rpm=None, engine_rpm=None, revolutions: floa
     # Checked as given, before the halving: a bad engine speed is named as the engine speed.
     speeds = _speeds(rpm, "--rpm") if rpm else [0.5 * e for e in _speeds(engine_rpm, "--engine-rpm", engine=True)] \
         if engine_rpm else None
-    case = load_config(config)
+    case = _load(config)
+    closure = _closure(case, max(speeds) if speeds else None)
     folder = _folder(config, out)
     summaries, results = camshaft_study(case, speeds, revolutions=revolutions)
     written = []
@@ -192,6 +211,7 @@ def camshaft(config: str, out: str, rpm=None, engine_rpm=None, revolutions: floa
         _save(config, plot_traces(m, r), folder / file)
         written.append(file)
     summary = {"config": str(case.path), "speeds": summaries, "files": written + ["summary.json"]}
+    summary["warnings"] = closure
     _write(config, folder / "summary.json", _files.json_text(summary).encode())
     return summary
 
@@ -224,9 +244,10 @@ def sweep(config: str, out: str, *, rpm=None, jump=None, executor=None, workers=
     from . import speed as sp
     from .studies import sweep_settings
 
-    case = load_config(config)
+    case = _load(config)
     st = sweep_settings(case.data.get("sweep", {}), rpm=rpm, jump=jump, path=case.path,
                         contacts=case.mechanism.contact_names)
+    closure = _closure(case, max(st["rpm"]))
     folder = _folder(config, out)
     m = case.mechanism
     accuracy = dict(accuracy=st["accuracy"], steps_per_revolution=st["steps_per_revolution"])
@@ -263,6 +284,7 @@ def sweep(config: str, out: str, *, rpm=None, jump=None, executor=None, workers=
                "files": ["sweep.csv", "spectrum.csv", "margin.png", "waterfall.png", "summary.json"]}
     if jump_result is not None:
         summary["jump"] = jump_result.summary()
+    summary["warnings"] = closure
     _write(config, folder / "summary.json", _files.json_text(summary).encode())
     return summary
 
@@ -279,13 +301,14 @@ def montecarlo(config: str, out: str, *, cases=None, seed=None, rpm=None, execut
     from . import tolerance as tol
     from .studies import montecarlo_settings
 
-    case = load_config(config)
+    case = _load(config)
     data = {k: v for k, v in case.data.items() if k not in ("sweep", "montecarlo")}
     # Given the model, the table's check sets its speed and roller tolerance and covers each tolerance's
     # value and range, located at its block.
     st = montecarlo_settings(case.data.get("montecarlo"), cases=cases, seed=seed, rpm=rpm, path=case.path,
                              build=tol.ConfigCase(data, case.path.parent if case.path else "."),
                              contacts=case.mechanism.contact_names)
+    closure = _closure(case, st["rpm"])  # at the study's speed
     folder = _folder(config, out)
     result = tol.monte_carlo(st["build"], st["tolerances"], cases=st["cases"], seed=st["seed"], contact=st["contact"],
                              accuracy=st["accuracy"], steps_per_revolution=st["steps_per_revolution"],
@@ -308,6 +331,7 @@ def montecarlo(config: str, out: str, *, cases=None, seed=None, rpm=None, execut
         files.append("histogram.png")
     summary["failed_cases"] = [{k: r[k] for k in ["case", "seed"] + result.parameters + ["error"]} for r in result.failed()]
     summary["files"] = files + ["summary.json"]
+    summary["warnings"] = closure
     _write(config, folder / "summary.json", _files.json_text(summary).encode())
     return summary
 

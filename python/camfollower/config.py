@@ -12,20 +12,54 @@ same files with the same rules, so a config means the same thing in both.
 reads the same in both, byte order mark, nesting limits and messages included; ``case.data`` is the
 parsed table as a dict (tables as dicts in the file's order, arrays as lists, dates as ``datetime``
 objects), to inspect or change and pass to ``config_from_dict``. Errors are ``ValueError`` naming the
-file, the line and the key.
+file, the line and the key; a bare-number length far off the scale of its contact (``h = 25`` for a
+25 mm lift) is one of them, with a hint (docs/config.md, "Implausible lengths").
+
+A mechanism whose follower is not held on its cam (no return spring, or a spring too weak for the
+speed) is built, but ``load_config`` warns (:class:`ForceClosureWarning`, one per contact; the
+messages are also in ``case.warnings``): see :func:`force_closure` and docs/config.md, "Force closure".
 """
 
 from __future__ import annotations
 
 import os
 import stat
+import warnings as _warnings
 from dataclasses import dataclass, field
+from functools import cached_property
 from pathlib import Path
-from typing import Any, Dict, Optional
+from typing import Any, Dict, Optional, Tuple
 
 from . import _core
 
 _MAX_BYTES = 64 << 20
+
+
+class ForceClosureWarning(UserWarning):
+    """A contact whose follower is not held on its cam: nothing presses it on at rest, or, at the
+    camshaft's speed, the rigid check's contact force falls below zero (docs/config.md, "Force closure")."""
+
+
+def force_closure(mechanism, rpm: Optional[float] = None) -> Dict[str, Any]:
+    """The force-closure checks of a mechanism (a ``Mechanism``, its ``MechanismBuilder`` or a
+    :class:`Config`) at camshaft speed `rpm` (default: its own), over one revolution.
+
+    Returns a dict: ``rpm``, ``angles`` (grid points per revolution), ``warnings`` (one message per
+    contact that is not force-closed, naming the contact, the cam angles and the force) and
+    ``contacts``: per contact ``contact``, ``static_min_force_N`` and ``static_min_angle_deg`` (the
+    smallest contact force at rest), ``static_open_deg`` (cam-angle intervals where it is <= 0),
+    ``rigid_min_force_N``, ``rigid_min_angle_deg`` and ``rigid_loss_deg`` (the rigid check at `rpm`),
+    ``rigid_limit_rpm`` (the lowest speed at which the rigid check loses the contact; 0 when nothing
+    presses it at rest, ``inf`` when no speed does). Angles are each contact's cam angle in degrees.
+    """
+    if isinstance(mechanism, Config):
+        mechanism = mechanism.builder
+    builder = mechanism.builder() if hasattr(mechanism, "with_camshaft_speed_rpm") else mechanism
+    if rpm is not None:
+        rpm = float(rpm)
+        if not (rpm == rpm and rpm > 0.0):
+            raise ValueError(f"rpm must be a camshaft speed > 0 rpm, got {rpm}")
+    return _core._force_closure(builder, 0.0 if rpm is None else rpm)
 
 
 @dataclass(frozen=True)
@@ -36,7 +70,9 @@ class Config:
     (``MechanismBuilder``); ``mechanism``: the built, immutable ``Mechanism``; ``solver``: keyword
     arguments of :func:`camfollower.simulate` (``time_step`` resolved from ``steps_per_revolution``);
     ``output``: the ``[output]`` table (``file``, ``decimation``, ``record_last_revolutions``);
-    ``data``: the parsed TOML as a dict; ``path``: the file (None for a dict).
+    ``data``: the parsed TOML as a dict; ``path``: the file (None for a dict); ``warnings``: the
+    force-closure warnings at the config's speed (computed on first use; ``load_config`` issues them
+    as :class:`ForceClosureWarning`, ``config_from_dict`` only keeps them here).
     """
 
     path: Optional[Path]
@@ -64,6 +100,15 @@ class Config:
         from .simulation import simulate
 
         return simulate(self.mechanism, **{**self.simulate_kwargs(), **overrides})
+
+    def force_closure(self, rpm: Optional[float] = None) -> Dict[str, Any]:
+        """:func:`force_closure` of this case's mechanism (at `rpm`, default the config's speed)."""
+        return force_closure(self.builder, rpm)
+
+    @cached_property
+    def warnings(self) -> Tuple[str, ...]:
+        """The force-closure warnings at the config's speed (docs/config.md, "Force closure")."""
+        return tuple(self.force_closure()["warnings"])
 
 
 def _case(raw: dict, data: dict, path: Optional[Path]) -> Config:
@@ -100,7 +145,10 @@ def load_config(path: os.PathLike | str) -> Config:
     # The bytes go to the library's reader as they are: it checks the UTF-8, parses and builds, with
     # the command line's messages (file:line:key) and limits.
     data, raw = _core._read_config(p.read_bytes(), str(p), str(p.parent))
-    return _case(raw, data, p)
+    case = _case(raw, data, p)
+    for message in case.warnings:
+        _warnings.warn(f"{p}: {message}", ForceClosureWarning, stacklevel=2)
+    return case
 
 
 def config_from_dict(data: Dict[str, Any], base_dir: os.PathLike | str = ".") -> Config:
@@ -115,4 +163,4 @@ def config_from_dict(data: Dict[str, Any], base_dir: os.PathLike | str = ".") ->
     return _case(raw, data, None)
 
 
-__all__ = ["Config", "load_config", "config_from_dict"]
+__all__ = ["Config", "ForceClosureWarning", "config_from_dict", "force_closure", "load_config"]

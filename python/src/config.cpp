@@ -7,12 +7,14 @@
 // shared sub-dicts that would expand to billions of values, are refused at once.
 #include <algorithm>
 #include <climits>
+#include <cmath>
 #include <unordered_map>
 
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
 #include "config/case_from_table.hpp"
+#include "config/force_closure.hpp"
 #include "config/section.hpp"
 
 namespace camfollower::python {
@@ -272,6 +274,42 @@ py::dict to_python(const config::CaseConfig& c) {
     return d;
 }
 
+// The force-closure checks (config/force_closure.hpp) as a dict; angles in degrees of each cam.
+py::dict force_closure(const MechanismBuilder& b, double rpm) {
+    const config::ForceClosure r = [&] {
+        py::gil_scoped_release release;
+        return config::check_force_closure(b, rpm);
+    }();
+    const auto deg = [](double rad) {
+        const double d = std::fmod(radians_to_degrees(rad), 360.0);
+        return d < 0.0 ? d + 360.0 : d;
+    };
+    const auto intervals = [&](const std::vector<std::pair<double, double>>& v) {
+        py::list out;
+        for (const auto& [a, z] : v) out.append(py::make_tuple(deg(a), deg(z)));
+        return out;
+    };
+    py::list contacts;
+    for (const config::ContactClosure& c : r.contacts) {
+        py::dict d;
+        d["contact"] = c.contact;
+        d["static_min_force_N"] = c.static_min_force;
+        d["static_min_angle_deg"] = deg(c.static_min_angle);
+        d["static_open_deg"] = intervals(c.static_open);
+        d["rigid_min_force_N"] = c.rigid_min_force;
+        d["rigid_min_angle_deg"] = deg(c.rigid_min_angle);
+        d["rigid_loss_deg"] = intervals(c.rigid_loss);
+        d["rigid_limit_rpm"] = c.rigid_limit_rpm;
+        contacts.append(d);
+    }
+    py::dict out;
+    out["rpm"] = r.rpm;
+    out["angles"] = r.angles;
+    out["contacts"] = contacts;
+    out["warnings"] = r.warnings;
+    return out;
+}
+
 }  // namespace
 
 void bind_config(py::module_& m) {
@@ -288,6 +326,7 @@ void bind_config(py::module_& m) {
             return ToPython(origin).convert(config::parse_toml(std::string(text), origin));
         },
         py::arg("text"), py::arg("origin"));
+    m.def("_force_closure", &force_closure, py::arg("builder"), py::arg("rpm") = 0.0);
     m.def("_toml_line", [](const py::bytes& text, const py::list& path) { return toml_line(std::string(text), path); },
           py::arg("text"), py::arg("path"));
     m.def(

@@ -3,14 +3,17 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
 #include <memory>
 #include <sstream>
+#include <type_traits>
 
 #include "camfollower/camfollower.hpp"
 #include "case_from_table.hpp"
+#include "lengths.hpp"
 #include "section.hpp"
 #include "units.hpp"
 #include "camfollower/contact/line_contact.hpp"
@@ -41,6 +44,16 @@ decltype(auto) located(const Section& keys, const Section& s, F&& f) {
 template <class F>
 decltype(auto) located(const Section& s, F&& f) {
     return located(s, s, std::forward<F>(f));
+}
+
+// A length as written at `key` (value in m): bare when the key holds a number without a unit
+// (lengths.hpp checks those against the contact they sit in).
+Length written(const Section& s, std::string_view key, double value) {
+    return {s.where(key), value, s.has(key) && s.unit(key).empty(), {}};
+}
+Length written(const Section& s, std::string_view key, std::size_t index, double value) {
+    const std::vector<std::string> units = s.units(key);
+    return {detail::concat(s.where(key), "[", index, "]"), value, index < units.size() && units[index].empty(), {}};
 }
 
 
@@ -91,9 +104,11 @@ const char* dimension_name(LiftDimension d) {
     return d == LiftDimension::angle ? "an arm angle (rad, deg)" : d == LiftDimension::length ? "a length (m, mm, um, inch)" : "unstated";
 }
 
-// Records the dimension of each lift value read and refuses a program that mixes them.
+// Records the dimension of each lift value read and refuses a program that mixes them; keeps the lift
+// levels as written (checked against the follower's base radius once a contact uses the program).
 struct LiftUnits {
     LiftDimension dimension = LiftDimension::unstated;
+    std::vector<Length> levels;
     void note(const Section& s, std::string_view key, const std::string& unit) {
         const LiftDimension d = dimension_of(unit);
         if (d == LiftDimension::unstated) return;
@@ -176,6 +191,7 @@ Segment read_segment(const Section& s, double start, double level, const std::st
         if (law == "polynomial") {
             lift.note(s, "h", s.unit("h"));
             std::vector<double> d0{level}, d1{s.quantity("h", "lift")};
+            lift.levels.push_back(written(s, "h", d1[0]));
             const std::vector<double> zero{0.0, 0.0};
             for (double v : s.has("start_derivatives") ? s.quantities("start_derivatives", "-") : zero) d0.push_back(v);
             for (double v : s.has("end_derivatives") ? s.quantities("end_derivatives", "-") : zero) d1.push_back(v);
@@ -183,7 +199,10 @@ Segment read_segment(const Section& s, double start, double level, const std::st
             if (s.has("interior_theta") || s.has("interior_h")) {
                 const std::vector<double> th = s.quantities("interior_theta", "rad"), hh = s.quantities("interior_h", "lift");
                 if (th.size() != hh.size()) s.fail("interior_h", "interior_theta and interior_h must have the same length");
-                for (std::size_t i = 0; i < th.size(); ++i) interior.emplace_back(th[i], hh[i]);
+                for (std::size_t i = 0; i < th.size(); ++i) {
+                    interior.emplace_back(th[i], hh[i]);
+                    lift.levels.push_back(written(s, "interior_h", i, hh[i]));
+                }
             }
             Segment seg = Segment::polynomial(start, end, d0, d1, interior);
             s.finish({"law", "end", "h", "start_derivatives", "end_derivatives", "interior_theta", "interior_h"});
@@ -192,23 +211,32 @@ Segment read_segment(const Section& s, double start, double level, const std::st
         const MotionLaw m = named_law(s, law);
         lift.note(s, "h", s.unit("h"));
         const double h = m.is_dwell() ? s.quantity("h", "lift", level) : s.quantity("h", "lift");
+        if (s.has("h")) lift.levels.push_back(written(s, "h", h));
         s.finish({"law", "end", "h", "b", "c", "d"});
         return Segment{m, start, end, level, h};
     });
 }
 
 
+// A program's lengths as written: lift levels, and its profile errors' amplitudes and depths.
+struct ProgramLengths {
+    std::vector<Length> levels;
+    std::vector<std::pair<Length, const char*>> errors;
+};
+
 // The cam's manufacturing error on a program's lift: waviness orders and dents, summed.
-ProfileError read_profile_error(const Section& s) {
+ProfileError read_profile_error(const Section& s, ProgramLengths& lengths) {
     ProfileError e;
     for (const Section& w : s.tables("waviness")) {
         const double amplitude = w.quantity("amplitude", "m"), phase = w.quantity("phase", "rad", 0.0);
+        lengths.errors.emplace_back(written(w, "amplitude", amplitude), "the waviness amplitude");
         const long long order = w.integer("order", 0, 1, 100000);
         w.finish({"amplitude", "order", "phase"});
         located(w, [&] { e = e + ProfileError::waviness(amplitude, int(order), phase); });
     }
     for (const Section& d : s.tables("dent")) {
         const double centre = d.quantity("centre", "rad"), width = d.quantity("width", "rad"), depth = d.quantity("depth", "m");
+        lengths.errors.emplace_back(written(d, "depth", depth), "the dent depth");
         d.finish({"centre", "width", "depth"});
         located(d, [&] { e = e + ProfileError::dent(centre, width, depth); });
     }
@@ -219,6 +247,7 @@ ProfileError read_profile_error(const Section& s) {
 struct NamedProgram {
     MotionProgram program;
     LiftDimension dimension;
+    ProgramLengths lengths;
 };
 
 NamedProgram read_program(const Section& s, const std::string& base_dir) {
@@ -235,6 +264,7 @@ NamedProgram read_program(const Section& s, const std::string& base_dir) {
         std::vector<Segment> segments;
         lift.note(s, "start_h", s.unit("start_h"));
         double start = 0.0, level = s.quantity("start_h", "lift", 0.0);
+        if (s.has("start_h")) lift.levels.push_back(written(s, "start_h", level));
         for (const Section& seg : s.tables("segments")) {
             segments.push_back(read_segment(seg, start, level, base_dir, lift));
             start = segments.back().theta_end, level = segments.back().h_end;
@@ -253,12 +283,13 @@ NamedProgram read_program(const Section& s, const std::string& base_dir) {
             s.fail("continuity", e.what());
         }
     }
+    ProgramLengths lengths{std::move(lift.levels), {}};
     if (const std::optional<Section> error = s.table("error")) {
-        const ProfileError e = read_profile_error(*error);
+        const ProfileError e = read_profile_error(*error, lengths);
         located(*error, [&] { program = program.with_profile_error(e); });
     }
     s.finish({"segments", "start_h", "file", "theta", "h", "theta_unit", "h_unit", "degree", "smoothing", "continuity", "error"});
-    return {std::move(program), lift.dimension};
+    return {std::move(program), lift.dimension, std::move(lengths)};
 }
 
 // ---- followers and contacts ------------------------------------------------------------------
@@ -269,20 +300,77 @@ Eigen::Vector2d point(const Section& s, std::string_view key) {
     return {v[0], v[1]};
 }
 
-Follower read_follower(const Section& s) {
+// Runs `validate` (the model's own checks) with the offset's plausibility (lengths.hpp) checked after
+// it: the model refuses an offset beyond the base and roller radii with its message, to which the hint
+// is added when the offset is a bare number far too large ("... ; did you mean "5 mm"?").
+template <class F>
+decltype(auto) with_offset_hint(const ContactLengths& lengths, F&& validate) {
+    const auto checked = [&]() -> decltype(auto) {
+        try {
+            return validate();
+        } catch (const std::invalid_argument& e) {
+            const std::string problem = offset_problem(lengths);
+            if (problem.empty()) throw;
+            throw std::invalid_argument(detail::concat(e.what(), "; ", problem));
+        }
+    };
+    if constexpr (std::is_void_v<decltype(validate())>) {
+        checked();
+        check_follower_lengths(lengths);
+    } else {
+        auto made = checked();
+        check_follower_lengths(lengths);
+        return made;
+    }
+}
+
+// `owner` names the contact in messages ("contact 'cam'"). Its lengths written as bare numbers are
+// checked against each other (lengths.hpp) before the follower is built, the offset's with it.
+Follower read_follower(const Section& s, const std::string& owner) {
     const std::string type = s.choice("type", "", {"translating_roller", "translating_flat", "oscillating_roller", "oscillating_flat"});
     return located(s, [&]() -> Follower {
         const double rb = s.quantity("base_radius", "m");
+        ContactLengths lengths{owner, written(s, "base_radius", rb), {}, {}, {}, {}, {}};
+        // A length (required without a fallback), kept as written.
+        const auto length = [&](std::string_view key, std::optional<double> fallback, std::optional<Length>& slot) {
+            const double v = fallback ? s.quantity(key, "m", *fallback) : s.quantity(key, "m");
+            if (s.has(key)) slot = written(s, key, v);
+            return v;
+        };
+        const auto pivot = [&] {
+            const Eigen::Vector2d v = point(s, "pivot");
+            Length L = written(s, "pivot", v.norm());
+            const std::vector<std::string> units = s.units("pivot");
+            L.bare = std::all_of(units.begin(), units.end(), [](const std::string& u) { return u.empty(); });
+            L.parts = {v.x(), v.y()};
+            lengths.pivot = L;
+            return v;
+        };
         Follower f = [&]() -> Follower {
-            if (type == "translating_roller")
-                return TranslatingRoller(rb, s.quantity("roller_radius", "m"), s.quantity("offset", "m", 0.0));
-            if (type == "translating_flat")
-                return TranslatingFlat(rb, s.quantity("face_angle", "rad", 0.0), s.quantity("offset", "m", 0.0));
+            if (type == "translating_roller") {
+                const double rr = length("roller_radius", std::nullopt, lengths.roller_radius);
+                const double e = length("offset", 0.0, lengths.offset);
+                check_follower_lengths(lengths, false);
+                return with_offset_hint(lengths, [&] { return TranslatingRoller(rb, rr, e); });
+            }
+            if (type == "translating_flat") {
+                const double angle = s.quantity("face_angle", "rad", 0.0), e = length("offset", 0.0, lengths.offset);
+                check_follower_lengths(lengths, false);
+                return with_offset_hint(lengths, [&] { return TranslatingFlat(rb, angle, e); });
+            }
             const ArmTurn turn = s.choice("turn", "counter_clockwise", {"counter_clockwise", "clockwise"}) == "clockwise"
                                      ? ArmTurn::clockwise : ArmTurn::counter_clockwise;
-            if (type == "oscillating_roller")
-                return OscillatingRoller(rb, s.quantity("roller_radius", "m"), point(s, "pivot"), s.quantity("arm_length", "m"), turn);
-            return OscillatingFlat(rb, point(s, "pivot"), s.quantity("face_offset", "m", 0.0), turn);
+            if (type == "oscillating_roller") {
+                const double rr = length("roller_radius", std::nullopt, lengths.roller_radius);
+                const Eigen::Vector2d at = pivot();
+                const double arm = length("arm_length", std::nullopt, lengths.arm_length);
+                check_follower_lengths(lengths);
+                return OscillatingRoller(rb, rr, at, arm, turn);
+            }
+            const Eigen::Vector2d at = pivot();
+            const double face = length("face_offset", 0.0, lengths.face_offset);
+            check_follower_lengths(lengths);
+            return OscillatingFlat(rb, at, face, turn);
         }();
         s.finish({"type", "base_radius", "roller_radius", "offset", "face_angle", "pivot", "arm_length", "face_offset", "turn"});
         return f;
@@ -337,6 +425,16 @@ std::string dof_name(const Section& s, std::string_view key, const MechanismBuil
 
 
 using Dimensions = std::map<std::string, LiftDimension>;
+using Lengths = std::map<std::string, ProgramLengths>;
+
+// The lengths of `program` as written, checked against the base radius of the contact `owner` that
+// uses it (lengths.hpp): its lift levels when the follower translates (an arm angle is no length),
+// its profile errors' amplitudes and depths.
+void check_program_lengths(const ProgramLengths& program, double base_radius, bool translating, const std::string& owner) {
+    if (translating)
+        for (const Length& h : program.levels) check_lift(h, base_radius, owner);
+    for (const auto& [L, what] : program.errors) check_small_length(L, what, base_radius, owner);
+}
 
 // A translating follower's lift is a length, an oscillating one's an arm angle.
 void check_lift_dimension(const Section& s, const Follower& f, LiftDimension d, const std::string& program) {
@@ -346,7 +444,7 @@ void check_lift_dimension(const Section& s, const Follower& f, LiftDimension d, 
                                          follower_type_name(f), " follower's lift is ", dimension_name(wanted)));
 }
 
-void read_parts(const Section& root, const CaseConfig& c, const Dimensions& dims, MechanismBuilder& b) {
+void read_parts(const Section& root, const CaseConfig& c, const Dimensions& dims, const Lengths& lengths, MechanismBuilder& b) {
     for (const Section& s : root.tables("dof")) {
         const std::string name = s.text("name");
         const double mass = s.quantity("mass", "kg");
@@ -443,8 +541,11 @@ void read_parts(const Section& root, const CaseConfig& c, const Dimensions& dims
         located(s, [&] { p.program = c.program(program); });
         const std::optional<Section> follower = s.table("follower");
         if (!follower) s.fail_here("a contact needs a follower table: follower = { type = \"translating_roller\", ... }");
-        p.follower = read_follower(*follower);
+        const std::string owner = "contact '" + detail::printable(p.name) + "'";
+        p.follower = read_follower(*follower, owner);
         check_lift_dimension(s, p.follower, dims.at(program), program);
+        const double base_radius = std::visit([](const auto& f) { return f.base_radius(); }, p.follower);
+        check_program_lengths(lengths.at(program), base_radius, is_translating(p.follower), owner);
         p.law = read_law(s);
         p.phase = s.quantity("phase", "rad", 0.0);
         p.follower_dof = dof_name(s, "follower_dof", b, false, "");
@@ -452,7 +553,10 @@ void read_parts(const Section& root, const CaseConfig& c, const Dimensions& dims
         p.cam_y = dof_name(s, "cam_y", b, true, ground_name);
         p.lateral = dof_name(s, "lateral", b, true, ground_name);
         p.cam_twist = dof_name(s, "cam_twist", b, true, ground_name);
-        if (const std::optional<Section> e = s.table("eccentricity")) p.eccentricity = read_eccentricity(*e);
+        if (const std::optional<Section> e = s.table("eccentricity")) {
+            p.eccentricity = read_eccentricity(*e);
+            check_small_length(written(*e, "radius", p.eccentricity.radius), "the eccentricity radius", base_radius, owner);
+        }
         const bool mounted = s.has("shaft");
         std::string shaft;
         double x = 0.0, width = 0.0, mass = 0.0, inertia = 0.0;
@@ -556,6 +660,14 @@ MechanismBuilder read_valve_train(const Section& s, double rpm) {
             }
         }
     }
+    if (ps) {
+        const auto as_written = [&](const char* key, double v) { return ps->has(key) ? written(*ps, key, v) : Length{"", v, false, {}}; };
+        const std::string owner = "the valve-train preset's cams";
+        ContactLengths lengths{owner, as_written("base_radius", p.base_radius), {}, {}, {}, {}, {}};
+        lengths.roller_radius = as_written("roller_radius", p.roller_radius);
+        check_follower_lengths(lengths);
+        check_lift(as_written("lift", p.lift), p.base_radius, owner);
+    }
     p.engine_speed_rpm = 2.0 * rpm;
     s.finish({"name", "parameters"});
     MechanismBuilder b;
@@ -564,7 +676,7 @@ MechanismBuilder read_valve_train(const Section& s, double rpm) {
     return b;
 }
 
-MechanismBuilder read_preset(const Section& s, const CaseConfig& c, const Dimensions& dims, double rpm) {
+MechanismBuilder read_preset(const Section& s, const CaseConfig& c, const Dimensions& dims, const Lengths& lengths, double rpm) {
     const std::string name = s.choice("name", "", {"paper", "paper_damped", "valve_train"});
     if (name == "valve_train") return read_valve_train(s, rpm);
     CamFollowerParameters p;
@@ -591,9 +703,21 @@ MechanismBuilder read_preset(const Section& s, const CaseConfig& c, const Dimens
         }
     }
     p.camshaft_speed_rpm = rpm;
-    located(ps ? *ps : s, s, [&] { p.validate(); });  // "offset must satisfy ...": at preset.parameters.offset
+    const std::string owner = "the paper preset's cam";
+    const auto as_written = [&](const char* key) {
+        return ps && ps->has(key) ? written(*ps, key, p.get(key)) : Length{"", p.get(key), false, {}};
+    };
+    ContactLengths geometry{owner, as_written("base_radius"), {}, {}, {}, {}, {}};
+    geometry.roller_radius = as_written("roller_radius");
+    geometry.offset = as_written("offset");
+    check_follower_lengths(geometry, false);
+    // "offset must satisfy ...": at preset.parameters.offset
+    located(ps ? *ps : s, s, [&] { with_offset_hint(geometry, [&] { p.validate(); }); });
     presets::PaperOptions o;
-    if (const std::optional<Section> e = s.table("eccentricity")) o.eccentricity = read_eccentricity(*e);
+    if (const std::optional<Section> e = s.table("eccentricity")) {
+        o.eccentricity = read_eccentricity(*e);
+        check_small_length(written(*e, "radius", o.eccentricity.radius), "the eccentricity radius", p.geometry.base_radius, owner);
+    }
     o.guide_clearance = s.quantity("guide_clearance", "m", 0.0);
     o.guide_wall_damping_factor = s.quantity("guide_wall_damping_factor", "s/m", 0.0);
     o.guide_friction = s.quantity("guide_friction", "-", 0.0);
@@ -606,6 +730,7 @@ MechanismBuilder read_preset(const Section& s, const CaseConfig& c, const Dimens
         located(s, [&] { program = c.program(pname); });
         if (dims.at(pname) == LiftDimension::angle)
             s.fail("program", "program '" + pname + "' lifts by an arm angle; the paper preset's follower translates (give a length)");
+        check_program_lengths(lengths.at(pname), p.geometry.base_radius, true, owner);
     }
     s.finish({"name", "parameters", "eccentricity", "guide_clearance", "guide_wall_damping_factor", "guide_friction",
               "element_damping_ratio", "program"});
@@ -732,10 +857,12 @@ CaseConfig build_case(const toml::table& table, const std::string& origin, const
     CaseConfig c;
     c.origin = origin;
     Dimensions dims;
+    Lengths lengths;
     for (auto& [name, s] : root.named_tables("program")) {
         NamedProgram p = read_program(s, base_dir);
         c.programs.emplace_back(name, std::move(p.program));
         dims[name] = p.dimension;
+        lengths[name] = std::move(p.lengths);
     }
     double rpm = 0.0;
     if (const std::optional<Section> cam = root.table("camshaft")) {
@@ -753,10 +880,10 @@ CaseConfig build_case(const toml::table& table, const std::string& origin, const
             root.fail(root.has("dof") ? "dof" : root.has("contact") ? "contact" : "spring",
                       "a [preset] mechanism is complete: describe the mechanism either by its parts or by a preset, not both");
         c.preset = preset->text("name", "");
-        c.mechanism = read_preset(*preset, c, dims, rpm);
+        c.mechanism = read_preset(*preset, c, dims, lengths, rpm);
     } else {
         if (!parts) root.fail_here("describe the mechanism: [[dof]], [[spring]], [[contact]] ... blocks, or a [preset]");
-        read_parts(root, c, dims, c.mechanism);
+        read_parts(root, c, dims, lengths, c.mechanism);
         c.mechanism.set_camshaft_speed_rpm(rpm);
     }
     if (const std::optional<Section> s = root.table("solver")) c.solver = read_solver(*s);

@@ -202,8 +202,10 @@ long long Section::integer(std::string_view key, long long fallback, long long l
     return *i;
 }
 
-std::string Section::unit(std::string_view key) const {
-    const toml::node* n = table_.get(key);
+namespace {
+
+// The unit of a "<number> <unit>" string node ("" for a bare number or anything else).
+std::string unit_of(const toml::node* n) {
     const auto s = n ? n->value_exact<std::string>() : std::nullopt;
     if (!s) return "";
     std::istringstream in(trim(*s));
@@ -213,6 +215,18 @@ std::string Section::unit(std::string_view key) const {
     if (!(in >> number)) return "";
     std::getline(in, rest);
     return trim(rest);
+}
+
+}  // namespace
+
+std::string Section::unit(std::string_view key) const { return unit_of(table_.get(key)); }
+
+std::vector<std::string> Section::units(std::string_view key) const {
+    std::vector<std::string> out;
+    const toml::node* n = table_.get(key);
+    if (const toml::array* a = n ? n->as_array() : nullptr)
+        for (std::size_t i = 0; i < a->size(); ++i) out.push_back(unit_of(a->get(i)));
+    return out;
 }
 
 bool Section::flag(std::string_view key, bool fallback) const {

@@ -36,6 +36,8 @@ public:
     bool flag(std::string_view key, bool fallback) const;
     // The unit written in a "<number> <unit>" value ("" for a bare number or an absent key).
     std::string unit(std::string_view key) const;
+    // The unit of each element of an array value (as unit(); empty when the key is absent or no array).
+    std::vector<std::string> units(std::string_view key) const;
     std::string text(std::string_view key) const;
     std::string text(std::string_view key, std::string_view fallback) const;
     std::vector<std::string> texts(std::string_view key) const;
