@@ -71,8 +71,27 @@ def contact_of(system, contact: Optional[str]) -> Dict[str, Any]:
         raise ValueError(f"contact: unknown contact {name!r}; the mechanism's contacts are {names}")
     for c in system.builder().__getstate__()["contacts"]:
         if c["name"] == name:
-            return {"name": name, "program": c["program"], "dof": c["follower_dof"]}
+            return {"name": name, "program": c["program"], "dof": c["follower_dof"], "phase": float(c["phase"])}
     raise ValueError(f"contact {name!r} not found in the mechanism's description")  # pragma: no cover
+
+
+# Cam angles per revolution at which the quasi-static path is solved (interpolated in between).
+_QUASI_STATIC_ANGLES = 720
+
+
+def _quasi_static(system, dof: str, theta: np.ndarray) -> np.ndarray:
+    """The DOF's quasi-static position at the shaft angles `theta`: the mechanism's static equilibrium
+    (springs, preloads, loads against the cam as it is: eccentricity and profile errors included) on a
+    0.5 deg grid, interpolated periodically. A dwell's residual vibration is measured from it, so a
+    defect's own motion of the follower (an eccentric cam lifts it once per revolution) is not counted
+    as vibration."""
+    names = list(system.dof_names)
+    if dof not in names:
+        return np.zeros_like(theta)
+    i = names.index(dof)
+    grid = np.linspace(0.0, 2 * math.pi, _QUASI_STATIC_ANGLES + 1)
+    path = np.array([system.static_equilibrium(float(t))[i] for t in grid[:-1]])
+    return np.interp(theta, grid, np.append(path, path[0]))
 
 
 def _dwells(program):
@@ -136,13 +155,16 @@ def steady_response(system, *, contact: Optional[str] = None, accuracy: Optional
     ``force_error_N`` (the accuracy estimate in N), ``contact_lost`` (any instant without contact),
     ``lost_fraction`` of the revolution and ``first_loss_angle_deg``; ``max_abs_acceleration`` of the
     follower DOF and the rigid follower's ``rigid_max_abs_acceleration`` (m/s^2 or rad/s^2);
-    ``dwell_residual`` (the largest peak-to-peak follower displacement over a dwell: the residual
-    vibration, m or rad) with ``dwell_residual_at_deg`` (the dwell's start) and per dwell (``dwells``:
-    start, end, peak-to-peak displacement and largest |acceleration|); ``harmonics``: contact-force
+    ``dwell_residual`` (the residual vibration: the largest peak-to-peak over a dwell of the follower
+    displacement less its quasi-static path, the static equilibrium on the cam as it is, so that an
+    eccentric cam's or a profile error's own lift is not counted; m or rad) with
+    ``dwell_residual_at_deg`` (the dwell's start, in the contact's cam angle) and per dwell (``dwells``:
+    start, end, that peak-to-peak and the largest |acceleration|); ``harmonics``: contact-force
     amplitude (N) of shaft orders 1..``harmonics`` (a list). ``channels``: any recorded channels of the
     result (``"q.slide"``, ``"a.slide"``, ``"spring.force"``, ...) measured the same way, as
     ``row["channels"][name]``: ``min``, ``min_angle_deg``, ``max``, ``dwell_residual`` (largest
-    peak-to-peak over a dwell) and ``dwell_residual_at_deg``. ``keep_orbit`` adds the PeriodicOrbit
+    peak-to-peak over a dwell; a displacement ``q.<dof>`` less its quasi-static path, as the
+    follower's) and ``dwell_residual_at_deg``. ``keep_orbit`` adds the PeriodicOrbit
     as ``orbit``. ``stop_at_loss``: end the search at the first step whose response loses contact
     without settling to a periodic state, after at most 12 shooting iterations and 60 transient
     revolutions (a jump scan only needs to know that contact is lost).
@@ -218,6 +240,7 @@ def steady_response(system, *, contact: Optional[str] = None, accuracy: Optional
 def _row(system, c, orbit, r, force, a, harmonics, channels, keep_orbit, cost, accuracy) -> Dict[str, Any]:
     name = c["name"]
     theta = np.mod(np.asarray(r["theta"])[1:], 2 * math.pi)
+    cam_theta = np.mod(theta + c["phase"], 2 * math.pi)  # the contact's own cam angle: its dwells
     touching = np.asarray(r[f"{name}.in_contact"])[1:] > 0.5
     q = np.asarray(r[f"q.{c['dof']}"])[1:]
     k = int(np.argmin(force))
@@ -238,17 +261,19 @@ def _row(system, c, orbit, r, force, a, harmonics, channels, keep_orbit, cost, a
         **accuracy,
     }
     dwells = []
+    vibration = q - _quasi_static(system, c["dof"], theta) if any(_dwells(c["program"])) else q
     for seg in _dwells(c["program"]):
-        inside = (theta >= seg.theta_start) & (theta < seg.theta_end)
+        inside = (cam_theta >= seg.theta_start) & (cam_theta < seg.theta_end)
         if inside.sum() > 1:
             dwells.append({"start_deg": math.degrees(seg.theta_start), "end_deg": math.degrees(seg.theta_end),
-                           "peak_to_peak": float(np.ptp(q[inside])), "max_abs_acceleration": float(np.abs(a[inside]).max())})
+                           "peak_to_peak": float(np.ptp(vibration[inside])),
+                           "max_abs_acceleration": float(np.abs(a[inside]).max())})
     worst = max(dwells, key=lambda d: d["peak_to_peak"], default=None)
     row["dwell_residual"] = worst["peak_to_peak"] if worst else 0.0
     row["dwell_residual_at_deg"] = worst["start_deg"] if worst else math.nan
     row["dwells"] = dwells
     if channels:
-        row["channels"] = {ch: _channel_measures(r, ch, theta, c["program"]) for ch in channels}
+        row["channels"] = {ch: _channel_measures(system, r, ch, theta, cam_theta, c["program"]) for ch in channels}
     spectrum = np.abs(np.fft.rfft(force)) * 2.0 / force.size
     row["harmonics"] = [float(x) for x in spectrum[1:harmonics + 1]]
     if keep_orbit:
@@ -256,7 +281,7 @@ def _row(system, c, orbit, r, force, a, harmonics, channels, keep_orbit, cost, a
     return row
 
 
-def _channel_measures(r, channel: str, theta: np.ndarray, program) -> Dict[str, Any]:
+def _channel_measures(system, r, channel: str, theta: np.ndarray, cam_theta: np.ndarray, program) -> Dict[str, Any]:
     try:
         x = np.asarray(r[channel], dtype=float)
     except KeyError:
@@ -266,10 +291,12 @@ def _channel_measures(r, channel: str, theta: np.ndarray, program) -> Dict[str, 
     x = x[1:]
     k = int(np.argmin(x))
     worst, at = 0.0, math.nan
+    # A displacement's residual vibration is measured from its quasi-static path (as the follower's).
+    moving = x - _quasi_static(system, channel[2:], theta) if channel.startswith("q.") and any(_dwells(program)) else x
     for seg in _dwells(program):
-        inside = (theta >= seg.theta_start) & (theta < seg.theta_end)
-        if inside.sum() > 1 and float(np.ptp(x[inside])) > worst:
-            worst, at = float(np.ptp(x[inside])), math.degrees(seg.theta_start)
+        inside = (cam_theta >= seg.theta_start) & (cam_theta < seg.theta_end)
+        if inside.sum() > 1 and float(np.ptp(moving[inside])) > worst:
+            worst, at = float(np.ptp(moving[inside])), math.degrees(seg.theta_start)
     return {"min": float(x[k]), "min_angle_deg": math.degrees(float(theta[k])), "max": float(x.max()),
             "dwell_residual": worst, "dwell_residual_at_deg": at}
 
