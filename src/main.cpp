@@ -21,6 +21,7 @@
 #include "camfollower/camfollower.hpp"
 #include "camfollower/geometry/export.hpp"
 #include "config/case_config.hpp"
+#include "config/force_closure.hpp"
 #include "output_file.hpp"
 #include "simulate_instances.hpp"  // simulate() for the library's systems, compiled once
 
@@ -123,6 +124,9 @@ int run(const std::string& config, std::string output) {
     if (output.empty()) output = c.output.file;
     if (output.empty()) cf::detail::fail(config, ": no output file: set [output] file or give -o FILE");
     cf::detail::require_output_target(output, "output", {config});
+    // A mechanism that does not hold its follower on the cam runs, but says so first (docs/config.md).
+    for (const std::string& w : cf::config::check_force_closure(c.mechanism).warnings)
+        std::fprintf(stderr, "camfollower: warning: %s\n", cf::detail::message_text(w).c_str());
     with_mechanism(c.mechanism, [&](const auto& m) {
         const double period = m.period();
         cf::NewmarkSettings settings = c.solver.newmark;
@@ -150,13 +154,12 @@ int run(const std::string& config, std::string output) {
         const auto result = cf::simulate(m, settings, options);
         cf::cli::write_recording_csv(output, result.recording, config);
         const cf::SolverStatistics& stats = result.report.stats;
-        // Newmark under a tolerance, named or taken by auto (its fox_goodwin_or_dop853 without a contact event).
+        // Newmark under a tolerance (named: auto does not take it).
         const std::string ran = result.method;
         if (cf::uses_tolerance(settings.method) && (ran == "newmark" || ran == "fox_goodwin"))
-            std::printf("%zu rows, %zu channels (%s%s under tolerance %.3g: %llu steps, %llu rejected, %.3f Newton "
+            std::printf("%zu rows, %zu channels (%s under tolerance %.3g: %llu steps, %llu rejected, %.3f Newton "
                         "iterations/step, output every %.4g s)",
-                        result.recording.rows, result.recording.names.size(), result.method,
-                        cf::is_automatic(settings.method) ? ", chosen by auto," : "", settings.tolerance,
+                        result.recording.rows, result.recording.names.size(), result.method, settings.tolerance,
                         static_cast<unsigned long long>(stats.steps), static_cast<unsigned long long>(stats.rejected_steps),
                         stats.mean_iterations(), settings.time_step);
         else if (cf::uses_tolerance(settings.method))

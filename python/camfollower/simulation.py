@@ -58,15 +58,12 @@ def simulate(system, *, duration: Optional[float] = None, revolutions: Optional[
     when ``time_step`` is within its stability limit at the start, with a 10 % margin, else
     average-acceleration newmark; with ``tolerance`` (and optionally ``max_step``), radau when the
     model's fastest modes, linearized at the start, are damped (a mode at damping ratio 0.3 or more at
-    least half as fast as the fastest ringing one), else "fox_goodwin_or_dop853" at tolerances of
-    1e-7 and looser or, down to 1e-10, when the fastest mode rings alone, 3 or more times faster than
-    the next (a stiff contact): fox_goodwin under the tolerance (with ``max_halvings`` raised to 12), the whole run done
-    again from the start by dop853 if fox_goodwin meets a contact loss or re-contact (Newmark does
-    not end a step at an event, dop853 does), else dop853 (above 200 DOFs: dop853).
-    ``stats`` reports ``method`` (the one that ran: "fox_goodwin" or "dop853" for
-    fox_goodwin_or_dop853), ``requested_method``, ``method_choice`` (with "auto": what it took and
-    why, in words), ``restart_time`` (only when fox_goodwin met a contact event that sent the run to
-    dop853: the start of that output interval), ``evaluations``,
+    least half as fast as the fastest ringing one) or, at tolerances of 1e-7 and looser, when the
+    fastest mode rings alone, 3 or more times faster than the next (a stiff contact), else dop853
+    (above 200 DOFs: dop853); not newmark or fox_goodwin under a tolerance, whose error control is
+    per step only (docs/solvers.md, "Error control across output intervals").
+    ``stats`` reports ``method`` (the one that ran), ``requested_method``, ``method_choice`` (with
+    "auto": what it took and why, in words), ``evaluations``,
     ``rejected_steps`` and ``stiff_steps`` (steps bounded by stability rather than accuracy: an
     implicit method would be cheaper there).
 

@@ -78,7 +78,6 @@ struct RunOutput {
     const char* requested_method = "";
     std::string method_choice;
     double highest_mode_hz = 0.0;
-    double restart_time = std::numeric_limits<double>::quiet_NaN();
     double final_time = 0.0;
     ContactLosses losses;
     // Located contact losses and re-contacts: (time, switching function's name, +1 made / -1 lost).
@@ -99,7 +98,6 @@ std::shared_ptr<RunOutput> output_of(const System& system, RunResult<System>&& r
     out->requested_method = r.requested_method;
     out->method_choice = std::move(r.method_choice);
     out->highest_mode_hz = r.highest_mode_hz;
-    out->restart_time = r.restart_time;
     out->final_time = r.final_state.t;
     out->losses = losses_of(system, r.final_state);
     const std::vector<std::string> names = event_names(system);
@@ -152,7 +150,6 @@ inline py::dict dict_of(const std::shared_ptr<RunOutput>& out) {
     stats["rejected_steps"] = st.rejected_steps;
     stats["stiff_steps"] = st.stiff_steps;
     stats["highest_mode_hz"] = result.highest_mode_hz;
-    if (std::isfinite(result.restart_time)) stats["restart_time"] = result.restart_time;
     stats["steps_per_shortest_period"] = 1.0 / (result.highest_mode_hz * result.time_step);
     const SettleReport& sr = result.settle_report;
     if (sr.requested) {

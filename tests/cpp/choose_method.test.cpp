@@ -1,9 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Method "auto" (solver/choose_method.hpp): the fastest modes' rates and damping ratios against the
 // closed form of a two-mass system, the choice under a tolerance (radau where the fastest mode is
-// damped; Fox-Goodwin (or dop853 on a contact event) where the modes ring, at tolerances of 1e-7 and looser or on a mode
-// ringing alone; dop853 else; radau for the mode ringing alone when Fox-Goodwin's finest step is
-// beyond its stability limit) run exactly as the method chosen, the reason in words, bad settings.
+// damped or, at tolerances of 1e-7 and looser, rings alone; dop853 else) run exactly as the method
+// chosen, the reason in words, bad settings.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -39,23 +38,17 @@ NewmarkSettings automatic(double output_interval, double tolerance) {
     return s;
 }
 
-// `chosen_by_auto` runs as the method auto names (fox_goodwin_or_dop853: as fox_goodwin with 12
-// halvings, these runs meeting no contact event), value for value.
+// `chosen_by_auto` runs as the method auto names, value for value.
 template <class System>
 void check_same_run(const System& system, const NewmarkSettings& chosen_by_auto, const char* method, double duration) {
     RunOptions o;
     o.duration = duration;
     const auto r = simulate(system, chosen_by_auto, o);
-    const bool pair = std::string(method) == "fox_goodwin_or_dop853";
-    CHECK(std::string(r.method) == (pair ? "fox_goodwin" : method));
+    CHECK(std::string(r.method) == method);
     CHECK(std::string(r.requested_method) == "auto");
     CHECK(r.method_choice.rfind(std::string(method) + ": ", 0) == 0);
     NewmarkSettings named = chosen_by_auto;
-    set_method(named, pair ? "fox_goodwin" : method);
-    if (pair) {
-        set_tolerance(named, named.tolerance);  // fox_goodwin under the tolerance
-        named.max_halvings = 12;                // auto raises the default 6 to 12 for Fox-Goodwin
-    }
+    set_method(named, method);
     const auto direct = simulate(system, named, o);
     CHECK(direct.method_choice.empty());
     REQUIRE(direct.recording.rows == r.recording.rows);
@@ -89,41 +82,38 @@ TEST_CASE("The fastest ringing and damped modes: rates and damping ratios of a c
     }
 }
 
-TEST_CASE("Auto under a tolerance: radau where the fastest mode is damped, Fox-Goodwin or dop853 where they ring, run as named") {
+TEST_CASE("Auto under a tolerance: radau where the fastest mode is damped or rings alone, dop853 else, run as named") {
     // zeta = 0.707: damped, radau (L-stable) steps over it.
     check_same_run(coupled(1e10, 1e5), automatic(0.01, 1e-6), "radau", 0.2);
-    // zeta = 0.007: the stiff mode rings, 1.3e4 times faster than the soft one: Fox-Goodwin (stability
-    // limit sqrt(6) / sqrt(2e10) = 17 us, above its finest step 1e-4 / 2^12 = 24 ns) at every tolerance.
-    check_same_run(coupled(1e10, 1e3), automatic(1e-4, 1e-6), "fox_goodwin_or_dop853", 2e-3);
-    check_same_run(coupled(1e10, 1e3), automatic(1e-4, 1e-8), "fox_goodwin_or_dop853", 2e-3);
-    // An output interval of 0.1 s: the finest step 24 us is beyond the limit, radau down to 1e-7, dop853 below.
+    // zeta = 0.007: the stiff mode rings, 1.3e4 times faster than the soft one (alone): radau down to
+    // 1e-7, dop853 below.
+    check_same_run(coupled(1e10, 1e3), automatic(1e-4, 1e-6), "radau", 2e-3);
+    check_same_run(coupled(1e10, 1e3), automatic(1e-4, 1e-8), "dop853", 2e-3);
     check_same_run(coupled(1e10, 1e3), automatic(0.1, 1e-6), "radau", 0.2);
-    check_same_run(coupled(1e10, 1e3), automatic(0.1, 1e-8), "dop853", 0.2);
     // The paper preset's fastest mode is the undamped cam contact (12.0 kHz), 1.15 times the next:
-    // Fox-Goodwin (or dop853) at 1e-7 and looser, dop853 tighter.
-    // With 3 % of critical in every element a stiffly damped mode (11.0 kHz, 0.79) is faster than half
-    // of the fastest ringing one; with the contact 100 times stiffer the contact mode (86 kHz) is 8.2
-    // times the next.
+    // dop853 at every tolerance. With 3 % of critical in every element a stiffly damped mode
+    // (11.0 kHz, 0.79) is faster than half of the fastest ringing one; with the contact 100 times
+    // stiffer the contact mode (86 kHz) is 8.2 times the next.
     const Mechanism<presets::paper_dofs> paper = presets::paper(), damped = presets::paper_damped();
     CamFollowerParameters p;
     p.contact_stiffness *= 100.0;
     const Mechanism<presets::paper_dofs> stiff = presets::paper(p);
-    check_same_run(paper, automatic(paper.period() / 512, 1e-7), "fox_goodwin_or_dop853", paper.period() / 16);
+    check_same_run(paper, automatic(paper.period() / 512, 1e-6), "dop853", paper.period() / 16);
     check_same_run(paper, automatic(paper.period() / 512, 1e-8), "dop853", paper.period() / 16);
     check_same_run(damped, automatic(damped.period() / 512, 1e-6), "radau", damped.period() / 16);
-    check_same_run(stiff, automatic(stiff.period() / 512, 1e-9), "fox_goodwin_or_dop853", stiff.period() / 16);
-    check_same_run(stiff, automatic(stiff.period() / 512, 1e-11), "dop853", stiff.period() / 64);
+    check_same_run(stiff, automatic(stiff.period() / 512, 1e-7), "radau", stiff.period() / 16);
+    check_same_run(stiff, automatic(stiff.period() / 512, 1e-9), "dop853", stiff.period() / 64);
     RunOptions o;
     o.duration = damped.period() / 64;
     const std::string why = simulate(damped, automatic(damped.period() / 512, 1e-6), o).method_choice;
     CHECK_THAT(why, Catch::StartsWith("radau: the fastest modes are damped: ") && Catch::Contains("Hz at damping ratio 0.78"));
     const std::string alone = simulate(stiff, automatic(stiff.period() / 512, 1e-6), o).method_choice;
-    CHECK_THAT(alone, Catch::StartsWith("fox_goodwin_or_dop853: the fastest modes ring: ") &&
-                          Catch::Contains(" times the next ringing mode (1.052e+04 Hz)") && Catch::Contains("the fastest rings alone"));
-    const std::string loose = simulate(paper, automatic(paper.period() / 512, 1e-6), o).method_choice;
-    CHECK_THAT(loose, Catch::Contains("tolerance >= 1e-07") && Catch::Contains("the whole run by dop853 if it meets a contact event"));
-    const std::string tight = simulate(paper, automatic(paper.period() / 512, 1e-8), o).method_choice;
+    CHECK_THAT(alone, Catch::StartsWith("radau: the fastest mode rings alone") &&
+                          Catch::Contains(" times the next ringing mode (1.052e+04 Hz)"));
+    const std::string tight = simulate(stiff, automatic(stiff.period() / 512, 1e-8), o).method_choice;
     CHECK_THAT(tight, Catch::StartsWith("dop853: ") && Catch::Contains("tolerance < 1e-07"));
+    const std::string ringing = simulate(paper, automatic(paper.period() / 512, 1e-6), o).method_choice;
+    CHECK_THAT(ringing, Catch::StartsWith("dop853: the fastest modes ring: ") && !Catch::Contains("tolerance <"));
 }
 
 TEST_CASE("Auto under a tolerance above 1e-5 bounds radau's steps by the output interval, unless max_step is set") {

@@ -18,7 +18,6 @@
 #include <Eigen/Core>
 
 #include "camfollower/solver/dormand_prince.hpp"
-#include "camfollower/solver/handover.hpp"
 #include "camfollower/solver/newmark.hpp"
 #include "camfollower/solver/radau.hpp"
 
@@ -48,11 +47,9 @@ template <class Stepper>
 void run_without_allocation(const char* method, bool under_tolerance = true) {
     const DynamicCoupled system;
     NewmarkSettings s;
-    const bool pair = std::string(method) == "fox_goodwin_or_dop853";  // not a method by name
-    set_method(s, pair ? "fox_goodwin" : method);
+    set_method(s, method);
     s.time_step = 1e-3;
     if (under_tolerance) set_tolerance(s, 1e-7);
-    if (pair) s.method = Method::fox_goodwin_or_dop853;
     s.max_halvings = 12;  // Newmark under a tolerance: steps down to time_step / 4096
     Stepper stepper(system, s);
     State<DynamicCoupled> state = stepper.start(0.0, system.initial_displacement(), Eigen::VectorXd::Zero(2));
@@ -99,6 +96,4 @@ TEST_CASE("Newmark steps a dynamic-size model without heap allocation, at a fixe
     run_without_allocation<Newmark<DynamicCoupled>>("newmark", false);
     run_without_allocation<Newmark<DynamicCoupled>>("newmark");
     run_without_allocation<Newmark<DynamicCoupled>>("fox_goodwin");
-    // auto's Fox-Goodwin unless events (then DOP853, tested above).
-    run_without_allocation<FoxGoodwinUnlessEvents<DynamicCoupled>>("fox_goodwin_or_dop853");
 }

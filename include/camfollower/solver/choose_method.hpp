@@ -3,9 +3,9 @@
 //   at a fixed time_step (Method::automatic): Fox-Goodwin within its stability limit, else
 //   average-acceleration Newmark;
 //   under a tolerance (Method::automatic_adaptive): radau when the model's fastest modes are damped,
-//   else Fox-Goodwin, or dop853 for runs that meet a contact event (fox_goodwin_or_dop853), at
-//   tolerances of 1e-7 and looser or (down to 1e-10) when the fastest mode rings alone (a stiff
-//   contact), else dop853.
+//   or when the fastest rings alone (a stiff contact) at tolerances of 1e-7 and looser, else dop853.
+//   Not Fox-Goodwin: its per-step error control does not hold the run's error within a band of the
+//   tolerance across output intervals (docs/solvers.md, "Error control across output intervals").
 #pragma once
 
 #include <algorithm>
@@ -35,19 +35,6 @@ inline constexpr double isolated_mode_ratio = 3.0;
 inline constexpr double isolated_mode_tolerance = 1e-7;
 // Above this tolerance radau, when chosen, has its steps bounded by the output interval (max_step).
 inline constexpr double radau_long_step_tolerance = 1e-5;
-// At this tolerance and looser Fox-Goodwin under a tolerance reaches a given accuracy in force and
-// acceleration sooner than dop853 on the paper preset; tighter, dop853's order 8 wins (measured:
-// docs/benchmarks.md). On a stiff isolated mode it wins down to fox_goodwin_isolated_tolerance
-// (dop853's steps are bounded by stability there).
-inline constexpr double fox_goodwin_tolerance = 1e-7;
-// Below this tolerance the rounding of Fox-Goodwin's millions of steps floors its error even on an
-// isolated mode (the contact stiffness x100 at 1e-11: 3.4e-7 in force, dop853 2.6e-8): dop853 there.
-inline constexpr double fox_goodwin_isolated_tolerance = 1e-10;
-// Fox-Goodwin chosen by auto gets at least this many halvings (finest step time_step / 4096): the
-// default 6 bounds its steps at 1e-7 and tighter on a stiff contact (measured: the contact stiffness
-// x100 at output interval T/2048 needs 8), and the run would go to dop853 at once.
-inline constexpr int fox_goodwin_halvings = 12;
-
 // The two fastest ringing modes (damping ratio below ringing_damping_ratio) and the fastest damped
 // one (at or above it) of `system` with its contacts' tangent (stiffness and damping) at state s,
 // each complex pair counted once; a rate of 0 where there is none. Allocates (a 2n x 2n eigenvalue
@@ -110,15 +97,14 @@ struct MethodChoice {
 //    preset, docs/benchmarks.md), else average-acceleration Newmark (unconditionally stable). Above
 //    200 DOFs the highest mode is not computed: average acceleration.
 //  - automatic_adaptive: radau (L-stable: it steps over what it need not resolve) when a damped mode
-//    (damping ratio >= 0.3) is at least half as fast as the fastest ringing one. Else, when the
-//    fastest modes ring, fox_goodwin_or_dop853 (solver/handover.hpp) at tolerances of 1e-7 and
-//    looser or, down to 1e-10, when the fastest ringing mode is isolated_mode_ratio times faster
-//    than the next, and dop853 (order 8, no linear solves) at tighter tolerances. Fox-Goodwin needs
-//    its stability limit at or above its finest step (time_step / 2^max_halvings, max_halvings
-//    raised to at least fox_goodwin_halvings, and max_step when set) and the dense backend: failing
-//    either, radau takes the isolated mode at 1e-7 and looser, dop853 the rest.
-//    Above 200 DOFs the spectrum is not computed: dop853. Radau chosen at a tolerance above 1e-5
-//    gets max_step = time_step (the output interval) unless max_step is set.
+//    (damping ratio >= 0.3) is at least half as fast as the fastest ringing one, or when the fastest
+//    ringing mode is isolated_mode_ratio times faster than the next at tolerances of
+//    isolated_mode_tolerance and looser; else dop853 (order 8, no linear solves). Above 200 DOFs the
+//    spectrum is not computed: dop853. Radau chosen at a tolerance above 1e-5 gets max_step =
+//    time_step (the output interval) unless max_step is set. Fox-Goodwin under a tolerance is
+//    cheaper at loose tolerances but its error is not held across output intervals (measured on the
+//    paper preset at tolerance 1e-7: 4x the tolerance in force at output T/2048, 215x at T/16384;
+//    docs/solvers.md): auto does not take it.
 template <class System>
 MethodChoice choose_method(const System& system, NewmarkSettings s, const State<System>& start) {
     if (s.method == Method::automatic) {
@@ -165,38 +151,15 @@ MethodChoice choose_method(const System& system, NewmarkSettings s, const State<
         const std::string ringing = mode(modes.ringing) + ", " + figure(isolation) + " times the next ringing mode (" +
                                     figure(modes.next_ringing.rate / (2.0 * pi)) + " Hz)";
         const bool isolated = isolation >= isolated_mode_ratio;
-        // Fox-Goodwin's steps: its stability limit (highest undamped mode), max_step, the finest level.
-        const int halvings = std::max(s.max_halvings, fox_goodwin_halvings);
-        const double finest = s.time_step / double(1 << halvings);
-        const double omega = highest_angular_frequency(system, start);
-        const double limit = newmark_step_limit(0.5, 1.0 / 12.0, omega);
-        const bool fits = s.backend != Backend::sparse && !(limit < finest) &&
-                          (s.max_step == 0.0 || s.max_step >= finest);
-        if (fits && ((isolated && s.tolerance >= fox_goodwin_isolated_tolerance) || s.tolerance >= fox_goodwin_tolerance)) {
-            s.method = Method::fox_goodwin_or_dop853;
-            s.beta = 1.0 / 12.0;
-            s.max_halvings = halvings;
-            return {s, "fox_goodwin_or_dop853: the fastest modes ring: " + ringing + units + "; " +
-                           (isolated ? "the fastest rings alone (>= " + figure(isolated_mode_ratio) + ", tolerance >= " +
-                                                 figure(fox_goodwin_isolated_tolerance) + ")"
-                                     : "tolerance >= " + figure(fox_goodwin_tolerance)) +
-                           "; Fox-Goodwin's stability limit " + figure(limit) + " s >= its finest step " +
-                           figure(finest) + " s (max_halvings " + std::to_string(halvings) +
-                           "); the whole run by dop853 if it meets a contact event"};
-        }
         if (isolated && s.tolerance >= isolated_mode_tolerance)
             return take_radau("radau: the fastest mode rings alone, a stiff spring loaded quasi-statically: " + ringing + " (>= " +
                          figure(isolated_mode_ratio) + ", tolerance >= " + figure(isolated_mode_tolerance) + ")" + units);
         s.method = Method::dop853;
-        const std::string why_not_fox_goodwin =
-            fits ? "" : "; not Fox-Goodwin: " + std::string(s.backend == Backend::sparse ? "backend 'sparse'" :
-                        "its stability limit " + figure(limit) + " s or max_step below its finest step " + figure(finest) + " s");
         return {s, "dop853: the fastest modes ring: " + ringing +
                        (modes.damped.rate > 0.0 ? ", the fastest damped mode (>= " + figure(ringing_damping_ratio) + ") " +
                                                       mode(modes.damped) + ", below half that rate"
                                                 : ", no mode damped at " + figure(ringing_damping_ratio) + " or more") +
-                       units + (s.tolerance < fox_goodwin_tolerance ? "; tolerance < " + figure(fox_goodwin_tolerance) : "") +
-                       why_not_fox_goodwin};
+                       units + (isolated ? "; tolerance < " + figure(isolated_mode_tolerance) : "")};
     }
     return {s, ""};
 }

@@ -55,20 +55,16 @@ inline constexpr int sparse_backend_threshold = 100;  // DOFs; measured crossove
 // newmark_adaptive: Newmark (gamma, beta: average acceleration or Fox-Goodwin) under `tolerance`, in
 // steps of time_step / 2^level, the level chosen by the step's error estimate.
 // automatic: Fox-Goodwin or average-acceleration Newmark at time_step, chosen at the start of a run
-// from the model's highest mode; automatic_adaptive: fox_goodwin_or_dop853, dop853 or radau under
-// `tolerance`, chosen from the model's fastest modes (solver/choose_method.hpp);
-// fox_goodwin_or_dop853: Fox-Goodwin under `tolerance`, the whole run again by dop853 if it meets a
-// contact event (solver/handover.hpp; gamma = 1/2, beta = 1/12).
-enum class Method { newmark, dormand_prince, automatic, dop853, radau, automatic_adaptive, newmark_adaptive,
-                    fox_goodwin_or_dop853 };
+// from the model's highest mode; automatic_adaptive: dop853 or radau under `tolerance`, chosen from
+// the model's fastest modes (solver/choose_method.hpp).
+enum class Method { newmark, dormand_prince, automatic, dop853, radau, automatic_adaptive, newmark_adaptive };
 // The adaptive Runge-Kutta methods (explicit and Radau IIA): tolerance, max_step and adaptive apply to them.
 inline constexpr bool is_runge_kutta(Method m) {
     return m == Method::dormand_prince || m == Method::dop853 || m == Method::radau;
 }
 // The methods that read `tolerance` and `max_step`: the adaptive ones and the choice among them.
 inline constexpr bool uses_tolerance(Method m) {
-    return is_runge_kutta(m) || m == Method::automatic_adaptive || m == Method::newmark_adaptive ||
-           m == Method::fox_goodwin_or_dop853;
+    return is_runge_kutta(m) || m == Method::automatic_adaptive || m == Method::newmark_adaptive;
 }
 inline constexpr bool is_newmark(Method m) { return m == Method::newmark || m == Method::newmark_adaptive; }
 inline constexpr bool is_automatic(Method m) { return m == Method::automatic || m == Method::automatic_adaptive; }
@@ -137,10 +133,6 @@ struct NewmarkSettings {
                 detail::fail("Newmark under a tolerance needs hht_alpha = 0 (error control for HHT-alpha is not "
                              "implemented), got hht_alpha = ", hht_alpha);
         }
-        if (method == Method::fox_goodwin_or_dop853 && (!adaptive || gamma != 0.5 || beta != 1.0 / 12.0 || hht_alpha != 0.0))
-            detail::fail("method fox_goodwin_or_dop853 runs Fox-Goodwin under a tolerance: it needs adaptive = true, "
-                         "gamma = 1/2, beta = 1/12, hht_alpha = 0 (got ", adaptive ? "true" : "false", ", ", gamma, ", ",
-                         beta, ", ", hht_alpha, ")");
         if (is_automatic(method) && (gamma != 0.5 || beta != 0.25 || hht_alpha != 0.0))
             detail::fail("method 'auto' chooses gamma and beta itself: leave gamma = 1/2, beta = 1/4, hht_alpha = 0 "
                          "(got ", gamma, ", ", beta, ", ", hht_alpha, ")");
@@ -207,7 +199,6 @@ inline const char* method_name(const NewmarkSettings& s) {
     if (s.method == Method::dop853) return "dop853";
     if (s.method == Method::radau) return "radau";
     if (is_automatic(s.method)) return "auto";
-    if (s.method == Method::fox_goodwin_or_dop853) return "fox_goodwin_or_dop853";
     return s.gamma == 0.5 && s.beta == 1.0 / 12.0 && s.hht_alpha == 0.0 ? "fox_goodwin" : "newmark";
 }
 // Runs the method under `tolerance` (relative error per step), time_step becoming the output

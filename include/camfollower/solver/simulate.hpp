@@ -15,7 +15,6 @@
 
 #include "camfollower/solver/choose_method.hpp"
 #include "camfollower/solver/dormand_prince.hpp"
-#include "camfollower/solver/handover.hpp"
 #include "camfollower/solver/integrate.hpp"
 #include "camfollower/solver/newmark.hpp"
 #include "camfollower/solver/observers.hpp"
@@ -57,10 +56,6 @@ struct RunResult {
     // Highest natural frequency at the start (Hz, contacts linearized), for reading the step against
     // the shortest period: dense backend up to 200 DOFs only, else NaN (an eigen solve too costly).
     double highest_mode_hz = std::numeric_limits<double>::quiet_NaN();
-    // fox_goodwin_or_dop853 (solver/handover.hpp): the start of the output interval in which
-    // Fox-Goodwin met the first contact event, after which dop853 ran the whole run again (`method`
-    // "dop853"); NaN when Fox-Goodwin ran throughout (`method` "fox_goodwin"), and for other methods.
-    double restart_time = std::numeric_limits<double>::quiet_NaN();
 };
 
 namespace detail {
@@ -192,22 +187,6 @@ RunResult<System> simulate(const System& system, const NewmarkSettings& requeste
         return r;
     }
     const NewmarkSettings& settings = requested;
-    if (settings.method == Method::fox_goodwin_or_dop853) {
-        if (settings.backend == Backend::sparse)
-            detail::fail("linear_solver 'sparse' or 'klu' applies to Newmark alone; fox_goodwin_or_dop853 runs on the dense backend only");
-        try {
-            RunResult<System> r = detail::run<FoxGoodwinUnlessEvents<System>>(system, settings, options, q0, v0);
-            r.method = "fox_goodwin";
-            return r;
-        } catch (const detail::FoxGoodwinGaveWay& e) {  // the whole run again, by dop853
-            RunResult<System> r = detail::run<Dop853<System>>(system, dop853_part(settings), options, q0, v0);
-            r.restart_time = e.time;
-            r.method_choice = detail::concat("Fox-Goodwin met a contact event (or could not meet the tolerance) in the "
-                                             "output interval from t = ", detail::figure(e.time), " s after ", e.work.steps,
-                                             " steps: run again from the start by dop853");
-            return r;
-        }
-    }
     if (is_runge_kutta(settings.method)) {
         if (settings.backend == Backend::sparse)
             detail::fail("linear_solver 'sparse' or 'klu' applies to Newmark; ", method_name(settings),
@@ -252,13 +231,6 @@ PeriodicOrbit periodic_orbit(const System& system, const NewmarkSettings& reques
         return detail::shoot_with<Dop853<System>>(system, settings, options, q, v, keep_going);
     if (settings.method == Method::radau)
         return detail::shoot_with<Radau<System>>(system, settings, options, q, v, keep_going);
-    if (settings.method == Method::fox_goodwin_or_dop853) {
-        try {
-            return detail::shoot_with<FoxGoodwinUnlessEvents<System>>(system, settings, options, q, v, keep_going);
-        } catch (const detail::FoxGoodwinGaveWay&) {
-            return detail::shoot_with<Dop853<System>>(system, dop853_part(settings), options, q, v, keep_going);
-        }
-    }
     if (settings.method == Method::dormand_prince)
         return detail::shoot_with<DormandPrince<System>>(system, settings, options, q, v, keep_going);
     if constexpr (detail::has_sparse_matrices<System>::value) {
