@@ -81,19 +81,23 @@ int kinematics(const std::string& config, double rpm) {
         std::visit([&](const auto& f) {
             const cf::AngleExtremum alpha = cf::max_pressure_angle(p.program, f);
             const cf::AngleExtremum rho = cf::min_surface_radius(p.program, f);
-            std::printf("  max |pressure angle|:               %.4f deg at theta = %.3f deg\n", std::abs(deg(alpha.value)),
+            std::printf("  max |pressure angle|:                %.4f deg at theta = %.3f deg\n", std::abs(deg(alpha.value)),
                         deg(alpha.theta));
-            std::printf("  min convex cam-surface radius:      %.4f mm at theta = %.3f deg\n", 1e3 * rho.value, deg(rho.theta));
+            std::printf("  min convex cam-surface radius:       %.4f mm at theta = %.3f deg\n", 1e3 * rho.value, deg(rho.theta));
         }, p.follower);
         const auto acc = cf::detail::maximize_piecewise([&](double t) { return std::abs(p.program.evaluate(t).d2h); },
                                                         p.program.breakpoints(), 600, p.program.sampling_step());
         const auto vel = cf::detail::maximize_piecewise([&](double t) { return std::abs(p.program.evaluate(t).dh); },
                                                         p.program.breakpoints(), 600, p.program.sampling_step());
-        std::printf("  lift range:                         %.6g to %.6g mm\n", 1e3 * p.program.min_lift(), 1e3 * p.program.max_lift());
-        std::printf("  max |follower velocity| (rigid):    %.6g m/s (%s) at theta = %.3f deg\n", omega * vel.value,
-                    cf::is_translating(p.follower) ? "along the axis" : "x arm angle: rad/s", deg(vel.x));
+        // Lengths in mm, arm angles in degrees (as the Python command prints them).
+        const bool translating = cf::is_translating(p.follower);
+        const double lift_scale = translating ? 1e3 : deg(1.0);
+        std::printf("  lift range:                          %.6g to %.6g %s\n", lift_scale * p.program.min_lift(),
+                    lift_scale * p.program.max_lift(), translating ? "mm" : "deg");
+        std::printf("  max |follower velocity| (rigid):     %.6g %s at theta = %.3f deg\n", omega * vel.value,
+                    translating ? "m/s" : "rad/s", deg(vel.x));
         std::printf("  max |follower acceleration| (rigid): %.6g %s at theta = %.3f deg\n", omega * omega * acc.value,
-                    cf::is_translating(p.follower) ? "m/s^2" : "rad/s^2", deg(acc.x));
+                    translating ? "m/s^2" : "rad/s^2", deg(acc.x));
     }
     return 0;
 }

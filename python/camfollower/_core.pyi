@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['ArmTurn', 'BoundaryContinuity', 'CamEccentricity', 'CamFollowerModel', 'ContinuityReport', 'Defects', 'DiskCam', 'Elastic', 'LineContact', 'MAX_CAMSHAFT_SPEED', 'MAX_POINTS', 'MIN_CAMSHAFT_SPEED', 'Mechanism', 'MechanismBuilder', 'MotionLaw', 'MotionProgram', 'OscillatingFlat', 'OscillatingRoller', 'Parameters', 'PeakCoefficients', 'ProfileError', 'Segment', 'TranslatingFlat', 'TranslatingRoller', 'cam_outline', 'check_output_target', 'length_units', 'paper_preset', 'realistic_damping_ratio', 'valve_train_parameter_units', 'valve_train_preset', 'write_cam_csv', 'write_file_atomically']
+__all__: list[str] = ['ArmTurn', 'BoundaryContinuity', 'CamEccentricity', 'CamFollowerModel', 'ContinuityReport', 'Defects', 'DiskCam', 'Elastic', 'LineContact', 'MAX_CAMSHAFT_SPEED', 'MAX_PART_LENGTH', 'MAX_POINTS', 'MIN_CAMSHAFT_SPEED', 'Mechanism', 'MechanismBuilder', 'MotionLaw', 'MotionProgram', 'OscillatingFlat', 'OscillatingRoller', 'Parameters', 'PeakCoefficients', 'ProfileError', 'Segment', 'TranslatingFlat', 'TranslatingRoller', 'cam_outline', 'check_output_target', 'length_units', 'paper_preset', 'realistic_damping_ratio', 'valve_train_parameter_units', 'valve_train_preset', 'write_cam_csv', 'write_file_atomically']
 class PeakCoefficients:
     """
     Peaks of |V|, |A|, |J| of a normalized law.
@@ -1268,6 +1268,7 @@ def write_file_atomically(path: str, content: bytes, protect: collections.abc.Se
     of `protect` (input files the run read).
     """
 MAX_CAMSHAFT_SPEED: float = 100000.0
+MAX_PART_LENGTH: float = 1000.0
 MAX_POINTS: int = 10000000
 MIN_CAMSHAFT_SPEED: float = 1e-06
 __version__: str = '0.1.0'

@@ -1,15 +1,26 @@
 # SPDX-License-Identifier: BSD-3-Clause
-"""Command line of the Python package: ``python -m camfollower figures CONFIG -o DIR``,
-``python -m camfollower camshaft CONFIG --engine-rpm 2000 4000 6000 -o DIR``,
-``python -m camfollower sweep CONFIG -o DIR`` and ``python -m camfollower montecarlo CONFIG -o DIR``.
+"""The ``camfollower`` command (installed by ``pip install``; also ``python -m camfollower``): one
+front door for every verb, each working on a config file (docs/config.md).
 
-Reads a config (docs/config.md), simulates it, and writes into DIR: the recorded channels
-(``run.csv``), per contact its SVAJ diagram, the cam profile, pressure angle and
-curvature, simulated against rigid follower acceleration, contact force with contact loss shaded and
-the force's spectrum, and ``summary.json`` (written last). Every file is written to a temporary name
-and renamed (the library's atomic writer), so a failed run leaves no half-written file; the config
-is never overwritten or removed. Every command-line argument is checked before anything runs; an error
-is one line ``camfollower: error: ...`` (exit status 1).
+- ``kinematics [CONFIG] [--rpm RPM]``: per contact, the largest pressure angle, the smallest convex
+  cam-surface radius, the lift range and the rigid follower's peak velocity and acceleration;
+- ``modes [CONFIG] [--theta DEG] [--count N]``: natural frequencies, contacts linearized at a cam angle
+  (without CONFIG both describe the paper's mechanism);
+- ``run CONFIG [-o FILE]``: simulate the case, every recorded channel as CSV;
+- ``export CONFIG -o FILE [--contact NAME] [--unit mm] [--cutter-radius R] [--points N]``: the cam
+  surface (and cutter-centre path) for manufacturing, CSV, or DXF when FILE ends in ``.dxf``;
+- ``figures``, ``camshaft``, ``sweep``, ``montecarlo CONFIG [-o DIR]``: the recorded channels, figures
+  and ``summary.json`` of a run, a camshaft at several speeds, a speed sweep with the jump speed, a
+  Monte-Carlo tolerance study;
+- ``study [--out DIR] ...``: the paper's study (healthy / eccentricity / clearance) on its default case.
+
+``-o`` names what the verb writes: the file for the verbs that write one (``run``, ``export``), the
+folder for the others (default ``./out``). Every file is written to a temporary name and renamed (the
+library's atomic writer), so a failed run leaves no half-written file; the config is never
+overwritten or removed. Every command-line argument is checked before anything runs; an error is one
+line ``camfollower: error: ...`` (exit status 1; 2 for a command line that cannot be read). The C++
+program ``camfollower`` (built with ``-DCAMFOLLOWER_BUILD_CLI=ON`` for C++-only installs) offers
+``kinematics``, ``modes``, ``run`` and ``export`` with the same names and options.
 """
 
 from __future__ import annotations
@@ -17,6 +28,7 @@ from __future__ import annotations
 import argparse
 import io
 import math
+import re
 import sys
 import warnings
 from pathlib import Path
@@ -83,8 +95,31 @@ _MAX_REVOLUTIONS = 1e6  # camshaft revolutions per speed: far beyond any study, 
 def check_arguments(args: argparse.Namespace) -> None:
     """Every command-line argument, checked before the config is read or anything runs; ValueError
     naming the option as typed on the command line and what it accepts."""
-    _files.check_name(args.config, "config")
-    _files.check_name(args.out, "--out")
+    if args.config is not None:
+        _files.check_name(args.config, "config")
+    if getattr(args, "out", None) is not None:
+        _files.check_name(args.out, "--out")
+    if getattr(args, "output", None) is not None:
+        _files.check_name(args.output, "-o/--output")
+        if not args.output:
+            raise ValueError("-o/--output: must name a file, got an empty string")
+    if args.command == "kinematics" and args.rpm is not None:
+        _speeds([args.rpm], "--rpm")
+    if args.command == "modes":
+        if not (math.isfinite(args.theta) and abs(args.theta) <= 1e6):
+            raise ValueError(f"--theta: {args.theta:g} is not a cam angle in [-1e6, 1e6] deg")
+        if args.count is not None:
+            _integer(args.count, "--count", 1, 100_000)
+    if args.command == "export":
+        from . import _core
+
+        units = _core.length_units()
+        if args.unit not in units:
+            raise ValueError(f"--unit: {args.unit!r} is not one of {', '.join(units)}")
+        most = _core.MAX_PART_LENGTH / units[args.unit]
+        if not (math.isfinite(args.cutter_radius) and 0.0 <= args.cutter_radius <= most):
+            raise ValueError(f"--cutter-radius: {args.cutter_radius:g} is not a radius in [0, {most:g}] {args.unit}")
+        _integer(args.points, "--points", 8, _core.MAX_POINTS)
     if args.command == "camshaft":
         if args.rpm and args.engine_rpm:
             raise ValueError("give --rpm (camshaft) or --engine-rpm (twice the camshaft's), not both")
@@ -130,11 +165,7 @@ def figures(config: str, out: str) -> dict:
     m = case.mechanism
     rpm = m.camshaft_speed_rpm
     result = case.run()
-    names = result.channels
-    data = np.column_stack([np.asarray(result[n]) for n in names])
-    table = io.StringIO()
-    np.savetxt(table, data, delimiter=",", header=",".join(names), comments="", fmt="%.12g")
-    _write(config, folder / "run.csv", table.getvalue().encode())
+    _write(config, folder / "run.csv", _recording_csv(result))
     written = ["run.csv"]
     contacts = case.builder.__getstate__()["contacts"]
     summary = {"config": str(case.path), "camshaft_speed_rpm": rpm, "rows": result.rows,
@@ -214,6 +245,148 @@ def camshaft(config: str, out: str, rpm=None, engine_rpm=None, revolutions: floa
     summary["warnings"] = closure
     _write(config, folder / "summary.json", _files.json_text(summary).encode())
     return summary
+
+
+# The paper's mechanism at 750 rpm: what kinematics and modes describe without a config (as the C++ program).
+_PAPER_CASE = {"camshaft": {"speed": 750}, "preset": {"name": "paper"}}
+
+
+def _case_or_paper(config):
+    from .config import config_from_dict
+
+    return _load(config) if config else config_from_dict(_PAPER_CASE)
+
+
+def _origin(case) -> str:
+    return str(case.path) if case.path else "<paper preset>"
+
+
+def _peak(program, key: str):
+    """(|value|, theta) of the largest |d/dtheta| derivative `key` of the lift over a revolution: a
+    0.01 deg grid with the segment boundaries, refined by a parabola through the best sample."""
+    theta = np.union1d(np.linspace(0.0, 2 * math.pi, 36001), [s.theta_start for s in program.segments])
+    values = np.abs(np.asarray(program.evaluate(theta)[key]))
+    k = int(np.argmax(values))
+    return float(values[k]), float(theta[k])
+
+
+def kinematics(config, rpm=None) -> list:
+    """Print the kinematic checks of every contact of `config` (the paper preset without one) at `rpm`
+    (default: the config's); return them as dicts (SI units, angles in degrees)."""
+    case = _case_or_paper(config)
+    rpm = rpm or case.mechanism.camshaft_speed_rpm
+    omega = rpm * 2 * math.pi / 60.0
+    print(f"{_origin(case)} at {rpm:.6g} rpm")
+    rows = []
+    for c in case.builder.__getstate__()["contacts"]:
+        follower, program = c["follower"], c["program"]
+        translating = type(follower).__name__.startswith("Translating")
+        alpha_at, alpha = follower.max_pressure_angle(program)
+        rho_at, rho = follower.min_surface_radius(program)
+        velocity, velocity_at = _peak(program, "dh")
+        acceleration, acceleration_at = _peak(program, "d2h")
+        row = {"contact": c["name"], "follower": type(follower).__name__,
+               "max_abs_pressure_angle_deg": abs(math.degrees(alpha)), "at_deg": math.degrees(alpha_at),
+               "min_convex_surface_radius_m": rho, "radius_at_deg": math.degrees(rho_at),
+               "lift_min": program.min_lift(), "lift_max": program.max_lift(),
+               "max_abs_velocity": omega * velocity, "velocity_at_deg": math.degrees(velocity_at),
+               "max_abs_acceleration": omega**2 * acceleration, "acceleration_at_deg": math.degrees(acceleration_at)}
+        rows.append(row)
+        # Lengths in mm, arm angles in degrees, as the C++ program prints them.
+        lift_unit, lift_scale = ("mm", 1e3) if translating else ("deg", 180.0 / math.pi)
+        rate = "m/s" if translating else "rad/s"
+        print(f"contact '{c['name']}': {re.sub(r'(?<!^)(?=[A-Z])', '_', row['follower']).lower()} follower")
+        print(f"  max |pressure angle|:                {row['max_abs_pressure_angle_deg']:.4f} deg at theta = "
+              f"{row['at_deg']:.3f} deg")
+        print(f"  min convex cam-surface radius:       {1e3 * rho:.4f} mm at theta = {row['radius_at_deg']:.3f} deg")
+        print(f"  lift range:                          {lift_scale * row['lift_min']:.6g} to "
+              f"{lift_scale * row['lift_max']:.6g} {lift_unit}")
+        print(f"  max |follower velocity| (rigid):     {row['max_abs_velocity']:.6g} {rate} at theta = "
+              f"{row['velocity_at_deg']:.3f} deg")
+        print(f"  max |follower acceleration| (rigid): {row['max_abs_acceleration']:.6g} {rate}^2 at theta = "
+              f"{row['acceleration_at_deg']:.3f} deg")
+    return rows
+
+
+def modes(config, theta_deg: float = 0.0, count=None) -> list:
+    """Print the natural frequencies of `config`'s mechanism (the paper preset without one), contacts
+    linearized at the static equilibrium at camshaft angle `theta_deg`; all of a small model, the
+    lowest `count` (default 20) of one above 200 DOFs. Return (frequency in Hz, DOF moving most)."""
+    case = _case_or_paper(config)
+    m = case.mechanism
+    n = len(m.dof_names)
+    wanted = min(count or (20 if n > 200 else n), n)
+    frequencies, shapes = m.lowest_modes(math.radians(theta_deg), wanted)
+    part = f" (lowest {len(frequencies)} of {n})" if len(frequencies) < n else ""
+    print(f"{_origin(case)}: natural frequencies (Hz), contacts linearized at the static equilibrium, "
+          f"theta = {theta_deg:g} deg{part}")
+    out = []
+    for k, f in enumerate(np.asarray(frequencies).ravel()):
+        dof = m.dof_names[int(np.argmax(np.abs(np.asarray(shapes)[:, k])))]
+        print(f"mode {k + 1:<3d} {f:14.2f}   largest motion: {dof}")
+        out.append((float(f), dof))
+    return out
+
+
+def _recording_csv(result) -> bytes:
+    names = result.channels
+    data = np.column_stack([np.asarray(result[n]) for n in names])
+    table = io.StringIO()
+    np.savetxt(table, data, delimiter=",", header=",".join(names), comments="", fmt="%.12g")
+    return table.getvalue().encode()
+
+
+def run(config: str, output=None) -> dict:
+    """Simulate the case in `config` and write every recorded channel as CSV to `output` (default: the
+    config's ``[output] file``, next to the config); return what was done."""
+    case = _load(config)
+    closure = _closure(case)
+    target = output or case.output.get("file")
+    if not target:
+        raise ValueError(f"{config}: no output file: set [output] file or give -o FILE")
+    path = Path(target) if output or Path(target).is_absolute() else Path(config).parent / target
+    _files.check_name(str(path), "-o/--output")
+    _files.check_target(path, protect=[config])
+    result = case.run()
+    _write(config, path, _recording_csv(result))
+    lost = {name: float(sum(b - a for a, b in spans)) for name, spans in result.contact_loss.items()}
+    summary = {"rows": result.rows, "channels": len(result.channels), "method": result.stats["method"],
+               "steps": result.stats["steps"], "contact_lost_s": lost, "events": len(result.events),
+               "file": str(path), "warnings": closure}
+    losses = "".join(f", '{k}' lost contact {_text.g(v, 4)} s" for k, v in lost.items() if v > 0.0)
+    print(f"{summary['rows']} rows, {summary['channels']} channels ({summary['method']}: {summary['steps']} steps)"
+          f"{losses}, {summary['events']} contact losses and re-contacts located -> {path}")
+    if "method_choice" in result.stats:
+        print(f"method auto took {result.stats['method_choice']}")
+    return summary
+
+
+def export(config: str, output: str, contact=None, unit: str = "mm", cutter_radius: float = 0.0,
+           points: int = 3600) -> dict:
+    """Write the cam of `contact` (default: the first) in `config` for manufacturing: CSV, or DXF when
+    `output` ends in ``.dxf``; `cutter_radius` in `unit` (0: no cutter path)."""
+    from . import _core
+    from . import export as ex
+
+    units = _core.length_units()
+    if unit not in units:
+        raise ValueError(f"--unit must be one of {', '.join(units)}, got {unit!r}")
+    case = _load(config)
+    contacts = case.builder.__getstate__()["contacts"]
+    names = [c["name"] for c in contacts]
+    name = contact or (names[0] if names else None)
+    if name not in names:
+        raise ValueError(f"--contact: no contact named {name!r}; the config defines: {', '.join(names) or 'none'}")
+    c = contacts[names.index(name)]
+    _files.check_name(output, "-o/--output")
+    cutter = cutter_radius * units[unit] if cutter_radius else None
+    dxf = output.lower().endswith(".dxf")
+    _files.check_target(output, protect=[config])
+    (ex.write_dxf if dxf else ex.write_csv)(output, c["follower"], c["program"], points=points, cutter_radius=cutter,
+                                              unit=unit)
+    print(f"contact '{name}': {points} points of the cam surface{' and the cutter-centre path' if cutter else ''} "
+          f"in {unit} -> {output}")
+    return {"contact": name, "points": points, "unit": unit, "file": output, "format": "dxf" if dxf else "csv"}
 
 
 def _csv(rows, columns) -> bytes:
@@ -351,10 +524,39 @@ def _add_executor_options(p) -> None:
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(prog="python -m camfollower", description=__doc__.split("\n\n")[0],
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if argv[:1] == ["study"]:  # the paper's study has its own options (camfollower study --help)
+        from . import study
+
+        return study.main(argv[1:], prog="camfollower study")
+    parser = argparse.ArgumentParser(prog="camfollower", description="camfollower: dynamics of flexible cam-follower "
+                                     "mechanisms; every verb works on a config file (docs/config.md). -o is the file "
+                                     "for run and export, the folder for the others.",
                                      epilog="exit status: 0 done, 1 an error (one line 'camfollower: error: ...'), "
                                             "2 a command line argparse cannot read")
     sub = parser.add_subparsers(dest="command", required=True)
+    k = sub.add_parser("kinematics", help="per contact: largest pressure angle, smallest cam-surface radius, lift "
+                                          "range, rigid velocity and acceleration")
+    k.add_argument("config", nargs="?", help="config file (default: the paper's mechanism)")
+    k.add_argument("--rpm", type=float, help="camshaft speed for the velocity and acceleration (default: the config's)")
+    md = sub.add_parser("modes", help="natural frequencies of the mechanism, contacts linearized at a cam angle")
+    md.add_argument("config", nargs="?", help="config file (default: the paper's mechanism)")
+    md.add_argument("--theta", type=float, default=0.0, help="camshaft angle of the linearization, deg (default 0)")
+    md.add_argument("--count", type=int, help="how many of the lowest modes (default: all; 20 above 200 DOFs)")
+    r = sub.add_parser("run", help="simulate the case the config describes; every recorded channel as CSV")
+    r.add_argument("config", help="config file (docs/config.md)")
+    r.add_argument("-o", "--output", help="CSV file (default: the config's [output] file)")
+    e = sub.add_parser("export", help="the cam surface (and cutter-centre path) of one contact for manufacturing: "
+                                      "CSV, or DXF for a .dxf file")
+    e.add_argument("config", help="config file (docs/config.md)")
+    e.add_argument("-o", "--output", required=True, help="CSV or DXF file")
+    e.add_argument("--contact", help="contact whose cam to export (default: the first)")
+    e.add_argument("--unit", default="mm", help="length unit of the file: m, mm, um or inch (default mm)")
+    e.add_argument("--cutter-radius", type=float, default=0.0,
+                   help="radius of the milling cutter or grinding wheel, in --unit (default 0: no cutter path)")
+    e.add_argument("--points", type=int, default=3600, help="points round the cam (default 3600)")
+    sub.add_parser("study", help="the paper's study (healthy / eccentricity / clearance) -> ./out; "
+                                 "camfollower study --help for its options")
     f = sub.add_parser("figures", help="simulate a config; write run.csv, figures and summary.json")
     f.add_argument("config", help="config file (docs/config.md)")
     f.add_argument("-o", "--out", default="out", help="output folder (default: ./out)")
@@ -381,6 +583,18 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     try:
         check_arguments(args)
+        if args.command == "kinematics":
+            kinematics(args.config, args.rpm)
+            return 0
+        if args.command == "modes":
+            modes(args.config, args.theta, args.count)
+            return 0
+        if args.command == "run":
+            run(args.config, args.output)
+            return 0
+        if args.command == "export":
+            export(args.config, args.output, args.contact, args.unit, args.cutter_radius, args.points)
+            return 0
         if args.command == "camshaft":
             study = camshaft(args.config, args.out, args.rpm, args.engine_rpm, args.revolutions)
         elif args.command == "sweep":
@@ -405,7 +619,11 @@ def main(argv=None) -> int:
         if "jump" in result:
             j = result["jump"]
             print(f"jump speed {j['rpm']:.1f} rpm (bracket {j['bracket'][0]:.1f}-{j['bracket'][1]:.1f}): the follower "
-                  f"leaves the cam at {j['angle_deg']:.1f} deg")
+                  f"first leaves the cam at {j['angle_deg']:.1f} deg")
+            for w in j["windows"]:
+                lost_on = w["end_rpm"] is None or not math.isfinite(w["end_rpm"])
+                end = "the range's end" if lost_on else f"{w['end_rpm']:.1f} rpm"
+                print(f"  contact lost from {w['start_rpm']:.1f} rpm to {end} (leaves at {w['angle_deg']:.1f} deg)")
         print(f"{len(result['files'])} files -> {args.out}")
         return 0
     if args.command == "montecarlo":

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-3-Clause
-"""The paper's study, run as ``python -m camfollower.study`` (or ``camfollower-study``).
+"""The paper's study, run as ``camfollower study`` (or ``python -m camfollower.study``).
 
 The paper's cam at 750 rpm, for the paper's offset follower (e = 10 mm) and an in-line one (e = 0):
 healthy, camshaft eccentricity and guide clearance, each in two formulations side by side:
@@ -33,8 +33,18 @@ from pathlib import Path
 
 import numpy as np
 
-from . import CamEccentricity, CamFollowerModel, Defects, DiskCam, MotionProgram, Parameters, presets, simulate, simulate_many
-from . import _files
+from . import (
+    CamEccentricity,
+    CamFollowerModel,
+    Defects,
+    DiskCam,
+    MotionProgram,
+    Parameters,
+    _files,
+    presets,
+    simulate,
+    simulate_many,
+)
 from . import analysis as an
 
 FOLLOWERS = {"offset": 0.010, "inline": 0.0}  # follower axis offset e, m
@@ -560,8 +570,8 @@ def print_summary(summary: dict) -> None:
               f"{b['rise_deviation_rms_m_s2']:.2f} / {b['return_deviation_rms_m_s2']:.2f}")
 
 
-def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(prog="camfollower-study", description=__doc__.splitlines()[0])
+def main(argv: list[str] | None = None, prog: str = "camfollower study") -> int:
+    parser = argparse.ArgumentParser(prog=prog, description=__doc__.splitlines()[0])
     d = StudyConfig()
     parser.add_argument("--out", default="out", help="output folder (created if missing); default: out")
     parser.add_argument("--rpm", type=float, default=d.rpm, help=f"camshaft speed (rpm); default {d.rpm:g}")

@@ -6,6 +6,7 @@ PYBIND11_MODULE(_core, m) {
     m.doc() = "camfollower compiled core (use the camfollower package, not this module directly)";
     m.attr("__version__") = CAMFOLLOWER_VERSION;  // from pyproject.toml, through CMake
     m.attr("MAX_POINTS") = camfollower::detail::max_points;  // largest point count of any sampled curve
+    m.attr("MAX_PART_LENGTH") = camfollower::detail::max_part_length;  // m, largest length of a part (export's cutter radius)
     m.attr("MIN_CAMSHAFT_SPEED") = camfollower::detail::min_camshaft_speed;  // rad/s
     m.attr("MAX_CAMSHAFT_SPEED") = camfollower::detail::max_camshaft_speed;  // rad/s
     camfollower::python::bind_motion(m);

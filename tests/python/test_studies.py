@@ -13,10 +13,9 @@ import sys
 import time
 from pathlib import Path
 
+import camfollower as cf
 import numpy as np
 import pytest
-
-import camfollower as cf
 from camfollower import executors, speed
 from camfollower import tolerance as tol
 from camfollower.response import steady_response
@@ -486,6 +485,10 @@ def test_command_line_sweep_and_montecarlo(tmp_path):
     assert 1200 < summary["jump"]["rpm"] < 1500
     assert all((tmp_path / "sweep" / f).is_file() for f in summary["files"])
     assert "jump speed" in s.stdout
+    # Every loss window printed, as the summary has them (the preset's first one opens at ~1304 rpm).
+    windows = summary["jump"]["windows"]
+    assert windows and s.stdout.count("  contact lost from ") == len(windows)
+    assert f"contact lost from {windows[0]['start_rpm']:.1f} rpm" in s.stdout
     mc = subprocess.run([sys.executable, "-m", "camfollower", "montecarlo", str(cfg), "--cases", "6", "--workers", "1",
                          "--no-progress", "-o", str(tmp_path / "mc")], capture_output=True, text=True, env=env, timeout=600)
     assert mc.returncode == 0, mc.stderr
