@@ -5,9 +5,8 @@ the contact 100 times stiffer; CPU ms medians of interleaved runs, force error a
 (docs/benchmarks.md). Run: .venv/bin/python bench/auto_cost.py"""
 import time
 
-import numpy as np
-
 import camfollower as cf
+import numpy as np
 
 REPEATS = 7
 

@@ -26,11 +26,10 @@ import sys
 import time
 from pathlib import Path
 
-import numpy as np
-from scipy.integrate import solve_ivp
-
 import camfollower as cf
+import numpy as np
 from camfollower.reference import NumpyCamFollower
+from scipy.integrate import solve_ivp
 
 GRID = 4096  # comparison points per revolution
 

@@ -49,9 +49,10 @@ from __future__ import annotations
 import math
 import time
 
-import numpy as np
-
+import camfollower as cf
 import exudyn as exu
+import numpy as np
+from camfollower.reference import NumpyCamFollower
 from exudyn.itemInterface import (
     CoordinateSpringDamper,
     LoadCoordinate,
@@ -63,9 +64,6 @@ from exudyn.itemInterface import (
     SensorBody,
     SensorNode,
 )
-
-import camfollower as cf
-from camfollower.reference import NumpyCamFollower
 
 Y1, Y2, Y3, Y4, X1, X2, X3 = range(7)
 CONTACT_DOFS = (Y1, Y2, X1, X2)  # the coordinates of the contact object, in this order

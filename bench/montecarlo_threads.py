@@ -13,9 +13,8 @@ import argparse
 import os
 import time
 
-import numpy as np
-
 import camfollower as cf
+import numpy as np
 from camfollower import tolerance as tol
 
 TOLERANCES = {"contact_stiffness": tol.Normal(0.05, relative=True),

@@ -12,9 +12,8 @@ measured by build-bench/bench/camfollower_bench_camshaft, BM_ValveTrainRevolutio
 
 import time
 
-import numpy as np
-
 import camfollower as cf
+import numpy as np
 
 
 def main():

@@ -15,6 +15,7 @@ import numpy as _numpy  # noqa: F401  (imported here, not lazily inside the firs
 from . import _api_errors, _core
 
 _api_errors.install(_core)  # argument mismatches: short TypeErrors naming the call, not pybind11's dumps
+from . import export, motion, presets
 from ._core import (  # noqa: E402
     ArmTurn,
     BoundaryContinuity,
@@ -38,11 +39,10 @@ from ._core import (  # noqa: E402
     TranslatingFlat,
     TranslatingRoller,
 )
-from . import export, motion, presets
 from .config import Config, config_from_dict, load_config
+from .periodic import PeriodicOrbit, periodic_steady_state
 from .results import Result
 from .simulation import simulate, simulate_many
-from .periodic import PeriodicOrbit, periodic_steady_state
 
 __all__ = [
     "ArmTurn",

@@ -320,7 +320,7 @@ def _pool(fn, items, workers, bar, cancel) -> List[Outcome]:
     its own is reported as failed, the others complete."""
     out: List[Optional[Outcome]] = [None] * len(items)
     todo = list(range(len(items)))
-    for attempt in range(2):
+    for _attempt in range(2):
         with _process_pool(min(workers, len(todo))) as pool:
             def stop(pending):
                 for f in pending:

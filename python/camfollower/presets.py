@@ -5,8 +5,16 @@ from __future__ import annotations
 
 from typing import Optional
 
-from ._core import (CamEccentricity, Mechanism, MotionProgram, Parameters, paper_preset, realistic_damping_ratio,
-                    valve_train_parameter_units, valve_train_preset)
+from ._core import (
+    CamEccentricity,
+    Mechanism,
+    MotionProgram,
+    Parameters,
+    paper_preset,
+    realistic_damping_ratio,
+    valve_train_parameter_units,
+    valve_train_preset,
+)
 
 #: Element damping ratio of :func:`paper_damped` (machine structures: 2-5 % of critical; defined in C++).
 REALISTIC_DAMPING_RATIO: float = realistic_damping_ratio

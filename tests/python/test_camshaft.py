@@ -10,10 +10,9 @@ import subprocess
 import sys
 from pathlib import Path
 
+import camfollower as cf
 import numpy as np
 import pytest
-
-import camfollower as cf
 from camfollower.camshaft import camshaft_study
 from camfollower.config import load_config
 

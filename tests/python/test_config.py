@@ -11,10 +11,9 @@ import sys
 import time
 from pathlib import Path
 
+import camfollower as cf
 import numpy as np
 import pytest
-
-import camfollower as cf
 from camfollower.config import config_from_dict, load_config
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"

@@ -11,7 +11,6 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-
 from camfollower import cli
 from camfollower.config import ForceClosureWarning, config_from_dict, force_closure, load_config
 

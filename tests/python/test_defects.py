@@ -12,13 +12,12 @@ import math
 import pickle
 import warnings
 
+import camfollower as cf
 import numpy as np
 import pytest
+from camfollower.analysis import clearance_statistics
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
-
-import camfollower as cf
-from camfollower.analysis import clearance_statistics
 
 DEG = math.pi / 180.0
 

@@ -7,7 +7,6 @@ import math
 
 import numpy as np
 import pytest
-
 from camfollower.config import config_from_dict
 from camfollower.response import steady_response
 

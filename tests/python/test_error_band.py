@@ -5,10 +5,9 @@ their peaks, stays within the documented band of the tolerance at every output i
 T/65536, on the paper preset, with the contact 100 times stiffer, and above the jump speed (contact
 lost and made), against DOP853 at tolerance 1e-12 on the same output grid."""
 
+import camfollower as cf
 import numpy as np
 import pytest
-
-import camfollower as cf
 
 GRIDS = tuple(2 ** k for k in range(9, 17))  # output intervals T/512 ... T/65536
 _P = cf.Parameters()

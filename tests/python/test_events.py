@@ -4,12 +4,11 @@ against scipy's event location on the 7-DOF equations written again in NumPy; th
 they bound; the events' round trip through files and pickles."""
 import pickle
 
+import camfollower as cf
 import numpy as np
 import pytest
-from scipy.integrate import solve_ivp
-
-import camfollower as cf
 from camfollower.reference import NumpyCamFollower
+from scipy.integrate import solve_ivp
 
 
 @pytest.fixture(scope="module")

@@ -6,10 +6,9 @@ import os
 import stat
 import sys
 
+import camfollower as cf
 import numpy as np
 import pytest
-
-import camfollower as cf
 from camfollower import export
 
 PAPER = cf.MotionProgram.paper_default()

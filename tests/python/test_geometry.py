@@ -2,10 +2,9 @@
 """DiskCam and MotionProgram through the bindings: arrays out, paper eqs 2-5 re-derived in NumPy,
 CSV export, and ValueError for bad input."""
 
+import camfollower as cf
 import numpy as np
 import pytest
-
-import camfollower as cf
 
 DEG = np.pi / 180
 

@@ -11,13 +11,11 @@ import subprocess
 import sys
 import textwrap
 import time
-
 from pathlib import Path
 
+import camfollower as cf
 import numpy as np
 import pytest
-
-import camfollower as cf
 from camfollower import _files
 
 ROOT = Path(__file__).resolve().parents[2]

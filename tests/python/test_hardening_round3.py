@@ -11,10 +11,9 @@ import sys
 import textwrap
 import time
 
+import camfollower as cf
 import numpy as np
 import pytest
-
-import camfollower as cf
 
 PROGRAM = cf.MotionProgram.paper_default()
 

@@ -7,11 +7,10 @@ numpy's polynomial solvers."""
 import math
 import pickle
 
+import camfollower as cf
 import numpy as np
 import pytest
 from scipy.interpolate import make_interp_spline
-
-import camfollower as cf
 
 DEG = math.pi / 180.0
 
@@ -90,7 +89,7 @@ def test_spline_derivatives_are_the_derivatives_of_its_own_lift():
     t = np.linspace(0.1, 6.0, 50)
     e = 1e-5
     mid, lo, hi = prog.evaluate(t), prog.evaluate(t - e), prog.evaluate(t + e)
-    for k, (d, f) in enumerate((("dh", "h"), ("d2h", "dh"), ("d3h", "d2h"))):
+    for d, f in (("dh", "h"), ("d2h", "dh"), ("d3h", "d2h")):
         fd = (hi[f] - lo[f]) / (2 * e)
         assert np.allclose(mid[d], fd, rtol=1e-5, atol=1e-8 * np.max(np.abs(mid[d]))), d
 

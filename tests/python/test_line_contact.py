@@ -5,10 +5,9 @@ stress along the paper cam, and bad input."""
 
 import math
 
+import camfollower as cf
 import numpy as np
 import pytest
-
-import camfollower as cf
 
 E_STEEL, NU_STEEL = 210e9, 0.3
 E_STAR = 1.0 / (2 * (1 - NU_STEEL**2) / E_STEEL)  # steel on steel

@@ -7,10 +7,9 @@ import runpy
 import time
 from pathlib import Path
 
+import camfollower as cf
 import numpy as np
 import pytest
-
-import camfollower as cf
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 

@@ -5,12 +5,11 @@ accepts, the config's [solver] scheme."""
 import re
 from pathlib import Path
 
+import camfollower as cf
 import numpy as np
 import pytest
-from scipy.integrate import solve_ivp
-
-import camfollower as cf
 from camfollower.reference import NumpyCamFollower
+from scipy.integrate import solve_ivp
 
 ROOT = Path(__file__).resolve().parents[2]
 

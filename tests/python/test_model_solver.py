@@ -6,13 +6,12 @@ import ctypes
 import threading
 import time
 
+import camfollower as cf
 import numpy as np
 import pytest
 import scipy.linalg
-from scipy.integrate import solve_ivp
-
-import camfollower as cf
 from camfollower.reference import NumpyCamFollower
+from scipy.integrate import solve_ivp
 
 
 @pytest.fixture(scope="module")

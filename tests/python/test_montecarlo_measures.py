@@ -9,10 +9,9 @@ import json
 import math
 from pathlib import Path
 
+import camfollower as cf
 import numpy as np
 import pytest
-
-import camfollower as cf
 from camfollower import cli
 from camfollower import tolerance as tol
 from camfollower.config import load_config

@@ -4,11 +4,10 @@ law's defining conditions (boundary conditions / acceleration shape), independen
 
 import math
 
+import camfollower as cf
 import numpy as np
 import pytest
 import sympy as sp
-
-import camfollower as cf
 
 x = sp.symbols("x", real=True)
 

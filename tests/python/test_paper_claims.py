@@ -11,9 +11,8 @@ import math
 
 import numpy as np
 import pytest
-
 from camfollower import analysis as an
-from camfollower.study import StudyConfig, deviation_figures, defect_modulation, run_case, run_cases
+from camfollower.study import StudyConfig, defect_modulation, deviation_figures, run_case, run_cases
 
 CFG = StudyConfig()
 

@@ -9,10 +9,9 @@ import matplotlib
 
 matplotlib.use("Agg")
 
+import camfollower as cf  # noqa: E402
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
-
-import camfollower as cf  # noqa: E402
 from camfollower import plot  # noqa: E402
 
 PROGRAM = cf.MotionProgram.paper_default()

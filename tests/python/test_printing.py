@@ -8,8 +8,6 @@ import re
 
 import numpy as np
 import pytest
-
-import camfollower as cf
 from camfollower import periodic, sizing, speed, study
 from camfollower import tolerance as tol
 from camfollower.results import Result

@@ -5,10 +5,9 @@ pickling, ValueError messages, the undercut check, and a simulated follower that
 
 import pickle
 
+import camfollower as cf
 import numpy as np
 import pytest
-
-import camfollower as cf
 
 DEG = np.pi / 180
 

@@ -2,10 +2,9 @@
 """simulate_many: each case exactly as simulate() gives it alone, failures kept per case, cancellation,
 bad input named."""
 
+import camfollower as cf
 import numpy as np
 import pytest
-
-import camfollower as cf
 
 
 def paper(scale=1.0):

@@ -3,10 +3,9 @@
 
 import math
 
+import camfollower as cf
 import numpy as np
 import pytest
-
-import camfollower as cf
 from camfollower import sizing
 
 PROGRAM = cf.MotionProgram.paper_default()

@@ -4,7 +4,6 @@
 import json
 
 import pytest
-
 from camfollower import study
 
 

@@ -7,13 +7,12 @@ accurate orbit state), whatever step it starts from.
 """
 
 import math
-from pathlib import Path
 import warnings
-
-import numpy as np
-import pytest
+from pathlib import Path
 
 import camfollower as cf
+import numpy as np
+import pytest
 from camfollower import speed
 from camfollower.periodic import periodic_steady_state
 from camfollower.response import steady_response

@@ -3,10 +3,10 @@
 
 import importlib.metadata
 import re
-import tomllib
 from pathlib import Path
 
 import camfollower as cf
+import tomllib
 
 ROOT = Path(__file__).resolve().parents[2]
 
