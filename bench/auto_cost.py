@@ -3,6 +3,7 @@
 2026-11-28), side by side in one process: one revolution at output T/2048 on the paper preset and with
 the contact 100 times stiffer; CPU ms medians of interleaved runs, force error against DOP853 at 1e-12
 (docs/benchmarks.md). Run: .venv/bin/python bench/auto_cost.py"""
+
 import time
 
 import camfollower as cf
@@ -13,8 +14,10 @@ REPEATS = 7
 
 def main():
     p = cf.Parameters()
-    models = {"750 rpm": cf.presets.paper(p),
-              "x100 contact": cf.presets.paper(p.replace(contact_stiffness=100 * p.contact_stiffness))}
+    models = {
+        "750 rpm": cf.presets.paper(p),
+        "x100 contact": cf.presets.paper(p.replace(contact_stiffness=100 * p.contact_stiffness)),
+    }
     runs = {"auto": dict(method="auto"), "fox_goodwin": dict(method="fox_goodwin", max_halvings=12)}
     print("case, tolerance, then per run: method, CPU ms, force error; ratio auto / fox_goodwin")
     for name, m in models.items():

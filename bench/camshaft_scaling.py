@@ -38,8 +38,11 @@ def main(path):
     print("dense / sparse cost: " + ", ".join(f"N={n}: {cost[('dense', n)] / cost[('sparse', n)]:.2f}" for n in common))
     faster = [n for n in common if cost[("sparse", n)] < cost[("dense", n)]]
     crossover = next((n for n in common if all(m in faster for m in common if m >= n)), None)
-    print(f"crossover: sparse faster from N = {crossover} cams ({dofs.get(crossover, '?')} DOFs) on" if crossover
-          else "crossover: none in this range")
+    print(
+        f"crossover: sparse faster from N = {crossover} cams ({dofs.get(crossover, '?')} DOFs) on"
+        if crossover
+        else "crossover: none in this range"
+    )
 
 
 if __name__ == "__main__":

@@ -45,13 +45,16 @@ def timed(fn, repeat=1):
 
 
 def errors(y4, force, ref):
-    return (float(np.max(np.abs(y4 - ref["y4"])) / np.max(np.abs(ref["y4"]))),
-            float(np.max(np.abs(force - ref["force"])) / np.max(np.abs(ref["force"]))))
+    return (
+        float(np.max(np.abs(y4 - ref["y4"])) / np.max(np.abs(ref["y4"]))),
+        float(np.max(np.abs(force - ref["force"])) / np.max(np.abs(ref["force"]))),
+    )
 
 
 def camfollower_run(model, steps_per_rev, beta=0.25):
-    return cf.simulate(model, revolutions=1, time_step=model.period / steps_per_rev,
-                       decimation=steps_per_rev // GRID, beta=beta)
+    return cf.simulate(
+        model, revolutions=1, time_step=model.period / steps_per_rev, decimation=steps_per_rev // GRID, beta=beta
+    )
 
 
 def reference(model, ref_model, quick):
@@ -62,21 +65,41 @@ def reference(model, ref_model, quick):
     t0 = time.perf_counter()
     rtol = 1e-10 if quick else 1e-12
     atol = np.concatenate([np.full(7, rtol * 1e-3), np.full(7, rtol * 1e-1)])
-    sol = solve_ivp(ref_model.rhs, (0, out["t"][-1]), ref_model.initial(), method="Radau",
-                    rtol=rtol, atol=atol, jac=ref_model.jacobian, t_eval=out["t"])
+    sol = solve_ivp(
+        ref_model.rhs,
+        (0, out["t"][-1]),
+        ref_model.initial(),
+        method="Radau",
+        rtol=rtol,
+        atol=atol,
+        jac=ref_model.jacobian,
+        t_eval=out["t"],
+    )
     radau_time = time.perf_counter() - t0
     force = np.array([ref_model.kh * max(ref_model.contact(t, z[:7])[1], 0.0) for t, z in zip(sol.t, sol.y.T)])
     e_y4, e_f = errors(sol.y[3], force, out)
-    return out, {"radau_rtol": rtol, "radau_wall_s": radau_time,
-                 "reference_vs_radau_y4": e_y4, "reference_vs_radau_force": e_f}
+    return out, {
+        "radau_rtol": rtol,
+        "radau_wall_s": radau_time,
+        "reference_vs_radau_y4": e_y4,
+        "reference_vs_radau_force": e_f,
+    }
 
 
 def scipy_run(ref_model, model, method, rtol, grid_t):
     # Absolute tolerances scaled to each variable's size, as a careful user sets them: the 10 mm
     # lift for displacements, 1 m/s for velocities.
     atol = np.concatenate([np.full(7, rtol * 1e-2), np.full(7, rtol)])
-    sol = solve_ivp(ref_model.rhs, (0, grid_t[-1]), ref_model.initial(), method=method, rtol=rtol,
-                    atol=atol, jac=ref_model.jacobian, t_eval=grid_t)
+    sol = solve_ivp(
+        ref_model.rhs,
+        (0, grid_t[-1]),
+        ref_model.initial(),
+        method=method,
+        rtol=rtol,
+        atol=atol,
+        jac=ref_model.jacobian,
+        t_eval=grid_t,
+    )
     if sol.status != 0:
         raise RuntimeError(f"{method} rtol={rtol}: {sol.message}")
     return sol
@@ -92,40 +115,52 @@ def main(argv=None) -> int:
 
     model = cf.CamFollowerModel()
     ref_model = NumpyCamFollower(model)
-    print(f"machine: {platform.processor() or platform.machine()}, {platform.python_implementation()} "
-          f"{platform.python_version()}, numpy {np.__version__}", flush=True)
+    print(
+        f"machine: {platform.processor() or platform.machine()}, {platform.python_implementation()} "
+        f"{platform.python_version()}, numpy {np.__version__}",
+        flush=True,
+    )
     ref, ref_check = reference(model, ref_model, args.quick)
-    print(f"reference: camfollower at T/{ref['steps']}; against Radau rtol {ref_check['radau_rtol']:g}: "
-          f"y4 {ref_check['reference_vs_radau_y4']:.1e}, contact force {ref_check['reference_vs_radau_force']:.1e} "
-          f"(Radau took {ref_check['radau_wall_s']:.1f} s)", flush=True)
+    print(
+        f"reference: camfollower at T/{ref['steps']}; against Radau rtol {ref_check['radau_rtol']:g}: "
+        f"y4 {ref_check['reference_vs_radau_y4']:.1e}, contact force {ref_check['reference_vs_radau_force']:.1e} "
+        f"(Radau took {ref_check['radau_wall_s']:.1f} s)",
+        flush=True,
+    )
     grid_t = ref["t"]
 
     rows = []
 
     def add(tool, setting, wall, steps, y4, force):
         e_y4, e_f = errors(y4, force, ref)
-        rows.append({"tool": tool, "setting": setting, "wall_s": wall, "steps": steps,
-                     "err_y4": e_y4, "err_force": e_f})
-        print(f"  {tool:20s} {setting:14s} {wall * 1e3:10.2f} ms {steps:>9d} steps  y4 {e_y4:.2e}  force {e_f:.2e}",
-              flush=True)
+        rows.append(
+            {"tool": tool, "setting": setting, "wall_s": wall, "steps": steps, "err_y4": e_y4, "err_force": e_f}
+        )
+        print(
+            f"  {tool:20s} {setting:14s} {wall * 1e3:10.2f} ms {steps:>9d} steps  y4 {e_y4:.2e}  force {e_f:.2e}",
+            flush=True,
+        )
 
     print("camfollower", flush=True)
-    for k in ([12, 14, 16] if args.quick else [12, 13, 14, 15, 16, 17]):
+    for k in [12, 14, 16] if args.quick else [12, 13, 14, 15, 16, 17]:
         n = 2**k
         wall, r = timed(lambda: camfollower_run(model, n), repeat=5)
         add("camfollower", f"dt=T/{n}", wall, r["stats"]["steps"], r["q"][:, 3], r["contact_force"])
     # Newmark with beta = 1/12 (Fox-Goodwin): same cost per step, far smaller phase error, but only
     # conditionally stable (omega_max dt < 2.45: at least ~2500 steps per revolution here).
     print("camfollower, beta = 1/12", flush=True)
-    for k in ([12, 14] if args.quick else [12, 13, 14]):
+    for k in [12, 14] if args.quick else [12, 13, 14]:
         n = 2**k
         wall, r = timed(lambda: camfollower_run(model, n, beta=1.0 / 12.0), repeat=5)
         add("camfollower b=1/12", f"dt=T/{n}", wall, r["stats"]["steps"], r["q"][:, 3], r["contact_force"])
 
-    for method, rtols in [("Radau", [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8]), ("BDF", [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8]),
-                          ("LSODA", [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8])]:
+    for method, rtols in [
+        ("Radau", [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8]),
+        ("BDF", [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8]),
+        ("LSODA", [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8]),
+    ]:
         print(method, flush=True)
-        for rtol in (rtols[::2] if args.quick else rtols):
+        for rtol in rtols[::2] if args.quick else rtols:
             wall, sol = timed(lambda: scipy_run(ref_model, model, method, rtol, grid_t))
             force = np.array([ref_model.kh * max(ref_model.contact(t, z[:7])[1], 0.0) for t, z in zip(sol.t, sol.y.T)])
             add(f"scipy {method}", f"rtol={rtol:g}", wall, int(sol.nfev), sol.y[3], force)
@@ -137,7 +172,7 @@ def main(argv=None) -> int:
         print(f"Exudyn: skipped ({e})", flush=True)
     else:
         print("Exudyn", flush=True)
-        for k in ([12, 14] if args.quick else [12, 13, 14, 15, 16]):
+        for k in [12, 14] if args.quick else [12, 13, 14, 15, 16]:
             n = 2**k
             r = run_exudyn(model, model.period, model.period / n, record_every=max(1, n // GRID))
             y4 = np.interp(grid_t, r["t"], r["y4"])
@@ -159,8 +194,10 @@ def main(argv=None) -> int:
         return min(ok, key=lambda r: r["wall_s"]) if ok else None
 
     for base_tool in ("camfollower", "camfollower b=1/12"):
-        print(f"\nspeed ratio tool / {base_tool} at equal or better accuracy in y4 "
-              "(wall time of the fastest run reaching the target)")
+        print(
+            f"\nspeed ratio tool / {base_tool} at equal or better accuracy in y4 "
+            "(wall time of the fastest run reaching the target)"
+        )
         print(f"  {'tool':20s}" + "".join(f"{f'<= {t:g}':>22s}" for t in targets))
         for tool in tools:
             cells = []

@@ -75,13 +75,13 @@ NEWTON_ABSOLUTE_TOLERANCE = 1e-8  # N
 def springs(p):
     """(dof a, dof b or None for ground, stiffness, damping) of the seven linear connections."""
     return [
-        (Y1, None, p.bearing_stiffness_vertical, p.bearing_damping_vertical),      # K_vs, C_vs
+        (Y1, None, p.bearing_stiffness_vertical, p.bearing_damping_vertical),  # K_vs, C_vs
         (X1, None, p.bearing_stiffness_horizontal, p.bearing_damping_horizontal),  # K_hs, C_hs
-        (Y2, Y3, p.roller_pin_stiffness_vertical, 0.0),                            # K_vc
-        (X2, X3, p.roller_pin_stiffness_horizontal, 0.0),                          # K_hc
-        (X3, None, p.guide_stiffness, 0.0),                                        # K_rb
-        (Y3, Y4, p.rod_stiffness, p.rod_damping),                                  # K_f, C_f
-        (Y4, None, p.spring_stiffness, 0.0),                                       # K_rs
+        (Y2, Y3, p.roller_pin_stiffness_vertical, 0.0),  # K_vc
+        (X2, X3, p.roller_pin_stiffness_horizontal, 0.0),  # K_hc
+        (X3, None, p.guide_stiffness, 0.0),  # K_rb
+        (Y3, Y4, p.rod_stiffness, p.rod_damping),  # K_f, C_f
+        (Y4, None, p.spring_stiffness, 0.0),  # K_rs
     ]
 
 
@@ -131,27 +131,32 @@ def build(model):
 
     nodes, markers = [], []
     for k in range(7):
-        node = mbs.AddNode(Node1D(referenceCoordinates=[0.0], initialCoordinates=[ref.q0[k]],
-                                  initialVelocities=[0.0]))
+        node = mbs.AddNode(Node1D(referenceCoordinates=[0.0], initialCoordinates=[ref.q0[k]], initialVelocities=[0.0]))
         mbs.AddObject(Mass1D(mass=ref.M[k, k], nodeNumber=node))
         nodes.append(node)
         markers.append(mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=node, coordinate=0)))
 
     for a, b, stiffness, damping in springs(model.parameters):
         other = ground_marker if b is None else markers[b]
-        mbs.AddObject(CoordinateSpringDamper(markerNumbers=[other, markers[a]], stiffness=stiffness,
-                                             damping=damping))
+        mbs.AddObject(CoordinateSpringDamper(markerNumbers=[other, markers[a]], stiffness=stiffness, damping=damping))
     mbs.AddLoad(LoadCoordinate(markerNumber=markers[Y4], load=ref.external[Y4]))
 
     contact = CamContact(ref)
-    contact_object = mbs.AddObject(ObjectGenericODE2(
-        nodeNumbers=[nodes[k] for k in CONTACT_DOFS], massMatrix=np.zeros((4, 4)),
-        forceUserFunction=contact.force_user_function, jacobianUserFunction=contact.jacobian_user_function))
+    contact_object = mbs.AddObject(
+        ObjectGenericODE2(
+            nodeNumbers=[nodes[k] for k in CONTACT_DOFS],
+            massMatrix=np.zeros((4, 4)),
+            forceUserFunction=contact.force_user_function,
+            jacobianUserFunction=contact.jacobian_user_function,
+        )
+    )
 
-    y4_sensor = mbs.AddSensor(SensorNode(nodeNumber=nodes[Y4], storeInternal=True,
-                                         outputVariableType=exu.OutputVariableType.Coordinates))
-    contact_sensor = mbs.AddSensor(SensorBody(bodyNumber=contact_object, storeInternal=True,
-                                              outputVariableType=exu.OutputVariableType.Coordinates))
+    y4_sensor = mbs.AddSensor(
+        SensorNode(nodeNumber=nodes[Y4], storeInternal=True, outputVariableType=exu.OutputVariableType.Coordinates)
+    )
+    contact_sensor = mbs.AddSensor(
+        SensorBody(bodyNumber=contact_object, storeInternal=True, outputVariableType=exu.OutputVariableType.Coordinates)
+    )
     mbs.Assemble()
     return mbs, y4_sensor, contact_sensor, contact
 
@@ -204,9 +209,11 @@ def run_exudyn(model, duration, time_step, record_every=1) -> dict:
         "steps": steps,
         "newton_iterations": int(solver.it.newtonStepsCount),
         "wall_time_s": wall,
-        "solver": (f"Exudyn {exu.__version__} generalized-alpha rho_inf=1 (trapezoidal), fixed step, full Newton "
-                   f"with analytic contact Jacobian, tol rel {NEWTON_RELATIVE_TOLERANCE:g} / "
-                   f"abs {NEWTON_ABSOLUTE_TOLERANCE:g} N"),
+        "solver": (
+            f"Exudyn {exu.__version__} generalized-alpha rho_inf=1 (trapezoidal), fixed step, full Newton "
+            f"with analytic contact Jacobian, tol rel {NEWTON_RELATIVE_TOLERANCE:g} / "
+            f"abs {NEWTON_ABSOLUTE_TOLERANCE:g} N"
+        ),
     }
 
 
@@ -217,17 +224,23 @@ def main():
     ref = cf.simulate(model, revolutions=1, time_step=T / ref_steps)
     ref_y4, ref_force = ref["q"][:, 3], ref["contact_force"]
     print(f"reference: camfollower, one revolution at T/{ref_steps}")
-    print(f"{'time step':>12s} {'steps':>6s} {'Newton it':>9s} {'wall (s)':>9s} {'err y4':>9s} {'err force':>9s}"
-          f" {'vs camfollower same step':>25s}")
+    print(
+        f"{'time step':>12s} {'steps':>6s} {'Newton it':>9s} {'wall (s)':>9s} {'err y4':>9s} {'err force':>9s}"
+        f" {'vs camfollower same step':>25s}"
+    )
     for n in (4096, 8192, 16384, 32768):
         r = run_exudyn(model, T, T / n)
         err_y4 = np.max(np.abs(r["y4"] - np.interp(r["t"], ref["t"], ref_y4))) / np.max(np.abs(ref_y4))
-        err_force = (np.max(np.abs(r["contact_force"] - np.interp(r["t"], ref["t"], ref_force)))
-                     / np.max(np.abs(ref_force)))
+        err_force = np.max(np.abs(r["contact_force"] - np.interp(r["t"], ref["t"], ref_force))) / np.max(
+            np.abs(ref_force)
+        )
         same = cf.simulate(model, revolutions=1, time_step=T / n)
         err_same = np.max(np.abs(r["y4"] - same["q"][:, 3])) / np.max(np.abs(ref_y4))
-        print(f"{f'T/{n}':>12s} {r['steps']:6d} {r['newton_iterations']:9d} {r['wall_time_s']:9.3f} "
-              f"{err_y4:9.2e} {err_force:9.2e} {err_same:25.2e}", flush=True)
+        print(
+            f"{f'T/{n}':>12s} {r['steps']:6d} {r['newton_iterations']:9d} {r['wall_time_s']:9.3f} "
+            f"{err_y4:9.2e} {err_force:9.2e} {err_same:25.2e}",
+            flush=True,
+        )
     print(f"solver: {r['solver']}")
     print("errors: max |x - x_ref| / max |x_ref| over the recorded steps")
 

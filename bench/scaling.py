@@ -27,15 +27,18 @@ print(json.dumps({{"wall_s": wall, "steps": r["stats"]["steps"], "rows": int(r["
 
 
 def run(revs: int, n: int, dec: int) -> dict:
-    out = subprocess.run([sys.executable, "-c", CASE.format(revs=revs, n=n, dec=dec)], check=True,
-                         capture_output=True, text=True).stdout
+    out = subprocess.run(
+        [sys.executable, "-c", CASE.format(revs=revs, n=n, dec=dec)], check=True, capture_output=True, text=True
+    ).stdout
     return json.loads(out)
 
 
 def main() -> int:
     n = 32768
     print(f"duration scaling at dt = T/{n} (one revolution = {n} steps)")
-    print(f"{'revolutions':>11s} {'decimation':>10s} {'wall (s)':>9s} {'us/step':>8s} {'rows':>9s} {'peak RSS (MiB)':>15s}")
+    print(
+        f"{'revolutions':>11s} {'decimation':>10s} {'wall (s)':>9s} {'us/step':>8s} {'rows':>9s} {'peak RSS (MiB)':>15s}"
+    )
     base = None
     for dec in (1, 1000):
         for revs in (1, 10, 100):

@@ -37,7 +37,9 @@ def main():
         n = min(r.rows, ref.rows)
         df = max(np.abs(np.asarray(r[f"{c}.force"])[:n] - np.asarray(ref[f"{c}.force"])[:n]).max() for c in names)
         dq = max(np.abs(np.asarray(r[f"q.{d}"])[:n] - np.asarray(ref[f"q.{d}"])[:n]).max() for d in dofs)
-        print(f"{dt * 1e6:6.2f} us   {df / fmax:11.2e}   {dq / qmax:11.2e}   {r.stats['mean_iterations']:11.2f}   {wall:7.3f} s")
+        print(
+            f"{dt * 1e6:6.2f} us   {df / fmax:11.2e}   {dq / qmax:11.2e}   {r.stats['mean_iterations']:11.2f}   {wall:7.3f} s"
+        )
 
 
 if __name__ == "__main__":

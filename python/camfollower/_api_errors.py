@@ -34,10 +34,15 @@ def _describe(value) -> str:
 
 
 # pybind11's typing spelled the way a user reads it.
-_PLAIN = [("typing.Annotated[numpy.typing.ArrayLike, numpy.float64]", "array"),
-          ("typing.Annotated[numpy.typing.NDArray[numpy.float64], \"[m, 1]\"]", "array"),
-          ("typing.SupportsInt | typing.SupportsIndex", "int"), ("typing.SupportsFloat | typing.SupportsIndex", "float"),
-          ("collections.abc.Sequence", "Sequence"), ("camfollower._core.", ""), ("typing.", "")]
+_PLAIN = [
+    ("typing.Annotated[numpy.typing.ArrayLike, numpy.float64]", "array"),
+    ("typing.Annotated[numpy.typing.NDArray[numpy.float64], \"[m, 1]\"]", "array"),
+    ("typing.SupportsInt | typing.SupportsIndex", "int"),
+    ("typing.SupportsFloat | typing.SupportsIndex", "float"),
+    ("collections.abc.Sequence", "Sequence"),
+    ("camfollower._core.", ""),
+    ("typing.", ""),
+]
 
 
 def _plain(signature: str, skip_self: bool) -> str:
@@ -89,8 +94,13 @@ def install(module) -> None:
                 elif isinstance(member, staticmethod):
                     setattr(obj, attr, staticmethod(_wrap(member.__func__, qualified, skip_self=False)))
                 elif isinstance(member, property) and member.fset is not None:
-                    setattr(obj, attr, property(member.fget, _wrap(member.fset, qualified, skip_self=True), member.fdel,
-                                                member.__doc__))
+                    setattr(
+                        obj,
+                        attr,
+                        property(
+                            member.fget, _wrap(member.fset, qualified, skip_self=True), member.fdel, member.__doc__
+                        ),
+                    )
         elif type(obj).__name__ == "builtin_function_or_method":
             setattr(module, name, _wrap(obj, name, skip_self=False))
     module._api_errors_installed = True

@@ -33,8 +33,9 @@ def _path(path, parameter: str) -> str:
     except UnicodeEncodeError:
         # A name the file system gave as bytes that are not UTF-8 (argv and os.listdir decode those with
         # surrogateescape): the core takes UTF-8 paths, so refuse it here, before any work is done.
-        raise ValueError(f"{parameter}: the name {_shown(os.fsencode(text))} is not valid UTF-8; "
-                         "rename it or choose a UTF-8 name") from None
+        raise ValueError(
+            f"{parameter}: the name {_shown(os.fsencode(text))} is not valid UTF-8; rename it or choose a UTF-8 name"
+        ) from None
     return text
 
 
@@ -142,7 +143,9 @@ def output_folder(folder, parameter: str = "--out", *, protect: Iterable = ()) -
             except OSError:
                 continue
             if any(_same_file(st, e) for e in entry):
-                raise ValueError(f"{parameter}: '{summary}' is the input file '{name}' (or a link to it); the run "
-                                 "would remove it as an old summary: choose another output folder")
+                raise ValueError(
+                    f"{parameter}: '{summary}' is the input file '{name}' (or a link to it); the run "
+                    "would remove it as an old summary: choose another output folder"
+                )
         summary.unlink()
     return folder

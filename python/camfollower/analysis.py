@@ -44,8 +44,9 @@ def _real(value, name: str, unit: str, *, positive: bool = False, infinite: bool
         raise ValueError(f"{name} must be a number ({unit}), got {type(value).__name__}")
     x = float(value)
     if math.isnan(x) or (not infinite and math.isinf(x)) or (positive and not x > 0):
-        raise ValueError(f"{name} must be {'finite and ' if not infinite else ''}{'> 0 ' if positive else ''}"
-                         f"({unit}), got {value!r}")
+        raise ValueError(
+            f"{name} must be {'finite and ' if not infinite else ''}{'> 0 ' if positive else ''}({unit}), got {value!r}"
+        )
     return x
 
 
@@ -87,8 +88,10 @@ class Spectrum:
         lo, hi = _real(lo, "lo", "Hz", infinite=True), _real(hi, "hi", "Hz", infinite=True)
         keep = (self.frequency >= lo) & (self.frequency <= hi)
         if np.count_nonzero(keep) < 2:
-            raise ValueError(f"the band [{lo}, {hi}] Hz holds fewer than two bins of this spectrum "
-                             f"({self.frequency[0]} to {self.frequency[-1]} Hz)")
+            raise ValueError(
+                f"the band [{lo}, {hi}] Hz holds fewer than two bins of this spectrum "
+                f"({self.frequency[0]} to {self.frequency[-1]} Hz)"
+            )
         return Spectrum(self.frequency[keep], self.amplitude[keep])
 
 
@@ -119,8 +122,10 @@ def spectrum(signal, sample_rate: float, window: str = "hann", detrend: bool = T
     with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
         frequency = np.fft.rfftfreq(x.size, d=1.0 / sample_rate)
     if not (np.all(np.isfinite(frequency)) and np.all(np.diff(frequency) > 0)):
-        raise ValueError(f"sample_rate = {sample_rate} Hz gives no usable frequency axis for {x.size} samples "
-                         "(the bin spacing overflows or underflows)")
+        raise ValueError(
+            f"sample_rate = {sample_rate} Hz gives no usable frequency axis for {x.size} samples "
+            "(the bin spacing overflows or underflows)"
+        )
     return Spectrum(frequency, amplitude)
 
 
@@ -138,7 +143,8 @@ def last_revolutions(result: dict, period: float, revolutions: int) -> slice:
     if abs(per_rev - round(per_rev)) > 1e-6 * per_rev:
         raise ValueError(
             f"the sampling interval {dt} s does not divide the period {period} s: "
-            "use time_step = period / integer (and a decimation that divides it)")
+            "use time_step = period / integer (and a decimation that divides it)"
+        )
     n = int(round(per_rev)) * revolutions
     if n > t.size - 1:
         raise ValueError(f"revolutions={revolutions} needs {n} rows, the result has {t.size - 1} after t = 0")
@@ -164,8 +170,12 @@ def sidebands(spec: Spectrum, carrier: float, spacing: float, orders: int = 3) -
     orders = _count(orders, "orders", 1)
     levels = {k: spec.at(carrier + k * spacing) for k in range(-orders, orders + 1)}
     side = math.sqrt(sum(v * v for k, v in levels.items() if k != 0))
-    return {"carrier_hz": carrier, "spacing_hz": spacing, "levels": levels,
-            "modulation_ratio": side / levels[0] if levels[0] > 0 else math.inf}
+    return {
+        "carrier_hz": carrier,
+        "spacing_hz": spacing,
+        "levels": levels,
+        "modulation_ratio": side / levels[0] if levels[0] > 0 else math.inf,
+    }
 
 
 def theoretical_follower_acceleration(model, theta) -> np.ndarray:
@@ -204,8 +214,14 @@ def phase_statistics(model, theta, signal) -> list[dict]:
             raise ValueError(f"no sample of theta falls in the {name} phase: give at least one revolution")
         peak = float(np.max(np.abs(x[inside])))
         scaled = x[inside] / peak if peak > 0 else x[inside]  # no overflow of x^2 for |x| > 1e154
-        stats.append({"phase": name, "samples": int(np.count_nonzero(inside)), "peak": peak,
-                      "rms": (peak if peak > 0 else 1.0) * float(np.sqrt(np.mean(scaled ** 2)))})
+        stats.append(
+            {
+                "phase": name,
+                "samples": int(np.count_nonzero(inside)),
+                "peak": peak,
+                "rms": (peak if peak > 0 else 1.0) * float(np.sqrt(np.mean(scaled**2))),
+            }
+        )
     return stats
 
 
@@ -247,8 +263,10 @@ def clearance_statistics(result, name: str, period: float) -> dict:
     arrivals = (side[1:] != 0) & (side[1:] != side[:-1])
     seated = side[side != 0]
     wall_changes = int(np.count_nonzero(seated[1:] != seated[:-1])) if seated.size else 0
-    return {"free_flight_time_per_revolution_s": float(np.count_nonzero(side == 0) * dt / revolutions),
-            "impacts_per_revolution": float(np.count_nonzero(arrivals) / revolutions),
-            "wall_changes_per_revolution": float(wall_changes / revolutions),
-            "peak_seat_force_N": float(force.max()),
-            "mean_seat_force_N": float(force.mean())}
+    return {
+        "free_flight_time_per_revolution_s": float(np.count_nonzero(side == 0) * dt / revolutions),
+        "impacts_per_revolution": float(np.count_nonzero(arrivals) / revolutions),
+        "wall_changes_per_revolution": float(wall_changes / revolutions),
+        "peak_seat_force_N": float(force.max()),
+        "mean_seat_force_N": float(force.mean()),
+    }

@@ -111,14 +111,28 @@ def run_summary(mechanism: Mechanism, result) -> Dict[str, Any]:
     drives = {}
     for s in _drives(state):
         torque = _drive_torque(s, result)
-        drives[s["name"]] = {"mean_torque_Nm": float(torque.mean()),
-                             "torque_peak_to_peak_Nm": float(torque.max() - torque.min())}
-    return {"camshaft_speed_rpm": mechanism.camshaft_speed_rpm, "cams": cams, "bearings": bearings, "drives": drives,
-            "newton_iterations_per_step": result.stats["mean_iterations"], "backend": result.stats.get("backend", "")}
+        drives[s["name"]] = {
+            "mean_torque_Nm": float(torque.mean()),
+            "torque_peak_to_peak_Nm": float(torque.max() - torque.min()),
+        }
+    return {
+        "camshaft_speed_rpm": mechanism.camshaft_speed_rpm,
+        "cams": cams,
+        "bearings": bearings,
+        "drives": drives,
+        "newton_iterations_per_step": result.stats["mean_iterations"],
+        "backend": result.stats.get("backend", ""),
+    }
 
 
-def camshaft_study(case: Union["Config", Mechanism], rpm: Optional[Sequence[float]] = None, *,  # noqa: F821
-                   revolutions: float = 2.0, record_last_revolutions: float = 1.0, **simulate_options):
+def camshaft_study(
+    case: Union["Config", Mechanism],  # noqa: F821
+    rpm: Optional[Sequence[float]] = None,
+    *,
+    revolutions: float = 2.0,
+    record_last_revolutions: float = 1.0,
+    **simulate_options,
+):
     """Simulate `case` (a Config from load_config, or a Mechanism) at each camshaft speed in `rpm`
     (default: its own) for `revolutions`, recording the last `record_last_revolutions`; return
     (summaries, results): one run_summary() per speed and the Results. A Config's solver settings
@@ -155,8 +169,12 @@ def plot_study(summaries: Sequence[Dict[str, Any]], engine: bool = False):
     factor = 2.0 if engine else 1.0
     speed = np.array([s["camshaft_speed_rpm"] for s in summaries]) * factor
     fig, axes = plt.subplots(2, 3, figsize=(13, 7), constrained_layout=True)
-    panels = [("lift_error_mm", "lift error (mm)"), ("min_force_lifting_N", "min contact force lifting (N)"),
-              ("twist_peak_to_peak_deg", "shaft twist at cam, p-p (deg)"), ("surge_peak_to_peak_mm", "spring surge, p-p (mm)")]
+    panels = [
+        ("lift_error_mm", "lift error (mm)"),
+        ("min_force_lifting_N", "min contact force lifting (N)"),
+        ("twist_peak_to_peak_deg", "shaft twist at cam, p-p (deg)"),
+        ("surge_peak_to_peak_mm", "spring surge, p-p (mm)"),
+    ]
     cams = list(summaries[0]["cams"])
     for ax, (key, label) in zip(axes.flat, panels):
         for cam in cams:

@@ -79,8 +79,9 @@ def _speeds(values, option: str, engine: bool = False) -> list:
     lo, hi = factor * _MIN_RPM, factor * _MAX_RPM
     for v in values:
         if not (math.isfinite(v) and lo <= v <= hi):
-            raise ValueError(f"{option}: {v:g} is not {'an engine' if engine else 'a camshaft'} speed in "
-                             f"[{lo:.6g}, {hi:.6g}] rpm")
+            raise ValueError(
+                f"{option}: {v:g} is not {'an engine' if engine else 'a camshaft'} speed in [{lo:.6g}, {hi:.6g}] rpm"
+            )
     return [float(v) for v in values]
 
 
@@ -126,8 +127,10 @@ def check_arguments(args: argparse.Namespace) -> None:
         _speeds(args.rpm or [], "--rpm")
         _speeds(args.engine_rpm or [], "--engine-rpm", engine=True)
         if not (math.isfinite(args.revolutions) and 0 < args.revolutions <= _MAX_REVOLUTIONS):
-            raise ValueError(f"--revolutions: {args.revolutions:g} is not a number of camshaft revolutions in "
-                             f"(0, {_MAX_REVOLUTIONS:g}]")
+            raise ValueError(
+                f"--revolutions: {args.revolutions:g} is not a number of camshaft revolutions in "
+                f"(0, {_MAX_REVOLUTIONS:g}]"
+            )
     if args.command == "sweep":
         _speeds(args.rpm or [], "--rpm")
         if args.jump:
@@ -168,34 +171,56 @@ def figures(config: str, out: str) -> dict:
     _write(config, folder / "run.csv", _recording_csv(result))
     written = ["run.csv"]
     contacts = case.builder.__getstate__()["contacts"]
-    summary = {"config": str(case.path), "camshaft_speed_rpm": rpm, "rows": result.rows,
-               "time_step_s": result.time_step, "contacts": {}}
+    summary = {
+        "config": str(case.path),
+        "camshaft_speed_rpm": rpm,
+        "rows": result.rows,
+        "time_step_s": result.time_step,
+        "contacts": {},
+    }
     omega = m.omega
     for c in contacts:
         name, program, follower, dof = c["name"], c["program"], c["follower"], c["follower_dof"]
         angular = type(follower).__name__.startswith("Oscillating")  # the lift is the arm's rotation (rad)
-        for fig, file in ((plot.svaj(program, rpm=rpm, angular=angular), f"svaj_{name}.png"),
-                          (plot.profile(follower, program), f"profile_{name}.png"),
-                          (plot.pressure_angle_and_curvature(follower, program), f"pressure_angle_curvature_{name}.png"),
-                          (plot.acceleration(result, program, omega, dof, phase=c["phase"],
-                                             unit="rad/s²" if angular else "m/s²"), f"acceleration_{name}.png"),
-                          (plot.contact_force(result, name), f"contact_force_{name}.png")):
+        for fig, file in (
+            (plot.svaj(program, rpm=rpm, angular=angular), f"svaj_{name}.png"),
+            (plot.profile(follower, program), f"profile_{name}.png"),
+            (plot.pressure_angle_and_curvature(follower, program), f"pressure_angle_curvature_{name}.png"),
+            (
+                plot.acceleration(result, program, omega, dof, phase=c["phase"], unit="rad/s²" if angular else "m/s²"),
+                f"acceleration_{name}.png",
+            ),
+            (plot.contact_force(result, name), f"contact_force_{name}.png"),
+        ):
             _save(config, fig, folder / file)
             written.append(file)
         force = np.asarray(result[f"{name}.force"])
         sample_rate = 1.0 / (result.time_step * result.decimation)
         fmax = min(0.5 * sample_rate, 20000.0)
         naturals = list(m.modal_analysis(0.0)["frequencies_hz"])
-        _save(config, plot.spectrum(force - force.mean(), sample_rate, fmax=fmax, natural_frequencies=naturals,
-                                    quantity=f"{name} contact force", unit="N"), folder / f"spectrum_{name}.png")
+        _save(
+            config,
+            plot.spectrum(
+                force - force.mean(),
+                sample_rate,
+                fmax=fmax,
+                natural_frequencies=naturals,
+                quantity=f"{name} contact force",
+                unit="N",
+            ),
+            folder / f"spectrum_{name}.png",
+        )
         written.append(f"spectrum_{name}.png")
         lost = sum(b - a for a, b in result.contact_loss.get(name, []))
         theta = np.linspace(0.0, 2 * math.pi, 7201)
         rigid = omega**2 * np.asarray(program.evaluate(theta)["d2h"])
         summary["contacts"][name] = {
-            "follower": type(follower).__name__, "max_force_N": float(force.max()), "min_force_N": float(force.min()),
+            "follower": type(follower).__name__,
+            "max_force_N": float(force.max()),
+            "min_force_N": float(force.min()),
             "contact_lost_s": float(lost),
-            "contact_events": sum(1 for _, event, _ in result.events if event == f"{name}.contact"), "max_abs_acceleration": float(np.abs(np.asarray(result[f"a.{dof}"])).max()),
+            "contact_events": sum(1 for _, event, _ in result.events if event == f"{name}.contact"),
+            "max_abs_acceleration": float(np.abs(np.asarray(result[f"a.{dof}"])).max()),
             "max_abs_rigid_acceleration": float(np.abs(rigid).max()),
             "max_abs_pressure_angle_deg": float(np.degrees(abs(follower.max_pressure_angle(program)[1]))),
             "min_convex_surface_radius_mm": float(1e3 * follower.min_surface_radius(program)[1]),
@@ -217,21 +242,41 @@ def camshaft(config: str, out: str, rpm=None, engine_rpm=None, revolutions: floa
     if rpm and engine_rpm:
         raise ValueError("give --rpm (camshaft) or --engine-rpm (twice the camshaft's), not both")
     # Checked as given, before the halving: a bad engine speed is named as the engine speed.
-    speeds = _speeds(rpm, "--rpm") if rpm else [0.5 * e for e in _speeds(engine_rpm, "--engine-rpm", engine=True)] \
-        if engine_rpm else None
+    speeds = (
+        _speeds(rpm, "--rpm")
+        if rpm
+        else [0.5 * e for e in _speeds(engine_rpm, "--engine-rpm", engine=True)]
+        if engine_rpm
+        else None
+    )
     case = _load(config)
     closure = _closure(case, max(speeds) if speeds else None)
     folder = _folder(config, out)
     summaries, results = camshaft_study(case, speeds, revolutions=revolutions)
     written = []
-    rows = ["camshaft_rpm,cam,lift_error_mm,max_force_N,min_force_lifting_N,contact_lost_s,twist_peak_to_peak_deg,"
-            "surge_peak_to_peak_mm,surge_main_frequency_Hz"]
+    rows = [
+        "camshaft_rpm,cam,lift_error_mm,max_force_N,min_force_lifting_N,contact_lost_s,twist_peak_to_peak_deg,"
+        "surge_peak_to_peak_mm,surge_main_frequency_Hz"
+    ]
     for s in summaries:
         for cam, c in s["cams"].items():
-            rows.append(",".join([f"{s['camshaft_speed_rpm']:.6g}", cam] + [
-                f"{c.get(k, float('nan')):.6g}" for k in ("lift_error_mm", "max_force_N", "min_force_lifting_N",
-                                                           "contact_lost_s", "twist_peak_to_peak_deg",
-                                                           "surge_peak_to_peak_mm", "surge_main_frequency_Hz")]))
+            rows.append(
+                ",".join(
+                    [f"{s['camshaft_speed_rpm']:.6g}", cam]
+                    + [
+                        f"{c.get(k, float('nan')):.6g}"
+                        for k in (
+                            "lift_error_mm",
+                            "max_force_N",
+                            "min_force_lifting_N",
+                            "contact_lost_s",
+                            "twist_peak_to_peak_deg",
+                            "surge_peak_to_peak_mm",
+                            "surge_main_frequency_Hz",
+                        )
+                    ]
+                )
+            )
     _write(config, folder / "summary.csv", ("\n".join(rows) + "\n").encode())
     written.append("summary.csv")
     _save(config, plot_study(summaries, engine=bool(engine_rpm)), folder / "study.png")
@@ -285,26 +330,42 @@ def kinematics(config, rpm=None) -> list:
         rho_at, rho = follower.min_surface_radius(program)
         velocity, velocity_at = _peak(program, "dh")
         acceleration, acceleration_at = _peak(program, "d2h")
-        row = {"contact": c["name"], "follower": type(follower).__name__,
-               "max_abs_pressure_angle_deg": abs(math.degrees(alpha)), "at_deg": math.degrees(alpha_at),
-               "min_convex_surface_radius_m": rho, "radius_at_deg": math.degrees(rho_at),
-               "lift_min": program.min_lift(), "lift_max": program.max_lift(),
-               "max_abs_velocity": omega * velocity, "velocity_at_deg": math.degrees(velocity_at),
-               "max_abs_acceleration": omega**2 * acceleration, "acceleration_at_deg": math.degrees(acceleration_at)}
+        row = {
+            "contact": c["name"],
+            "follower": type(follower).__name__,
+            "max_abs_pressure_angle_deg": abs(math.degrees(alpha)),
+            "at_deg": math.degrees(alpha_at),
+            "min_convex_surface_radius_m": rho,
+            "radius_at_deg": math.degrees(rho_at),
+            "lift_min": program.min_lift(),
+            "lift_max": program.max_lift(),
+            "max_abs_velocity": omega * velocity,
+            "velocity_at_deg": math.degrees(velocity_at),
+            "max_abs_acceleration": omega**2 * acceleration,
+            "acceleration_at_deg": math.degrees(acceleration_at),
+        }
         rows.append(row)
         # Lengths in mm, arm angles in degrees, as the C++ program prints them.
         lift_unit, lift_scale = ("mm", 1e3) if translating else ("deg", 180.0 / math.pi)
         rate = "m/s" if translating else "rad/s"
         print(f"contact '{c['name']}': {re.sub(r'(?<!^)(?=[A-Z])', '_', row['follower']).lower()} follower")
-        print(f"  max |pressure angle|:                {row['max_abs_pressure_angle_deg']:.4f} deg at theta = "
-              f"{row['at_deg']:.3f} deg")
+        print(
+            f"  max |pressure angle|:                {row['max_abs_pressure_angle_deg']:.4f} deg at theta = "
+            f"{row['at_deg']:.3f} deg"
+        )
         print(f"  min convex cam-surface radius:       {1e3 * rho:.4f} mm at theta = {row['radius_at_deg']:.3f} deg")
-        print(f"  lift range:                          {lift_scale * row['lift_min']:.6g} to "
-              f"{lift_scale * row['lift_max']:.6g} {lift_unit}")
-        print(f"  max |follower velocity| (rigid):     {row['max_abs_velocity']:.6g} {rate} at theta = "
-              f"{row['velocity_at_deg']:.3f} deg")
-        print(f"  max |follower acceleration| (rigid): {row['max_abs_acceleration']:.6g} {rate}^2 at theta = "
-              f"{row['acceleration_at_deg']:.3f} deg")
+        print(
+            f"  lift range:                          {lift_scale * row['lift_min']:.6g} to "
+            f"{lift_scale * row['lift_max']:.6g} {lift_unit}"
+        )
+        print(
+            f"  max |follower velocity| (rigid):     {row['max_abs_velocity']:.6g} {rate} at theta = "
+            f"{row['velocity_at_deg']:.3f} deg"
+        )
+        print(
+            f"  max |follower acceleration| (rigid): {row['max_abs_acceleration']:.6g} {rate}^2 at theta = "
+            f"{row['acceleration_at_deg']:.3f} deg"
+        )
     return rows
 
 
@@ -318,8 +379,10 @@ def modes(config, theta_deg: float = 0.0, count=None) -> list:
     wanted = min(count or (20 if n > 200 else n), n)
     frequencies, shapes = m.lowest_modes(math.radians(theta_deg), wanted)
     part = f" (lowest {len(frequencies)} of {n})" if len(frequencies) < n else ""
-    print(f"{_origin(case)}: natural frequencies (Hz), contacts linearized at the static equilibrium, "
-          f"theta = {theta_deg:g} deg{part}")
+    print(
+        f"{_origin(case)}: natural frequencies (Hz), contacts linearized at the static equilibrium, "
+        f"theta = {theta_deg:g} deg{part}"
+    )
     out = []
     for k, f in enumerate(np.asarray(frequencies).ravel()):
         dof = m.dof_names[int(np.argmax(np.abs(np.asarray(shapes)[:, k])))]
@@ -350,19 +413,29 @@ def run(config: str, output=None) -> dict:
     result = case.run()
     _write(config, path, _recording_csv(result))
     lost = {name: float(sum(b - a for a, b in spans)) for name, spans in result.contact_loss.items()}
-    summary = {"rows": result.rows, "channels": len(result.channels), "method": result.stats["method"],
-               "steps": result.stats["steps"], "contact_lost_s": lost, "events": len(result.events),
-               "file": str(path), "warnings": closure}
+    summary = {
+        "rows": result.rows,
+        "channels": len(result.channels),
+        "method": result.stats["method"],
+        "steps": result.stats["steps"],
+        "contact_lost_s": lost,
+        "events": len(result.events),
+        "file": str(path),
+        "warnings": closure,
+    }
     losses = "".join(f", '{k}' lost contact {_text.g(v, 4)} s" for k, v in lost.items() if v > 0.0)
-    print(f"{summary['rows']} rows, {summary['channels']} channels ({summary['method']}: {summary['steps']} steps)"
-          f"{losses}, {summary['events']} contact losses and re-contacts located -> {path}")
+    print(
+        f"{summary['rows']} rows, {summary['channels']} channels ({summary['method']}: {summary['steps']} steps)"
+        f"{losses}, {summary['events']} contact losses and re-contacts located -> {path}"
+    )
     if "method_choice" in result.stats:
         print(f"method auto took {result.stats['method_choice']}")
     return summary
 
 
-def export(config: str, output: str, contact=None, unit: str = "mm", cutter_radius: float = 0.0,
-           points: int = 3600) -> dict:
+def export(
+    config: str, output: str, contact=None, unit: str = "mm", cutter_radius: float = 0.0, points: int = 3600
+) -> dict:
     """Write the cam of `contact` (default: the first) in `config` for manufacturing: CSV, or DXF when
     `output` ends in ``.dxf``; `cutter_radius` in `unit` (0: no cutter path)."""
     from . import _core
@@ -382,10 +455,13 @@ def export(config: str, output: str, contact=None, unit: str = "mm", cutter_radi
     cutter = cutter_radius * units[unit] if cutter_radius else None
     dxf = output.lower().endswith(".dxf")
     _files.check_target(output, protect=[config])
-    (ex.write_dxf if dxf else ex.write_csv)(output, c["follower"], c["program"], points=points, cutter_radius=cutter,
-                                              unit=unit)
-    print(f"contact '{name}': {points} points of the cam surface{' and the cutter-centre path' if cutter else ''} "
-          f"in {unit} -> {output}")
+    (ex.write_dxf if dxf else ex.write_csv)(
+        output, c["follower"], c["program"], points=points, cutter_radius=cutter, unit=unit
+    )
+    print(
+        f"contact '{name}': {points} points of the cam surface{' and the cutter-centre path' if cutter else ''} "
+        f"in {unit} -> {output}"
+    )
     return {"contact": name, "points": points, "unit": unit, "file": output, "format": "dxf" if dxf else "csv"}
 
 
@@ -418,43 +494,72 @@ def sweep(config: str, out: str, *, rpm=None, jump=None, executor=None, workers=
     from .studies import sweep_settings
 
     case = _load(config)
-    st = sweep_settings(case.data.get("sweep", {}), rpm=rpm, jump=jump, path=case.path,
-                        contacts=case.mechanism.contact_names)
+    st = sweep_settings(
+        case.data.get("sweep", {}), rpm=rpm, jump=jump, path=case.path, contacts=case.mechanism.contact_names
+    )
     closure = _closure(case, max(st["rpm"]))
     folder = _folder(config, out)
     m = case.mechanism
     accuracy = dict(accuracy=st["accuracy"], steps_per_revolution=st["steps_per_revolution"])
-    result = sp.speed_sweep(m, st["rpm"], contact=st["contact"], executor=executor, workers=workers, progress=progress,
-                            **accuracy)
+    result = sp.speed_sweep(
+        m, st["rpm"], contact=st["contact"], executor=executor, workers=workers, progress=progress, **accuracy
+    )
     jump_result = None
     if st["jump"] is not None:
         with warnings.catch_warnings():  # said once, in the summary and on stderr below
             warnings.simplefilter("ignore", sp.StudyWarning)
-            jump_result = sp.jump_speed(m, tuple(st["jump"]), contact=st["contact"], executor=executor,
-                                        workers=workers, **accuracy)
+            jump_result = sp.jump_speed(
+                m, tuple(st["jump"]), contact=st["contact"], executor=executor, workers=workers, **accuracy
+            )
         for w in jump_result.warnings:
             print(f"warning: {w}", file=sys.stderr)
-    columns = ["rpm", "method", "converged", "revolutions", "min_force_N", "min_force_angle_deg", "max_force_N",
-               "contact_lost", "lost_fraction", "first_loss_angle_deg", "max_abs_acceleration",
-               "rigid_max_abs_acceleration", "dwell_residual", "dwell_residual_at_deg", "spectral_radius",
-               "instability", "steps_per_revolution", "accuracy", "accuracy_reached", "force_error_N", "error"]
+    columns = [
+        "rpm",
+        "method",
+        "converged",
+        "revolutions",
+        "min_force_N",
+        "min_force_angle_deg",
+        "max_force_N",
+        "contact_lost",
+        "lost_fraction",
+        "first_loss_angle_deg",
+        "max_abs_acceleration",
+        "rigid_max_abs_acceleration",
+        "dwell_residual",
+        "dwell_residual_at_deg",
+        "spectral_radius",
+        "instability",
+        "steps_per_revolution",
+        "accuracy",
+        "accuracy_reached",
+        "force_error_N",
+        "error",
+    ]
     _write(config, folder / "sweep.csv", _csv(result["rows"], columns))
-    spec_rows = [{"rpm": r["rpm"], **{f"order_{k}": float(result["spectrum"][k - 1, j]) for k in result["orders"]}}
-                 for j, r in enumerate(result["rows"])]
+    spec_rows = [
+        {"rpm": r["rpm"], **{f"order_{k}": float(result["spectrum"][k - 1, j]) for k in result["orders"]}}
+        for j, r in enumerate(result["rows"])
+    ]
     _write(config, folder / "spectrum.csv", _csv(spec_rows, ["rpm"] + [f"order_{k}" for k in result["orders"]]))
     # The margin figure shows the jump scan's speeds too: the dips between the sweep's speeds.
     margin_rows = sorted(result["rows"] + (jump_result.margin if jump_result else []), key=lambda r: r["rpm"])
     _save(config, sp.plot_margin(margin_rows, jump_result), folder / "margin.png")
     _save(config, sp.plot_waterfall(result), folder / "waterfall.png")
     reached = [r["accuracy"] for r in result["rows"] if "accuracy" in r]
-    summary = {"config": str(case.path), "contact": st["contact"] or m.contact_names[0],
-               "accuracy_target": st["accuracy"] if st["accuracy"] is not None else (
-                   None if st["steps_per_revolution"] else STUDY_ACCURACY),
-               "steps_per_revolution": st["steps_per_revolution"], "accuracy": max(reached, default=None),
-               "speeds": [{k: r.get(k) for k in columns if k in r} for r in result["rows"]],
-               "natural_frequencies_hz": result["natural_hz"],
-               "resonances": [{"order": k, "mode_hz": f, "rpm": r} for k, f, r in result["resonances"]],
-               "files": ["sweep.csv", "spectrum.csv", "margin.png", "waterfall.png", "summary.json"]}
+    summary = {
+        "config": str(case.path),
+        "contact": st["contact"] or m.contact_names[0],
+        "accuracy_target": st["accuracy"]
+        if st["accuracy"] is not None
+        else (None if st["steps_per_revolution"] else STUDY_ACCURACY),
+        "steps_per_revolution": st["steps_per_revolution"],
+        "accuracy": max(reached, default=None),
+        "speeds": [{k: r.get(k) for k in columns if k in r} for r in result["rows"]],
+        "natural_frequencies_hz": result["natural_hz"],
+        "resonances": [{"order": k, "mode_hz": f, "rpm": r} for k, f, r in result["resonances"]],
+        "files": ["sweep.csv", "spectrum.csv", "margin.png", "waterfall.png", "summary.json"],
+    }
     if jump_result is not None:
         summary["jump"] = jump_result.summary()
     summary["warnings"] = closure
@@ -462,8 +567,9 @@ def sweep(config: str, out: str, *, rpm=None, jump=None, executor=None, workers=
     return summary
 
 
-def montecarlo(config: str, out: str, *, cases=None, seed=None, rpm=None, executor=None, workers=None,
-               progress=True) -> dict:
+def montecarlo(
+    config: str, out: str, *, cases=None, seed=None, rpm=None, executor=None, workers=None, progress=True
+) -> dict:
     """A Monte-Carlo tolerance study of the config's mechanism (camfollower.tolerance) with the
     tolerances of its [montecarlo] table, at camshaft speed ``rpm`` (default: the table's ``rpm``, else
     the config's): cases.csv (and cases.parquet with pyarrow), histogram.png, summary.json last
@@ -478,14 +584,29 @@ def montecarlo(config: str, out: str, *, cases=None, seed=None, rpm=None, execut
     data = {k: v for k, v in case.data.items() if k not in ("sweep", "montecarlo")}
     # Given the model, the table's check sets its speed and roller tolerance and covers each tolerance's
     # value and range, located at its block.
-    st = montecarlo_settings(case.data.get("montecarlo"), cases=cases, seed=seed, rpm=rpm, path=case.path,
-                             build=tol.ConfigCase(data, case.path.parent if case.path else "."),
-                             contacts=case.mechanism.contact_names)
+    st = montecarlo_settings(
+        case.data.get("montecarlo"),
+        cases=cases,
+        seed=seed,
+        rpm=rpm,
+        path=case.path,
+        build=tol.ConfigCase(data, case.path.parent if case.path else "."),
+        contacts=case.mechanism.contact_names,
+    )
     closure = _closure(case, st["rpm"])  # at the study's speed
     folder = _folder(config, out)
-    result = tol.monte_carlo(st["build"], st["tolerances"], cases=st["cases"], seed=st["seed"], contact=st["contact"],
-                             accuracy=st["accuracy"], steps_per_revolution=st["steps_per_revolution"],
-                             executor=executor, workers=workers, progress=progress)
+    result = tol.monte_carlo(
+        st["build"],
+        st["tolerances"],
+        cases=st["cases"],
+        seed=st["seed"],
+        contact=st["contact"],
+        accuracy=st["accuracy"],
+        steps_per_revolution=st["steps_per_revolution"],
+        executor=executor,
+        workers=workers,
+        progress=progress,
+    )
     columns = ["case", "seed"] + result.parameters + list(result.metrics) + ["ok", "error"]
     _write(config, folder / "cases.csv", _csv(result.rows, columns))
     files = ["cases.csv"]
@@ -495,14 +616,23 @@ def montecarlo(config: str, out: str, *, cases=None, seed=None, rpm=None, execut
     except ImportError:
         pass
     speed = st["rpm"] if st["rpm"] is not None else case.mechanism.camshaft_speed_rpm
-    summary = {"config": str(case.path), "camshaft_speed_rpm": speed, "roller_tolerance": st["roller_tolerance"],
-               **result.summary(), "parameters": result.parameters}
+    summary = {
+        "config": str(case.path),
+        "camshaft_speed_rpm": speed,
+        "roller_tolerance": st["roller_tolerance"],
+        **result.summary(),
+        "parameters": result.parameters,
+    }
     ok = [r for r in result.rows if r["ok"]]
     if len(ok) >= len(result.parameters) + 2:
-        summary["sensitivities"] = {m: result.sensitivities(m) for m in ("min_force_N", "max_abs_acceleration", "dwell_residual")}
+        summary["sensitivities"] = {
+            m: result.sensitivities(m) for m in ("min_force_N", "max_abs_acceleration", "dwell_residual")
+        }
         _save(config, result.plot("min_force_N"), folder / "histogram.png")
         files.append("histogram.png")
-    summary["failed_cases"] = [{k: r[k] for k in ["case", "seed"] + result.parameters + ["error"]} for r in result.failed()]
+    summary["failed_cases"] = [
+        {k: r[k] for k in ["case", "seed"] + result.parameters + ["error"]} for r in result.failed()
+    ]
     summary["files"] = files + ["summary.json"]
     summary["warnings"] = closure
     _write(config, folder / "summary.json", _files.json_text(summary).encode())
@@ -518,8 +648,11 @@ def _message(error: BaseException, limit: int = 2000) -> str:
 
 def _add_executor_options(p) -> None:
     p.add_argument("--workers", type=int, help="local worker processes (default: one per CPU; 1 runs in this process)")
-    p.add_argument("--scheduler", help="a Dask scheduler address, tcp://host:8786 (or dask:N for a local cluster "
-                                       "of N processes); needs the 'dask' extra")
+    p.add_argument(
+        "--scheduler",
+        help="a Dask scheduler address, tcp://host:8786 (or dask:N for a local cluster "
+        "of N processes); needs the 'dask' extra",
+    )
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
 
 
@@ -529,14 +662,20 @@ def main(argv=None) -> int:
         from . import study
 
         return study.main(argv[1:], prog="camfollower study")
-    parser = argparse.ArgumentParser(prog="camfollower", description="camfollower: dynamics of flexible cam-follower "
-                                     "mechanisms; every verb works on a config file (docs/config.md). -o is the file "
-                                     "for run and export, the folder for the others.",
-                                     epilog="exit status: 0 done, 1 an error (one line 'camfollower: error: ...'), "
-                                            "2 a command line argparse cannot read")
+    parser = argparse.ArgumentParser(
+        prog="camfollower",
+        description="camfollower: dynamics of flexible cam-follower "
+        "mechanisms; every verb works on a config file (docs/config.md). -o is the file "
+        "for run and export, the folder for the others.",
+        epilog="exit status: 0 done, 1 an error (one line 'camfollower: error: ...'), "
+        "2 a command line argparse cannot read",
+    )
     sub = parser.add_subparsers(dest="command", required=True)
-    k = sub.add_parser("kinematics", help="per contact: largest pressure angle, smallest cam-surface radius, lift "
-                                          "range, rigid velocity and acceleration")
+    k = sub.add_parser(
+        "kinematics",
+        help="per contact: largest pressure angle, smallest cam-surface radius, lift "
+        "range, rigid velocity and acceleration",
+    )
     k.add_argument("config", nargs="?", help="config file (default: the paper's mechanism)")
     k.add_argument("--rpm", type=float, help="camshaft speed for the velocity and acceleration (default: the config's)")
     md = sub.add_parser("modes", help="natural frequencies of the mechanism, contacts linearized at a cam angle")
@@ -546,38 +685,54 @@ def main(argv=None) -> int:
     r = sub.add_parser("run", help="simulate the case the config describes; every recorded channel as CSV")
     r.add_argument("config", help="config file (docs/config.md)")
     r.add_argument("-o", "--output", help="CSV file (default: the config's [output] file)")
-    e = sub.add_parser("export", help="the cam surface (and cutter-centre path) of one contact for manufacturing: "
-                                      "CSV, or DXF for a .dxf file")
+    e = sub.add_parser(
+        "export",
+        help="the cam surface (and cutter-centre path) of one contact for manufacturing: CSV, or DXF for a .dxf file",
+    )
     e.add_argument("config", help="config file (docs/config.md)")
     e.add_argument("-o", "--output", required=True, help="CSV or DXF file")
     e.add_argument("--contact", help="contact whose cam to export (default: the first)")
     e.add_argument("--unit", default="mm", help="length unit of the file: m, mm, um or inch (default mm)")
-    e.add_argument("--cutter-radius", type=float, default=0.0,
-                   help="radius of the milling cutter or grinding wheel, in --unit (default 0: no cutter path)")
+    e.add_argument(
+        "--cutter-radius",
+        type=float,
+        default=0.0,
+        help="radius of the milling cutter or grinding wheel, in --unit (default 0: no cutter path)",
+    )
     e.add_argument("--points", type=int, default=3600, help="points round the cam (default 3600)")
-    sub.add_parser("study", help="the paper's study (healthy / eccentricity / clearance) -> ./out; "
-                                 "camfollower study --help for its options")
+    sub.add_parser(
+        "study",
+        help="the paper's study (healthy / eccentricity / clearance) -> ./out; "
+        "camfollower study --help for its options",
+    )
     f = sub.add_parser("figures", help="simulate a config; write run.csv, figures and summary.json")
     f.add_argument("config", help="config file (docs/config.md)")
     f.add_argument("-o", "--out", default="out", help="output folder (default: ./out)")
-    c = sub.add_parser("camshaft", help="a flexible camshaft at several speeds: summary.csv, study.png, traces, summary.json")
+    c = sub.add_parser(
+        "camshaft", help="a flexible camshaft at several speeds: summary.csv, study.png, traces, summary.json"
+    )
     c.add_argument("config", help="config file with a flexible camshaft (docs/camshaft.md)")
     c.add_argument("--rpm", type=float, nargs="+", help="camshaft speeds (default: the config's)")
     c.add_argument("--engine-rpm", type=float, nargs="+", help="engine speeds (the camshaft turns at half)")
-    c.add_argument("--revolutions", type=float, default=2.0, help="camshaft revolutions per speed; the last is recorded")
+    c.add_argument(
+        "--revolutions", type=float, default=2.0, help="camshaft revolutions per speed; the last is recorded"
+    )
     c.add_argument("-o", "--out", default="out", help="output folder (default: ./out)")
     s = sub.add_parser("sweep", help="periodic steady state over a speed range: margin curve, waterfall, jump speed")
     s.add_argument("config", help="config file (docs/config.md; optional [sweep] table, docs/studies.md)")
     s.add_argument("--rpm", type=float, nargs="+", help="camshaft speeds (default: the config's [sweep])")
-    s.add_argument("--jump", type=float, nargs=2, metavar=("LO", "HI"), help="find the jump speed between LO and HI rpm")
+    s.add_argument(
+        "--jump", type=float, nargs=2, metavar=("LO", "HI"), help="find the jump speed between LO and HI rpm"
+    )
     _add_executor_options(s)
     s.add_argument("-o", "--out", default="out", help="output folder (default: ./out)")
     mc = sub.add_parser("montecarlo", help="Monte-Carlo tolerance study from the config's [montecarlo] table")
     mc.add_argument("config", help="config file with a [montecarlo] table (docs/studies.md)")
     mc.add_argument("--cases", type=int, help="number of cases (default: the config's)")
     mc.add_argument("--seed", type=int, help="study seed (default: the config's)")
-    mc.add_argument("--rpm", type=float,
-                    help="camshaft speed of every case (default: the table's rpm, else the config's)")
+    mc.add_argument(
+        "--rpm", type=float, help="camshaft speed of every case (default: the table's rpm, else the config's)"
+    )
     _add_executor_options(mc)
     mc.add_argument("-o", "--out", default="out", help="output folder (default: ./out)")
     args = parser.parse_args(argv)
@@ -598,11 +753,26 @@ def main(argv=None) -> int:
         if args.command == "camshaft":
             study = camshaft(args.config, args.out, args.rpm, args.engine_rpm, args.revolutions)
         elif args.command == "sweep":
-            result = sweep(args.config, args.out, rpm=args.rpm, jump=args.jump, executor=_executor(args),
-                           workers=args.workers, progress=not args.no_progress)
+            result = sweep(
+                args.config,
+                args.out,
+                rpm=args.rpm,
+                jump=args.jump,
+                executor=_executor(args),
+                workers=args.workers,
+                progress=not args.no_progress,
+            )
         elif args.command == "montecarlo":
-            result = montecarlo(args.config, args.out, cases=args.cases, seed=args.seed, rpm=args.rpm,
-                                executor=_executor(args), workers=args.workers, progress=not args.no_progress)
+            result = montecarlo(
+                args.config,
+                args.out,
+                cases=args.cases,
+                seed=args.seed,
+                rpm=args.rpm,
+                executor=_executor(args),
+                workers=args.workers,
+                progress=not args.no_progress,
+            )
         else:
             summary = figures(args.config, args.out)
     except (ValueError, TypeError, RuntimeError, OSError, ImportError) as e:
@@ -613,13 +783,17 @@ def main(argv=None) -> int:
         return 130
     if args.command == "sweep":
         for r in result["speeds"]:
-            print(f"{r['rpm']:g} rpm: min contact force {r.get('min_force_N', float('nan')):.2f} N at "
-                  f"{r.get('min_force_angle_deg', float('nan')):.1f} deg, contact {'LOST' if r.get('contact_lost') else 'kept'} "
-                  f"({r.get('method')})")
+            print(
+                f"{r['rpm']:g} rpm: min contact force {r.get('min_force_N', float('nan')):.2f} N at "
+                f"{r.get('min_force_angle_deg', float('nan')):.1f} deg, contact {'LOST' if r.get('contact_lost') else 'kept'} "
+                f"({r.get('method')})"
+            )
         if "jump" in result:
             j = result["jump"]
-            print(f"jump speed {j['rpm']:.1f} rpm (bracket {j['bracket'][0]:.1f}-{j['bracket'][1]:.1f}): the follower "
-                  f"first leaves the cam at {j['angle_deg']:.1f} deg")
+            print(
+                f"jump speed {j['rpm']:.1f} rpm (bracket {j['bracket'][0]:.1f}-{j['bracket'][1]:.1f}): the follower "
+                f"first leaves the cam at {j['angle_deg']:.1f} deg"
+            )
             for w in j["windows"]:
                 lost_on = w["end_rpm"] is None or not math.isfinite(w["end_rpm"])
                 end = "the range's end" if lost_on else f"{w['end_rpm']:.1f} rpm"
@@ -628,30 +802,40 @@ def main(argv=None) -> int:
         return 0
     if args.command == "montecarlo":
         f = result["metrics"].get("min_force_N", {})
-        print(f"{result['cases']} cases at {_text.g(result['camshaft_speed_rpm'], 6)} rpm, {result['failed']} failed, "
-              f"{result['contact_lost']} lost contact; min contact force {f.get('mean', float('nan')):.2f} +- "
-              f"{f.get('std', float('nan')):.2f} N (5 % {f.get('p5', float('nan')):.2f} N, nominal "
-              f"{f.get('nominal', float('nan')):.2f} N)")
+        print(
+            f"{result['cases']} cases at {_text.g(result['camshaft_speed_rpm'], 6)} rpm, {result['failed']} failed, "
+            f"{result['contact_lost']} lost contact; min contact force {f.get('mean', float('nan')):.2f} +- "
+            f"{f.get('std', float('nan')):.2f} N (5 % {f.get('p5', float('nan')):.2f} N, nominal "
+            f"{f.get('nominal', float('nan')):.2f} N)"
+        )
         for s_ in result.get("sensitivities", {}).get("min_force_N", [])[:3]:
-            print(f"  {s_['parameter']}: {s_['effect_of_one_std']:+.3g} N per std of {_text.g(s_['parameter_std'], 3)} "
-                  f"(slope {_text.g(s_['slope'], 4)} N per unit), standardized {s_['standardized_coefficient']:+.2f}, "
-                  f"correlation {s_['correlation']:+.2f}")
+            print(
+                f"  {s_['parameter']}: {s_['effect_of_one_std']:+.3g} N per std of {_text.g(s_['parameter_std'], 3)} "
+                f"(slope {_text.g(s_['slope'], 4)} N per unit), standardized {s_['standardized_coefficient']:+.2f}, "
+                f"correlation {s_['correlation']:+.2f}"
+            )
         print(f"{len(result['files'])} files -> {args.out}")
         return 0
     if args.command == "camshaft":
         for s in study["speeds"]:
             cams = s["cams"].values()
-            drive = "; ".join(f"{n} torque {d['mean_torque_Nm']:.2f} N m mean, {d['torque_peak_to_peak_Nm']:.2f} p-p"
-                              for n, d in s["drives"].items())
-            print(f"{s['camshaft_speed_rpm']:g} rpm: lift error <= {max(c['lift_error_mm'] for c in cams):.3f} mm, "
-                  f"min contact force lifting {min(c['min_force_lifting_N'] for c in cams):.1f} N, "
-                  f"twist <= {max(c['twist_peak_to_peak_deg'] for c in cams):.3f} deg p-p, "
-                  f"surge <= {max(c.get('surge_peak_to_peak_mm', 0.0) for c in cams):.4f} mm p-p; {drive}")
+            drive = "; ".join(
+                f"{n} torque {d['mean_torque_Nm']:.2f} N m mean, {d['torque_peak_to_peak_Nm']:.2f} p-p"
+                for n, d in s["drives"].items()
+            )
+            print(
+                f"{s['camshaft_speed_rpm']:g} rpm: lift error <= {max(c['lift_error_mm'] for c in cams):.3f} mm, "
+                f"min contact force lifting {min(c['min_force_lifting_N'] for c in cams):.1f} N, "
+                f"twist <= {max(c['twist_peak_to_peak_deg'] for c in cams):.3f} deg p-p, "
+                f"surge <= {max(c.get('surge_peak_to_peak_mm', 0.0) for c in cams):.4f} mm p-p; {drive}"
+            )
         print(f"{len(study['files'])} files -> {args.out}")
         return 0
     for name, c in summary["contacts"].items():
-        print(f"{name}: force {c['min_force_N']:.1f} to {c['max_force_N']:.1f} N, contact lost "
-              f"{_text.seconds(c['contact_lost_s'], 3)} s, "
-              f"max |a| {c['max_abs_acceleration']:.4g} (rigid {c['max_abs_rigid_acceleration']:.4g})")
+        print(
+            f"{name}: force {c['min_force_N']:.1f} to {c['max_force_N']:.1f} N, contact lost "
+            f"{_text.seconds(c['contact_lost_s'], 3)} s, "
+            f"max |a| {c['max_abs_acceleration']:.4g} (rigid {c['max_abs_rigid_acceleration']:.4g})"
+        )
     print(f"{len(summary['files'])} files -> {args.out}")
     return 0

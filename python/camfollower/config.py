@@ -113,8 +113,16 @@ class Config:
 
 def _case(raw: dict, data: dict, path: Optional[Path]) -> Config:
     builder = raw["builder"]
-    return Config(path=path, data=data, preset=raw["preset"], programs=dict(raw["programs"]), builder=builder,
-                  mechanism=builder.build(), solver=dict(raw["solver"]), output=dict(raw["output"]))
+    return Config(
+        path=path,
+        data=data,
+        preset=raw["preset"],
+        programs=dict(raw["programs"]),
+        builder=builder,
+        mechanism=builder.build(),
+        solver=dict(raw["solver"]),
+        output=dict(raw["output"]),
+    )
 
 
 def load_config(path: os.PathLike | str) -> Config:

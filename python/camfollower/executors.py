@@ -88,10 +88,15 @@ def _is_dask_client(obj) -> bool:
 
 
 _MAX_LOCAL_WORKERS = 1024  # more local Dask processes than that is a typo, not a machine
-SCHEDULER_FORMS = ("a Dask scheduler address 'tcp://host:port' (or tls://, ws://, wss://, ucx://), 'dask' or "
-                   f"'dask:N' (a LocalCluster of N processes, N a whole number in [1, {_MAX_LOCAL_WORKERS}])")
-FORMS = ("None or 'processes' (a process pool of `workers` processes), 'serial', " + SCHEDULER_FORMS
-         + ", a concurrent.futures.Executor or a dask.distributed.Client")
+SCHEDULER_FORMS = (
+    "a Dask scheduler address 'tcp://host:port' (or tls://, ws://, wss://, ucx://), 'dask' or "
+    f"'dask:N' (a LocalCluster of N processes, N a whole number in [1, {_MAX_LOCAL_WORKERS}])"
+)
+FORMS = (
+    "None or 'processes' (a process pool of `workers` processes), 'serial', "
+    + SCHEDULER_FORMS
+    + ", a concurrent.futures.Executor or a dask.distributed.Client"
+)
 _ADDRESS = re.compile(r"(tcp|tls|ws|wss|ucx)://(\[[0-9A-Fa-f:.]+\]|[A-Za-z0-9._-]+):([0-9]{1,5})")
 
 
@@ -124,8 +129,10 @@ def _local_workers(spec: str, name: str = "executor", forms: str = SCHEDULER_FOR
         return os.cpu_count() or 1
     n = spec.partition(":")[2]
     if not (n.isascii() and n.isdigit() and 1 <= int(n) <= _MAX_LOCAL_WORKERS):
-        raise ValueError(f"{name}: {spec!r} needs N, a whole number of worker processes in [1, {_MAX_LOCAL_WORKERS}]; "
-                         f"{name} must be {forms}")
+        raise ValueError(
+            f"{name}: {spec!r} needs N, a whole number of worker processes in [1, {_MAX_LOCAL_WORKERS}]; "
+            f"{name} must be {forms}"
+        )
     return int(n)
 
 
@@ -133,15 +140,18 @@ def _check_workers(workers, executor) -> None:
     if workers is None:
         return
     if isinstance(workers, bool) or not isinstance(workers, numbers.Integral):
-        raise TypeError(f"workers must be an integer >= 1 (the process pool's size), got an object of type "
-                        f"{type(workers).__name__}")
+        raise TypeError(
+            f"workers must be an integer >= 1 (the process pool's size), got an object of type {type(workers).__name__}"
+        )
     if workers < 1:
         raise ValueError(f"workers must be an integer >= 1 (the process pool's size), got {workers}")
     # The other executors have their own workers: a count given with them would be silently ignored.
     if not (executor is None or executor == "processes" or (executor == "serial" and workers == 1)):
-        raise ValueError(f"workers={workers} sizes the process pool (executor None or 'processes'); executor "
-                         f"{executor if isinstance(executor, str) else type(executor).__name__!r} has its own workers "
-                         "(give a LocalCluster's size as executor='dask:N')")
+        raise ValueError(
+            f"workers={workers} sizes the process pool (executor None or 'processes'); executor "
+            f"{executor if isinstance(executor, str) else type(executor).__name__!r} has its own workers "
+            "(give a LocalCluster's size as executor='dask:N')"
+        )
 
 
 def _check_timeout(timeout) -> float:
@@ -165,19 +175,27 @@ def connect(address: str, timeout: float = 5.0):
     try:
         from distributed import Client, LocalCluster
     except ImportError:
-        raise ImportError("Dask executors need the optional extra: pip install 'camfollower[dask]' "
-                          "(dask[distributed])") from None
+        raise ImportError(
+            "Dask executors need the optional extra: pip install 'camfollower[dask]' (dask[distributed])"
+        ) from None
     if address == "dask" or address.startswith("dask:"):
         # allowed_failures=0: a worker's death fails its tasks at once instead of rerunning a crashing
         # case on 3 more workers; _dask reruns the cases that only shared the dead worker.
-        cluster = LocalCluster(n_workers=_local_workers(address), threads_per_worker=1, processes=True,
-                               dashboard_address=None, scheduler_kwargs={"allowed_failures": 0})
+        cluster = LocalCluster(
+            n_workers=_local_workers(address),
+            threads_per_worker=1,
+            processes=True,
+            dashboard_address=None,
+            scheduler_kwargs={"allowed_failures": 0},
+        )
         return Client(cluster)
     try:
         return _bounded_client(Client)(address, timeout=timeout)
     except Exception as e:  # noqa: BLE001 - whatever the peer sent (garbage, a huge length): not a scheduler
-        raise RuntimeError(f"cannot reach the Dask scheduler at {address} within {timeout:g} s (nothing answers, or "
-                           f"the peer is not a Dask scheduler): {type(e).__name__}: {e}") from None
+        raise RuntimeError(
+            f"cannot reach the Dask scheduler at {address} within {timeout:g} s (nothing answers, or "
+            f"the peer is not a Dask scheduler): {type(e).__name__}: {e}"
+        ) from None
 
 
 def _bounded_client(client_type):
@@ -197,9 +215,17 @@ def _bounded_client(client_type):
     return Client
 
 
-def run_cases(fn: Callable[[Any], Any], items: Sequence[Any], *, executor=None, workers: Optional[int] = None,
-              progress: bool = True, desc: str = "cases", cancel: Optional[threading.Event] = None,
-              connect_timeout: float = 5.0) -> List[Outcome]:
+def run_cases(
+    fn: Callable[[Any], Any],
+    items: Sequence[Any],
+    *,
+    executor=None,
+    workers: Optional[int] = None,
+    progress: bool = True,
+    desc: str = "cases",
+    cancel: Optional[threading.Event] = None,
+    connect_timeout: float = 5.0,
+) -> List[Outcome]:
     """``[fn(item) for item in items]`` on ``executor`` (module docstring), as Outcomes in order.
 
     ``fn`` must be picklable for processes and Dask (a module-level function, or a functools.partial of
@@ -294,6 +320,7 @@ def _die_with_parent(parent: int) -> None:
             if not _alive(parent):  # died before prctl took effect: no signal will come
                 os._exit(1)
         elif os.name == "posix":
+
             def watch():
                 while _alive(parent):
                     threading.Event().wait(1.0)
@@ -322,10 +349,12 @@ def _pool(fn, items, workers, bar, cancel) -> List[Outcome]:
     todo = list(range(len(items)))
     for _attempt in range(2):
         with _process_pool(min(workers, len(todo))) as pool:
+
             def stop(pending):
                 for f in pending:
                     f.cancel()
                 pool.shutdown(wait=False, cancel_futures=True)
+
             futures = {pool.submit(_guarded, fn, items[i]): i for i in todo}
             got = _collect(futures, len(items), bar, cancel, stop)
         for i in todo:
@@ -338,9 +367,13 @@ def _pool(fn, items, workers, bar, cancel) -> List[Outcome]:
     for i in todo:  # alone: the crash is this case's
         with _process_pool(1) as pool:
             got = _collect({pool.submit(_guarded, fn, items[i]): i}, len(items), bar, cancel, lambda p: None)
-        out[i] = got[i] or Outcome(i, False, error="worker crashed",
-                                   detail="the worker process running this case died (killed, out of memory or a crash "
-                                          "in compiled code); rerun it with executor='serial' to see where")
+        out[i] = got[i] or Outcome(
+            i,
+            False,
+            error="worker crashed",
+            detail="the worker process running this case died (killed, out of memory or a crash "
+            "in compiled code); rerun it with executor='serial' to see where",
+        )
     return out  # type: ignore[return-value]
 
 
@@ -356,8 +389,10 @@ def _futures(executor, fn, items, bar, cancel) -> List[Outcome]:
             f.cancel()
 
     got = _collect(futures, len(items), bar, cancel, stop)
-    return [o or Outcome(i, False, error="worker crashed", detail="the executor's worker died running this case")
-            for i, o in enumerate(got)]
+    return [
+        o or Outcome(i, False, error="worker crashed", detail="the executor's worker died running this case")
+        for i, o in enumerate(got)
+    ]
 
 
 def _dask(client, fn, items, bar, cancel) -> List[Outcome]:
@@ -367,9 +402,13 @@ def _dask(client, fn, items, bar, cancel) -> List[Outcome]:
     out: List[Optional[Outcome]] = [None] * len(items)
     for i in _dask_round(client, fn, items, range(len(items)), out, bar, cancel):
         if _dask_round(client, fn, items, [i], out, bar, cancel):
-            out[i] = Outcome(i, False, error="worker crashed",
-                             detail="the Dask worker running this case alone died (killed, out of memory or a crash "
-                                    "in compiled code); rerun it with executor='serial' to see where")
+            out[i] = Outcome(
+                i,
+                False,
+                error="worker crashed",
+                detail="the Dask worker running this case alone died (killed, out of memory or a crash "
+                "in compiled code); rerun it with executor='serial' to see where",
+            )
             if bar is not None:
                 bar.update(1)
     return [o or _cancelled(i) for i, o in enumerate(out)]

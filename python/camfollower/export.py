@@ -45,8 +45,11 @@ def _check(points, cutter_radius, unit):
     if isinstance(points, bool) or not isinstance(points, numbers.Integral) or not 3 <= points <= _core.MAX_POINTS:
         raise ValueError(f"points must be an integer in [3, {_core.MAX_POINTS}], got {points!r}")
     if cutter_radius is not None:
-        if isinstance(cutter_radius, bool) or not isinstance(cutter_radius, numbers.Real) or not (
-                math.isfinite(cutter_radius) and cutter_radius >= 0):
+        if (
+            isinstance(cutter_radius, bool)
+            or not isinstance(cutter_radius, numbers.Real)
+            or not (math.isfinite(cutter_radius) and cutter_radius >= 0)
+        ):
             raise ValueError(f"cutter_radius must be None or a finite number >= 0 (m), got {cutter_radius!r}")
     units = _core.length_units()
     if unit not in units:
@@ -54,8 +57,9 @@ def _check(points, cutter_radius, unit):
     return int(points), None if cutter_radius is None else float(cutter_radius)
 
 
-def profile_points(follower, program, *, points: int = 3600, cutter_radius: Optional[float] = None,
-                   unit: str = "mm") -> dict:
+def profile_points(
+    follower, program, *, points: int = 3600, cutter_radius: Optional[float] = None, unit: str = "mm"
+) -> dict:
     """The cam outline as numpy arrays: ``theta`` (rad), ``surface_x``, ``surface_y`` (cam frame, in
     ``unit``), ``normal_x``, ``normal_y`` (outward unit normal), and with a ``cutter_radius`` (m)
     ``cutter_x``, ``cutter_y``; also ``unit``, ``cutter_radius`` and ``notes`` (the header lines that
@@ -64,8 +68,9 @@ def profile_points(follower, program, *, points: int = 3600, cutter_radius: Opti
     return _core.cam_outline(follower, program, points, cutter_radius, unit)
 
 
-def write_csv(path, follower, program, *, points: int = 3600, cutter_radius: Optional[float] = None,
-              unit: str = "mm") -> None:
+def write_csv(
+    path, follower, program, *, points: int = 3600, cutter_radius: Optional[float] = None, unit: str = "mm"
+) -> None:
     """Write the outline as CSV: commented header (``# ``) with the conventions, then the columns
     ``theta_rad,surface_x_<unit>,surface_y_<unit>[,cutter_x_<unit>,cutter_y_<unit>]``, one row per
     point (17 significant digits). Read it back with
@@ -79,13 +84,15 @@ def _ezdxf():
     try:
         import ezdxf
     except ImportError as e:  # pragma: no cover - depends on the environment
-        raise ImportError("camfollower.export.write_dxf needs ezdxf: pip install camfollower[dxf] "
-                          "(or pip install ezdxf)") from e
+        raise ImportError(
+            "camfollower.export.write_dxf needs ezdxf: pip install camfollower[dxf] (or pip install ezdxf)"
+        ) from e
     return ezdxf
 
 
-def write_dxf(path, follower, program, *, points: int = 3600, cutter_radius: Optional[float] = None,
-              unit: str = "mm") -> None:
+def write_dxf(
+    path, follower, program, *, points: int = 3600, cutter_radius: Optional[float] = None, unit: str = "mm"
+) -> None:
     """Write the outline as a DXF drawing (R2010) in ``unit`` ($INSUNITS set accordingly):
 
     - layer ``CAM_SURFACE``: the cam surface, one closed LWPOLYLINE of ``points`` vertices;
@@ -113,11 +120,14 @@ def write_dxf(path, follower, program, *, points: int = 3600, cutter_radius: Opt
     msp = doc.modelspace()
 
     sx, sy = outline["surface_x"], outline["surface_y"]
-    msp.add_lwpolyline(np.column_stack([sx, sy]).tolist(), format="xy", close=True,
-                       dxfattribs={"layer": SURFACE_LAYER})
+    msp.add_lwpolyline(np.column_stack([sx, sy]).tolist(), format="xy", close=True, dxfattribs={"layer": SURFACE_LAYER})
     if cutter_radius is not None:
-        msp.add_lwpolyline(np.column_stack([outline["cutter_x"], outline["cutter_y"]]).tolist(), format="xy",
-                           close=True, dxfattribs={"layer": CUTTER_LAYER})
+        msp.add_lwpolyline(
+            np.column_stack([outline["cutter_x"], outline["cutter_y"]]).tolist(),
+            format="xy",
+            close=True,
+            dxfattribs={"layer": CUTTER_LAYER},
+        )
 
     radii = np.hypot(sx, sy)
     inner, outer = float(radii.min()), float(radii.max())
@@ -132,7 +142,8 @@ def write_dxf(path, follower, program, *, points: int = 3600, cutter_radius: Opt
     reach = outer + 4 * text
     msp.add_line((0.0, 0.0), (reach * u[0], reach * u[1]), dxfattribs=ref)
     msp.add_text("THETA = 0", height=text, rotation=math.degrees(zero), dxfattribs=ref).set_placement(
-        ((reach + text) * u[0], (reach + text) * u[1]))
+        ((reach + text) * u[0], (reach + text) * u[1])
+    )
     # Rotation: a counter-clockwise arc with an arrowhead at its end, inside the cam.
     r = 0.5 * inner
     a0, a1 = zero + math.radians(30), zero + math.radians(120)
@@ -141,10 +152,16 @@ def write_dxf(path, follower, program, *, points: int = 3600, cutter_radius: Opt
     t = (-math.sin(a1), math.cos(a1))  # counter-clockwise tangent
     n = (math.cos(a1), math.sin(a1))
     size = 0.15 * r
-    msp.add_lwpolyline([(tip[0] + size * t[0], tip[1] + size * t[1]),
-                        (tip[0] + 0.5 * size * n[0], tip[1] + 0.5 * size * n[1]),
-                        (tip[0] - 0.5 * size * n[0], tip[1] - 0.5 * size * n[1])], format="xy", close=True,
-                       dxfattribs=ref)
+    msp.add_lwpolyline(
+        [
+            (tip[0] + size * t[0], tip[1] + size * t[1]),
+            (tip[0] + 0.5 * size * n[0], tip[1] + 0.5 * size * n[1]),
+            (tip[0] - 0.5 * size * n[0], tip[1] - 0.5 * size * n[1]),
+        ],
+        format="xy",
+        close=True,
+        dxfattribs=ref,
+    )
     mid = 0.5 * (a0 + a1)
     msp.add_text("CCW", height=text, dxfattribs=ref).set_placement((0.6 * r * math.cos(mid), 0.6 * r * math.sin(mid)))
 

@@ -103,8 +103,12 @@ def from_callable(
         raise ValueError(f"f must return a finite lift (m): f({theta[i]!r}) = {h[i]!r}")
     if not periodic:
         return Segment.from_table(
-            theta, h, degree=degree, smoothing=smoothing,
-            start_derivatives=list(start_derivatives), end_derivatives=list(end_derivatives),
+            theta,
+            h,
+            degree=degree,
+            smoothing=smoothing,
+            start_derivatives=list(start_derivatives),
+            end_derivatives=list(end_derivatives),
         )
     wrapped = np.mod(theta, TWO_PI)
     wrapped[wrapped >= TWO_PI] = 0.0

@@ -23,8 +23,17 @@ from .results import Result
 from .simulation import simulate
 
 # Newmark keyword arguments that define the discrete scheme (the orbit belongs to them).
-_SCHEME_KEYS = ("time_step", "gamma", "beta", "hht_alpha", "linear_solver", "residual_tolerance",
-                "increment_tolerance", "max_iterations", "max_halvings")
+_SCHEME_KEYS = (
+    "time_step",
+    "gamma",
+    "beta",
+    "hht_alpha",
+    "linear_solver",
+    "residual_tolerance",
+    "increment_tolerance",
+    "max_iterations",
+    "max_halvings",
+)
 
 
 @dataclass(frozen=True)
@@ -59,10 +68,12 @@ class PeriodicOrbit:
     scheme: Dict[str, Any] = field(default_factory=dict)
 
     def __repr__(self) -> str:  # the facts, not the state vectors and the 2n x 2n monodromy
-        return (f"PeriodicOrbit(method={self.method!r}, converged={self.converged}, period={_text.g(self.period)} s, "
-                f"mismatch={_text.g(self.mismatch, 3)}, iterations={self.iterations}, "
-                f"revolutions={_text.g(self.revolutions)}, spectral_radius={_text.g(self.spectral_radius, 6)}, "
-                f"{len(self.dof_names)} DOFs)")
+        return (
+            f"PeriodicOrbit(method={self.method!r}, converged={self.converged}, period={_text.g(self.period)} s, "
+            f"mismatch={_text.g(self.mismatch, 3)}, iterations={self.iterations}, "
+            f"revolutions={_text.g(self.revolutions)}, spectral_radius={_text.g(self.spectral_radius, 6)}, "
+            f"{len(self.dof_names)} DOFs)"
+        )
 
     @property
     def spectral_radius(self) -> float:
@@ -89,22 +100,40 @@ class PeriodicOrbit:
         """Simulate ``revolutions`` from the orbit with the scheme it was found with (so the recorded
         revolution is the orbit itself) and return the Result."""
         kwargs = {**self.scheme, **overrides}
-        return simulate(system, revolutions=revolutions, decimation=decimation, initial_state=(self.q, self.v), **kwargs)
+        return simulate(
+            system, revolutions=revolutions, decimation=decimation, initial_state=(self.q, self.v), **kwargs
+        )
 
     def summary(self) -> Dict[str, Any]:
         """JSON-ready facts of the orbit."""
-        return {"method": self.method, "converged": self.converged, "mismatch": self.mismatch,
-                "iterations": self.iterations, "monodromies": self.monodromies, "revolutions": self.revolutions,
-                "spectral_radius": self.spectral_radius, "instability": self.instability(),
-                "multipliers": [[float(m.real), float(m.imag)] for m in self.multipliers]}
+        return {
+            "method": self.method,
+            "converged": self.converged,
+            "mismatch": self.mismatch,
+            "iterations": self.iterations,
+            "monodromies": self.monodromies,
+            "revolutions": self.revolutions,
+            "spectral_radius": self.spectral_radius,
+            "instability": self.instability(),
+            "multipliers": [[float(m.real), float(m.imag)] for m in self.multipliers],
+        }
 
 
-def periodic_steady_state(system, *, time_step: float = 3e-6, tolerance: float = 1e-9,
-                          max_shooting_iterations: int = 30, warmup_revolutions: int = 1,
-                          perturbation: float = 1e-6, multipliers: bool = True,
-                          guess: Optional[PeriodicOrbit] = None, fallback: Optional[str] = None,
-                          transient_tolerance: float = 1e-6, transient_max_revolutions: int = 200,
-                          **scheme) -> PeriodicOrbit:
+def periodic_steady_state(
+    system,
+    *,
+    time_step: float = 3e-6,
+    tolerance: float = 1e-9,
+    max_shooting_iterations: int = 30,
+    warmup_revolutions: int = 1,
+    perturbation: float = 1e-6,
+    multipliers: bool = True,
+    guess: Optional[PeriodicOrbit] = None,
+    fallback: Optional[str] = None,
+    transient_tolerance: float = 1e-6,
+    transient_max_revolutions: int = 200,
+    **scheme,
+) -> PeriodicOrbit:
     """The periodic steady state of ``system`` (a Mechanism or CamFollowerModel: anything with a
     ``period``) by shooting on one revolution.
 
@@ -125,15 +154,28 @@ def periodic_steady_state(system, *, time_step: float = 3e-6, tolerance: float =
     """
     period = getattr(system, "period", None)
     if period is None:
-        raise ValueError(f"periodic_steady_state needs a periodic system (with a camshaft period), got {type(system).__name__}")
+        raise ValueError(
+            f"periodic_steady_state needs a periodic system (with a camshaft period), got {type(system).__name__}"
+        )
     if fallback not in (None, "transient"):
         raise ValueError(f"fallback must be None or 'transient', got {fallback!r}")
     unknown = set(scheme) - set(_SCHEME_KEYS)
     if unknown:
-        raise TypeError(f"periodic_steady_state() got unexpected keyword argument(s) {sorted(unknown)}; "
-                        f"solver settings: {list(_SCHEME_KEYS)}")
-    settings = {"time_step": float(time_step), "gamma": None, "beta": None, "hht_alpha": 0.0, "linear_solver": "auto",
-                "residual_tolerance": 1e-10, "increment_tolerance": 1e-10, "max_iterations": 25, "max_halvings": 6}
+        raise TypeError(
+            f"periodic_steady_state() got unexpected keyword argument(s) {sorted(unknown)}; "
+            f"solver settings: {list(_SCHEME_KEYS)}"
+        )
+    settings = {
+        "time_step": float(time_step),
+        "gamma": None,
+        "beta": None,
+        "hht_alpha": 0.0,
+        "linear_solver": "auto",
+        "residual_tolerance": 1e-10,
+        "increment_tolerance": 1e-10,
+        "max_iterations": 25,
+        "max_halvings": 6,
+    }
     settings.update(scheme)
     q0 = v0 = monodromy = None
     if guess is not None:
@@ -144,19 +186,48 @@ def periodic_steady_state(system, *, time_step: float = 3e-6, tolerance: float =
             raise ValueError(f"guess has {len(guess.q)} DOFs, the system {n}")
         q0, v0 = guess.q, guess.v
         monodromy = guess.monodromy if guess.monodromy.size else None
-    raw = _core._shoot(system, settings["time_step"], settings["gamma"], settings["beta"], settings["hht_alpha"],
-                       settings["linear_solver"], settings["residual_tolerance"], settings["increment_tolerance"],
-                       settings["max_iterations"], settings["max_halvings"], None, 0.0, tolerance,
-                       max_shooting_iterations, warmup_revolutions, perturbation, multipliers, monodromy, q0, v0)
+    raw = _core._shoot(
+        system,
+        settings["time_step"],
+        settings["gamma"],
+        settings["beta"],
+        settings["hht_alpha"],
+        settings["linear_solver"],
+        settings["residual_tolerance"],
+        settings["increment_tolerance"],
+        settings["max_iterations"],
+        settings["max_halvings"],
+        None,
+        0.0,
+        tolerance,
+        max_shooting_iterations,
+        warmup_revolutions,
+        perturbation,
+        multipliers,
+        monodromy,
+        q0,
+        v0,
+    )
     names = tuple(system.dof_names)
     kept = {k: v for k, v in settings.items() if v is not None}
     orbit = PeriodicOrbit(
-        q=np.asarray(raw["q"]), v=np.asarray(raw["v"]), period=float(period), converged=bool(raw["converged"]),
-        mismatch=float(raw["mismatch"]), iterations=int(raw["iterations"]), monodromies=int(raw["monodromies"]),
-        revolutions=float(raw["revolutions"]), multipliers=np.asarray(raw["multipliers"], dtype=complex),
-        monodromy=np.asarray(raw["monodromy"]), monodromy_at_orbit=bool(raw["monodromy_at_orbit"]),
-        history=tuple(float(h) for h in raw["history"]), dof_names=names, q_scale=float(raw["q_scale"]),
-        v_scale=float(raw["v_scale"]), scheme=kept)
+        q=np.asarray(raw["q"]),
+        v=np.asarray(raw["v"]),
+        period=float(period),
+        converged=bool(raw["converged"]),
+        mismatch=float(raw["mismatch"]),
+        iterations=int(raw["iterations"]),
+        monodromies=int(raw["monodromies"]),
+        revolutions=float(raw["revolutions"]),
+        multipliers=np.asarray(raw["multipliers"], dtype=complex),
+        monodromy=np.asarray(raw["monodromy"]),
+        monodromy_at_orbit=bool(raw["monodromy_at_orbit"]),
+        history=tuple(float(h) for h in raw["history"]),
+        dof_names=names,
+        q_scale=float(raw["q_scale"]),
+        v_scale=float(raw["v_scale"]),
+        scheme=kept,
+    )
     if orbit.converged:
         return orbit
     if fallback == "transient":
@@ -166,21 +237,44 @@ def periodic_steady_state(system, *, time_step: float = 3e-6, tolerance: float =
         f"shooting did not converge to the periodic steady state in {orbit.iterations} iterations "
         f"({orbit.revolutions:g} revolutions): mismatch {orbit.mismatch:.3g} > tolerance {tolerance:g}; history "
         f"[{history}]. The response may not be periodic (contact loss with chatter, period doubling: spectral "
-        f"radius {orbit.spectral_radius:.4g}); pass fallback='transient' to use the transient route instead")
+        f"radius {orbit.spectral_radius:.4g}); pass fallback='transient' to use the transient route instead"
+    )
 
 
-def _transient(system, scheme: Dict[str, Any], failed: PeriodicOrbit, tolerance: float, max_revolutions: int) -> PeriodicOrbit:
-    r = simulate(system, revolutions=1, record_last_revolutions=1, settle=True, settle_tolerance=tolerance,
-                 settle_max_revolutions=max_revolutions, settle_dofs=list(system.dof_names), **scheme)
+def _transient(
+    system, scheme: Dict[str, Any], failed: PeriodicOrbit, tolerance: float, max_revolutions: int
+) -> PeriodicOrbit:
+    r = simulate(
+        system,
+        revolutions=1,
+        record_last_revolutions=1,
+        settle=True,
+        settle_tolerance=tolerance,
+        settle_max_revolutions=max_revolutions,
+        settle_dofs=list(system.dof_names),
+        **scheme,
+    )
     settle = r.settle or {}
     q, v = np.array(r.q[-1]), np.array(r.v[-1])
-    return PeriodicOrbit(q=q, v=v, period=failed.period, converged=bool(settle.get("settled", False)),
-                         mismatch=float(settle.get("change", math.nan)), iterations=0, monodromies=0,
-                         revolutions=failed.revolutions + float(settle.get("revolutions", 0)) + 1.0,
-                         multipliers=np.zeros(0, dtype=complex), monodromy=np.zeros((0, 0)), monodromy_at_orbit=False,
-                         history=tuple(settle.get("history", ())), dof_names=failed.dof_names,
-                         q_scale=failed.q_scale, v_scale=failed.v_scale, method="transient",
-                         scheme=scheme)
+    return PeriodicOrbit(
+        q=q,
+        v=v,
+        period=failed.period,
+        converged=bool(settle.get("settled", False)),
+        mismatch=float(settle.get("change", math.nan)),
+        iterations=0,
+        monodromies=0,
+        revolutions=failed.revolutions + float(settle.get("revolutions", 0)) + 1.0,
+        multipliers=np.zeros(0, dtype=complex),
+        monodromy=np.zeros((0, 0)),
+        monodromy_at_orbit=False,
+        history=tuple(settle.get("history", ())),
+        dof_names=failed.dof_names,
+        q_scale=failed.q_scale,
+        v_scale=failed.v_scale,
+        method="transient",
+        scheme=scheme,
+    )
 
 
 __all__ = ["PeriodicOrbit", "periodic_steady_state"]

@@ -56,9 +56,9 @@ def per_revolution(angle, *series):
     x = deg - 360.0 * rev
     xs, yss, start = [], [[] for _ in ys], 0
     for i in np.nonzero(np.diff(rev))[0]:
-        xs.append(x[start:i + 1])
+        xs.append(x[start : i + 1])
         for out, y in zip(yss, ys):
-            out.append(y[start:i + 1])
+            out.append(y[start : i + 1])
         if rev[i + 1] == rev[i] + 1:  # one wrap forward: close the line at the edges
             f = (360.0 * rev[i + 1] - deg[i]) / (deg[i + 1] - deg[i])
             xs.append(np.array([360.0, np.nan, 0.0]))
@@ -96,8 +96,12 @@ def svaj(program, rpm: Optional[float] = None, points: int = 3601, axes=None, an
     per = ("s", "s²", "s³") if rpm is not None else ("rad", "rad²", "rad³")
     units = [f"{base}/{p}" for p in per]
     lift = (np.degrees(d["h"]), "arm rotation h (deg)") if angular else (1e3 * d["h"], "lift h (mm)")
-    series = [lift, (w * d["dh"], f"velocity ({units[0]})"),
-              (w**2 * d["d2h"], f"acceleration ({units[1]})"), (w**3 * d["d3h"], f"jerk ({units[2]})")]
+    series = [
+        lift,
+        (w * d["dh"], f"velocity ({units[0]})"),
+        (w**2 * d["d2h"], f"acceleration ({units[1]})"),
+        (w**3 * d["d3h"], f"jerk ({units[2]})"),
+    ]
     for ax, (y, label) in zip(axes, series):
         ax.plot(np.degrees(theta), y, lw=1.0)
         ax.set_ylabel(label), ax.grid(alpha=0.3)
@@ -148,8 +152,13 @@ def pressure_angle_and_curvature(follower, program, points: int = 3601, axes=Non
     # The limit is marked on the side(s) where the radius goes beyond it.
     beyond = [sign for sign in (1, -1) if np.any(sign * rho > limit)]
     for i, sign in enumerate(beyond):
-        axes[1].axhline(sign * 1e3 * limit, color="0.3", lw=0.8, ls=":",
-                        label=f"display limit ±10 r_b = ±{1e3 * limit:g} mm; beyond it: gap" if i == 0 else None)
+        axes[1].axhline(
+            sign * 1e3 * limit,
+            color="0.3",
+            lw=0.8,
+            ls=":",
+            label=f"display limit ±10 r_b = ±{1e3 * limit:g} mm; beyond it: gap" if i == 0 else None,
+        )
     if beyond:
         axes[1].legend(loc="best", fontsize=7)
     axes[1].set_ylabel("surface radius of curvature (mm)\nconvex > 0, concave < 0")
@@ -159,8 +168,16 @@ def pressure_angle_and_curvature(follower, program, points: int = 3601, axes=Non
     return axes[0].figure
 
 
-def acceleration(result, program, omega: float, dof: str, revolutions: Optional[float] = None, ax=None,
-                 phase: float = 0.0, unit: str = "m/s²"):
+def acceleration(
+    result,
+    program,
+    omega: float,
+    dof: str,
+    revolutions: Optional[float] = None,
+    ax=None,
+    phase: float = 0.0,
+    unit: str = "m/s²",
+):
     """A follower DOF's simulated acceleration a.<dof> against the rigid-follower ω²h″ (``unit``:
     m/s², rad/s² for an oscillating follower's arm), over the recorded run (or its last
     ``revolutions``), against the cam's own angle: the shaft angle of channel ``theta`` plus the
@@ -199,9 +216,16 @@ def contact_force(result, contact: str = "cam", ax=None):
     return ax.figure
 
 
-def spectrum(signal, sample_rate: float, fmax: Optional[float] = None,
-             natural_frequencies: Sequence[float] = (), ax=None, log: bool = True, quantity: str = "signal",
-             unit: str = "signal units"):
+def spectrum(
+    signal,
+    sample_rate: float,
+    fmax: Optional[float] = None,
+    natural_frequencies: Sequence[float] = (),
+    ax=None,
+    log: bool = True,
+    quantity: str = "signal",
+    unit: str = "signal units",
+):
     """Amplitude spectrum (Hann window) of a signal sampled at ``sample_rate`` (Hz), natural
     frequencies marked; the amplitude axis names the ``quantity`` and its ``unit`` (e.g. "contact
     force", "N"): a sinusoid of amplitude A reads A."""
@@ -222,4 +246,12 @@ def spectrum(signal, sample_rate: float, fmax: Optional[float] = None,
     return ax.figure
 
 
-__all__ = ["per_revolution", "svaj", "profile", "pressure_angle_and_curvature", "acceleration", "contact_force", "spectrum"]
+__all__ = [
+    "per_revolution",
+    "svaj",
+    "profile",
+    "pressure_angle_and_curvature",
+    "acceleration",
+    "contact_force",
+    "spectrum",
+]

@@ -20,10 +20,16 @@ from ._core import (
 REALISTIC_DAMPING_RATIO: float = realistic_damping_ratio
 
 
-def paper(parameters: Optional[Parameters] = None, program: Optional[MotionProgram] = None, *,
-          eccentricity: Optional[CamEccentricity] = None, guide_clearance: float = 0.0,
-          guide_wall_damping_factor: float = 0.0, guide_friction: float = 0.0,
-          element_damping_ratio: float = 0.0) -> Mechanism:
+def paper(
+    parameters: Optional[Parameters] = None,
+    program: Optional[MotionProgram] = None,
+    *,
+    eccentricity: Optional[CamEccentricity] = None,
+    guide_clearance: float = 0.0,
+    guide_wall_damping_factor: float = 0.0,
+    guide_friction: float = 0.0,
+    element_damping_ratio: float = 0.0,
+) -> Mechanism:
     """The paper's 7-DOF cam-follower model (Tounsi et al.): camshaft on bearings (y1, x1), roller on
     its pin (y2, x2), follower rod in its guide (y3, x3), follower top on the preloaded return spring
     (y4); one contact named "cam" between a disk cam and the offset translating roller. ``parameters``
@@ -39,13 +45,24 @@ def paper(parameters: Optional[Parameters] = None, program: Optional[MotionProgr
     Hunt-Crossley factor at the return spring's force on the dwell. Only element deformation rates are
     damped, so the follower's lift is not resisted. The return spring's preload is calibrated on the
     healthy mechanism, so every variant has the same spring."""
-    return paper_preset(parameters, program, eccentricity=eccentricity, guide_clearance=guide_clearance,
-                        guide_wall_damping_factor=guide_wall_damping_factor, guide_friction=guide_friction,
-                        element_damping_ratio=element_damping_ratio)
+    return paper_preset(
+        parameters,
+        program,
+        eccentricity=eccentricity,
+        guide_clearance=guide_clearance,
+        guide_wall_damping_factor=guide_wall_damping_factor,
+        guide_friction=guide_friction,
+        element_damping_ratio=element_damping_ratio,
+    )
 
 
-def paper_damped(parameters: Optional[Parameters] = None, program: Optional[MotionProgram] = None, *,
-                 damping_ratio: float = REALISTIC_DAMPING_RATIO, **options) -> Mechanism:
+def paper_damped(
+    parameters: Optional[Parameters] = None,
+    program: Optional[MotionProgram] = None,
+    *,
+    damping_ratio: float = REALISTIC_DAMPING_RATIO,
+    **options,
+) -> Mechanism:
     """The paper's mechanism with realistic damping: every element at ``damping_ratio`` of its own
     critical damping (default 3 %; the modes then have 2-5 %). Other options as for :func:`paper`."""
     return paper(parameters, program, element_damping_ratio=damping_ratio, **options)

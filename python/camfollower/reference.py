@@ -22,10 +22,16 @@ class NumpyCamFollower:
 
     def __init__(self, model):
         p = model.parameters
-        if (p.contact_exponent != 1.0 or p.gravity != 0.0 or p.to_dict()["contact_damping"] != "none"
-                or model.defects.eccentricity or model.defects.backlash):
-            raise ValueError("the NumPy reference covers the linear undamped contact law, without gravity or "
-                             "defects, only")
+        if (
+            p.contact_exponent != 1.0
+            or p.gravity != 0.0
+            or p.to_dict()["contact_damping"] != "none"
+            or model.defects.eccentricity
+            or model.defects.backlash
+        ):
+            raise ValueError(
+                "the NumPy reference covers the linear undamped contact law, without gravity or defects, only"
+            )
         p = model.parameters
         self.M = np.array(model.mass_matrix)
         self.C = np.array(model.damping_matrix)

@@ -103,8 +103,10 @@ def _dwells(program):
 def check_accuracy(accuracy, name: str = "accuracy") -> float:
     """An accuracy (relative error of force and acceleration) the studies can reach: in [1e-6, 0.1]."""
     if isinstance(accuracy, bool) or not isinstance(accuracy, numbers.Real) or not 1e-6 <= float(accuracy) <= 0.1:
-        raise ValueError(f"{name} must be a relative error in [1e-06, 0.1] of the peak contact force and follower "
-                         f"acceleration (e.g. 1e-3), got {accuracy!r}")
+        raise ValueError(
+            f"{name} must be a relative error in [1e-06, 0.1] of the peak contact force and follower "
+            f"acceleration (e.g. 1e-3), got {accuracy!r}"
+        )
     return float(accuracy)
 
 
@@ -129,12 +131,22 @@ def _change(fine: np.ndarray, coarse: np.ndarray) -> float:
     return float(np.max(np.abs(fine[1::2] - coarse))) / peak
 
 
-def steady_response(system, *, contact: Optional[str] = None, accuracy: Optional[float] = None,
-                    steps_per_revolution: Optional[int] = None, guess: Optional[PeriodicOrbit] = None,
-                    multipliers: bool = True, fallback: Optional[str] = None, tolerance: float = 1e-9,
-                    harmonics: int = HARMONICS, channels: Sequence[str] = (), keep_orbit: bool = False,
-                    max_steps_per_revolution: int = MAX_STUDY_STEPS_PER_REVOLUTION,
-                    stop_at_loss: bool = False) -> Dict[str, Any]:
+def steady_response(
+    system,
+    *,
+    contact: Optional[str] = None,
+    accuracy: Optional[float] = None,
+    steps_per_revolution: Optional[int] = None,
+    guess: Optional[PeriodicOrbit] = None,
+    multipliers: bool = True,
+    fallback: Optional[str] = None,
+    tolerance: float = 1e-9,
+    harmonics: int = HARMONICS,
+    channels: Sequence[str] = (),
+    keep_orbit: bool = False,
+    max_steps_per_revolution: int = MAX_STUDY_STEPS_PER_REVOLUTION,
+    stop_at_loss: bool = False,
+) -> Dict[str, Any]:
     """The periodic steady state of ``system`` at its own camshaft speed, measured on ``contact``.
 
     **Accuracy.** The orbit is found with Newmark's average acceleration at ``steps_per_revolution``
@@ -173,8 +185,9 @@ def steady_response(system, *, contact: Optional[str] = None, accuracy: Optional
         target = STUDY_ACCURACY if steps_per_revolution is None else None
     else:
         target = check_accuracy(accuracy)
-    start = _check_steps(STUDY_STEPS_PER_REVOLUTION if steps_per_revolution is None else steps_per_revolution,
-                         "steps_per_revolution")
+    start = _check_steps(
+        STUDY_STEPS_PER_REVOLUTION if steps_per_revolution is None else steps_per_revolution, "steps_per_revolution"
+    )
     finest = _check_steps(max_steps_per_revolution, "max_steps_per_revolution")
     if finest < start:
         raise ValueError(f"max_steps_per_revolution ({finest}) must be >= steps_per_revolution ({start})")
@@ -191,9 +204,18 @@ def steady_response(system, *, contact: Optional[str] = None, accuracy: Optional
     scheme = study_scheme(system, start if target is not None else start // 2)
 
     def orbit_at(steps: int, seed: Optional[PeriodicOrbit], with_multipliers: bool) -> PeriodicOrbit:
-        o = periodic_steady_state(system, time_step=period / steps, guess=seed, multipliers=with_multipliers,
-                                  fallback=fallback, tolerance=tolerance, warmup_revolutions=0 if seed else 1,
-                                  gamma=scheme["gamma"], beta=scheme["beta"], **search)
+        o = periodic_steady_state(
+            system,
+            time_step=period / steps,
+            guess=seed,
+            multipliers=with_multipliers,
+            fallback=fallback,
+            tolerance=tolerance,
+            warmup_revolutions=0 if seed else 1,
+            gamma=scheme["gamma"],
+            beta=scheme["beta"],
+            **search,
+        )
         cost["revolutions"] += o.revolutions + 1.0  # + the recorded revolution
         cost["steps"] += int(round((o.revolutions + 1.0) * steps))
         return o
@@ -223,8 +245,12 @@ def steady_response(system, *, contact: Optional[str] = None, accuracy: Optional
         settled = orbit.converged and (coarse is None or coarse.converged)
         if settled and estimate > 0.5 * previous:
             break
-        if not orbit.converged and coarse is not None and not coarse.converged and \
-                not orbit.mismatch <= 0.25 * coarse.mismatch:
+        if (
+            not orbit.converged
+            and coarse is not None
+            and not coarse.converged
+            and not orbit.mismatch <= 0.25 * coarse.mismatch
+        ):
             break
         coarse, steps = orbit, 2 * steps
         orbit = orbit_at(steps, coarse, False)
@@ -232,9 +258,25 @@ def steady_response(system, *, contact: Optional[str] = None, accuracy: Optional
     if multipliers and not orbit.monodromy_at_orbit and orbit.method == "shooting":
         orbit = orbit_at(steps, orbit, True)  # the multipliers of the orbit reported (2n revolutions)
     reached = target is None or estimate <= target
-    return _row(system, c, orbit, rec, force, acc, harmonics, channels, keep_orbit, cost,
-                {"accuracy": estimate, "accuracy_target": target if target is not None else math.nan,
-                 "accuracy_reached": reached, "steps_per_revolution": steps, "scheme": scheme["name"]})
+    return _row(
+        system,
+        c,
+        orbit,
+        rec,
+        force,
+        acc,
+        harmonics,
+        channels,
+        keep_orbit,
+        cost,
+        {
+            "accuracy": estimate,
+            "accuracy_target": target if target is not None else math.nan,
+            "accuracy_reached": reached,
+            "steps_per_revolution": steps,
+            "scheme": scheme["name"],
+        },
+    )
 
 
 def _row(system, c, orbit, r, force, a, harmonics, channels, keep_orbit, cost, accuracy) -> Dict[str, Any]:
@@ -246,18 +288,25 @@ def _row(system, c, orbit, r, force, a, harmonics, channels, keep_orbit, cost, a
     k = int(np.argmin(force))
     lost = ~touching
     row: Dict[str, Any] = {
-        "rpm": float(system.camshaft_speed_rpm), "converged": orbit.converged, "method": orbit.method,
-        "revolutions": cost["revolutions"], "steps": cost["steps"], "iterations": orbit.iterations,
+        "rpm": float(system.camshaft_speed_rpm),
+        "converged": orbit.converged,
+        "method": orbit.method,
+        "revolutions": cost["revolutions"],
+        "steps": cost["steps"],
+        "iterations": orbit.iterations,
         "spectral_radius": orbit.spectral_radius if orbit.monodromy_at_orbit else math.nan,
         "instability": orbit.instability() if orbit.monodromy_at_orbit else "unknown",
-        "min_force_N": float(force[k]), "min_force_angle_deg": math.degrees(float(theta[k])),
+        "min_force_N": float(force[k]),
+        "min_force_angle_deg": math.degrees(float(theta[k])),
         "max_force_N": float(force.max()),
         "force_error_N": accuracy["accuracy"] * float(np.max(np.abs(force))),
-        "contact_lost": bool(lost.any()), "lost_fraction": float(lost.mean()),
+        "contact_lost": bool(lost.any()),
+        "lost_fraction": float(lost.mean()),
         "first_loss_angle_deg": math.degrees(float(theta[np.argmax(lost)])) if lost.any() else math.nan,
         "max_abs_acceleration": float(np.abs(a).max()),
-        "rigid_max_abs_acceleration": float(system.omega ** 2 * np.abs(
-            np.asarray(c["program"].evaluate(np.linspace(0, 2 * math.pi, 4097))["d2h"])).max()),
+        "rigid_max_abs_acceleration": float(
+            system.omega**2 * np.abs(np.asarray(c["program"].evaluate(np.linspace(0, 2 * math.pi, 4097))["d2h"])).max()
+        ),
         **accuracy,
     }
     dwells = []
@@ -265,9 +314,14 @@ def _row(system, c, orbit, r, force, a, harmonics, channels, keep_orbit, cost, a
     for seg in _dwells(c["program"]):
         inside = (cam_theta >= seg.theta_start) & (cam_theta < seg.theta_end)
         if inside.sum() > 1:
-            dwells.append({"start_deg": math.degrees(seg.theta_start), "end_deg": math.degrees(seg.theta_end),
-                           "peak_to_peak": float(np.ptp(vibration[inside])),
-                           "max_abs_acceleration": float(np.abs(a[inside]).max())})
+            dwells.append(
+                {
+                    "start_deg": math.degrees(seg.theta_start),
+                    "end_deg": math.degrees(seg.theta_end),
+                    "peak_to_peak": float(np.ptp(vibration[inside])),
+                    "max_abs_acceleration": float(np.abs(a[inside]).max()),
+                }
+            )
     worst = max(dwells, key=lambda d: d["peak_to_peak"], default=None)
     row["dwell_residual"] = worst["peak_to_peak"] if worst else 0.0
     row["dwell_residual_at_deg"] = worst["start_deg"] if worst else math.nan
@@ -275,7 +329,7 @@ def _row(system, c, orbit, r, force, a, harmonics, channels, keep_orbit, cost, a
     if channels:
         row["channels"] = {ch: _channel_measures(system, r, ch, theta, cam_theta, c["program"]) for ch in channels}
     spectrum = np.abs(np.fft.rfft(force)) * 2.0 / force.size
-    row["harmonics"] = [float(x) for x in spectrum[1:harmonics + 1]]
+    row["harmonics"] = [float(x) for x in spectrum[1 : harmonics + 1]]
     if keep_orbit:
         row["orbit"] = orbit
     return row
@@ -297,9 +351,21 @@ def _channel_measures(system, r, channel: str, theta: np.ndarray, cam_theta: np.
         inside = (cam_theta >= seg.theta_start) & (cam_theta < seg.theta_end)
         if inside.sum() > 1 and float(np.ptp(moving[inside])) > worst:
             worst, at = float(np.ptp(moving[inside])), math.degrees(seg.theta_start)
-    return {"min": float(x[k]), "min_angle_deg": math.degrees(float(theta[k])), "max": float(x.max()),
-            "dwell_residual": worst, "dwell_residual_at_deg": at}
+    return {
+        "min": float(x[k]),
+        "min_angle_deg": math.degrees(float(theta[k])),
+        "max": float(x.max()),
+        "dwell_residual": worst,
+        "dwell_residual_at_deg": at,
+    }
 
 
-__all__ = ["HARMONICS", "MAX_STUDY_STEPS_PER_REVOLUTION", "STUDY_ACCURACY", "STUDY_STEPS_PER_REVOLUTION",
-           "check_accuracy", "contact_of", "steady_response"]
+__all__ = [
+    "HARMONICS",
+    "MAX_STUDY_STEPS_PER_REVOLUTION",
+    "STUDY_ACCURACY",
+    "STUDY_STEPS_PER_REVOLUTION",
+    "check_accuracy",
+    "contact_of",
+    "steady_response",
+]

@@ -15,8 +15,14 @@ import numpy as np
 from . import _files, _text
 
 _FORMAT = "camfollower.Result/1"
-_STAT_TYPES = {"steps": int, "newton_iterations": int, "max_iterations_in_a_step": int, "halvings": int,
-               "decimation": int, "cancelled": bool}
+_STAT_TYPES = {
+    "steps": int,
+    "newton_iterations": int,
+    "max_iterations_in_a_step": int,
+    "halvings": int,
+    "decimation": int,
+    "cancelled": bool,
+}
 
 
 def _settle_from_json(text: str) -> Optional[Dict[str, Any]]:
@@ -60,9 +66,16 @@ class Result:
     ``history`` (the change per revolution) and ``dofs`` (the watched DOFs).
     """
 
-    def __init__(self, names: Sequence[str], dofs: Sequence[str], data: np.ndarray, stats: Dict[str, Any],
-                 contact_loss: Dict[str, Sequence[Tuple[float, float]]], settle: Optional[Dict[str, Any]] = None,
-                 events: Sequence[Tuple[float, str, str]] = ()):
+    def __init__(
+        self,
+        names: Sequence[str],
+        dofs: Sequence[str],
+        data: np.ndarray,
+        stats: Dict[str, Any],
+        contact_loss: Dict[str, Sequence[Tuple[float, float]]],
+        settle: Optional[Dict[str, Any]] = None,
+        events: Sequence[Tuple[float, str, str]] = (),
+    ):
         self._names: List[str] = list(names)
         self._index = {n: i for i, n in enumerate(self._names)}
         self.dof_names: List[str] = list(dofs)
@@ -73,7 +86,8 @@ class Result:
         self._data = data
         self.stats: Dict[str, Any] = dict(stats)
         self.contact_loss: Dict[str, List[Tuple[float, float]]] = {
-            str(name): [(float(a), float(b)) for a, b in intervals] for name, intervals in dict(contact_loss).items()}
+            str(name): [(float(a), float(b)) for a, b in intervals] for name, intervals in dict(contact_loss).items()
+        }
         self.settle: Optional[Dict[str, Any]] = None if settle is None else dict(settle)
         self.events: List[Event] = [Event(float(t), str(n), str(k)) for t, n, k in events]
 
@@ -95,7 +109,7 @@ class Result:
 
     def _block(self, prefix: str) -> np.ndarray:
         first = self._index[f"{prefix}.{self.dof_names[0]}"]
-        return self._data[first:first + len(self.dof_names)].T  # rows x DOFs, a view
+        return self._data[first : first + len(self.dof_names)].T  # rows x DOFs, a view
 
     @property
     def t(self) -> np.ndarray:
@@ -141,9 +155,11 @@ class Result:
         t = self.channel("t") if "t" in self._index and self.rows else ()
         span = f"t = {_text.seconds(t[0])} to {_text.seconds(t[-1])} s, " if len(t) else ""
         lost = sum(b - a for intervals in self.contact_loss.values() for a, b in intervals)
-        return (f"Result({self.rows} rows, {span}{len(self.dof_names)} DOFs, {len(self.events)} contact events, "
-                f"contact lost {_text.seconds(lost)} s, channels: "
-                f"{', '.join(n for n in self._names if '.' not in n or not n.startswith(('q.', 'v.', 'a.')))})")
+        return (
+            f"Result({self.rows} rows, {span}{len(self.dof_names)} DOFs, {len(self.events)} contact events, "
+            f"contact lost {_text.seconds(lost)} s, channels: "
+            f"{', '.join(n for n in self._names if '.' not in n or not n.startswith(('q.', 'v.', 'a.')))})"
+        )
 
     # --- files ---
     def save(self, path: os.PathLike | str) -> Path:
@@ -155,15 +171,23 @@ class Result:
         numbers = {k: v for k, v in self.stats.items() if not isinstance(v, str)}
         texts = {k: v for k, v in self.stats.items() if isinstance(v, str)}  # e.g. "backend"
         buffer = io.BytesIO()
-        np.savez(buffer, format=np.array(_FORMAT), names=np.array(self._names), dofs=np.array(self.dof_names),
-                 data=np.ascontiguousarray(self._data), stats_keys=np.array(list(numbers)),
-                 stats_values=np.array([float(v) for v in numbers.values()]),
-                 stats_text=np.array(_files.json_text(texts, indent=None)),
-                 contact_names=np.array(list(self.contact_loss), dtype=str),
-                 settle=np.array(_files.json_text(self.settle, indent=None)),
-                 events=np.array(_files.json_text(self.events, indent=None)),
-                 **{f"contact_loss_{i}": np.array(v, dtype=float).reshape(-1, 2)
-                    for i, v in enumerate(self.contact_loss.values())})
+        np.savez(
+            buffer,
+            format=np.array(_FORMAT),
+            names=np.array(self._names),
+            dofs=np.array(self.dof_names),
+            data=np.ascontiguousarray(self._data),
+            stats_keys=np.array(list(numbers)),
+            stats_values=np.array([float(v) for v in numbers.values()]),
+            stats_text=np.array(_files.json_text(texts, indent=None)),
+            contact_names=np.array(list(self.contact_loss), dtype=str),
+            settle=np.array(_files.json_text(self.settle, indent=None)),
+            events=np.array(_files.json_text(self.events, indent=None)),
+            **{
+                f"contact_loss_{i}": np.array(v, dtype=float).reshape(-1, 2)
+                for i, v in enumerate(self.contact_loss.values())
+            },
+        )
         _files.write_bytes(path, buffer.getvalue())
         return path
 
@@ -180,9 +204,20 @@ class Result:
             losses = {str(n): [tuple(x) for x in z[f"contact_loss_{i}"]] for i, n in enumerate(z["contact_names"])}
             settle = _settle_from_json(str(z["settle"])) if "settle" in z else None
             events = json.loads(str(z["events"])) if "events" in z else []
-            return cls([str(n) for n in z["names"]], [str(d) for d in z["dofs"]], z["data"], stats, losses, settle,
-                       events)
+            return cls(
+                [str(n) for n in z["names"]], [str(d) for d in z["dofs"]], z["data"], stats, losses, settle, events
+            )
 
     def __reduce__(self):
-        return (Result, (self._names, self.dof_names, np.array(self._data), self.stats, self.contact_loss, self.settle,
-                         self.events))
+        return (
+            Result,
+            (
+                self._names,
+                self.dof_names,
+                np.array(self._data),
+                self.stats,
+                self.contact_loss,
+                self.settle,
+                self.events,
+            ),
+        )

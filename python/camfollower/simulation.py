@@ -13,17 +13,36 @@ from . import _core
 from .results import Result
 
 
-def simulate(system, *, duration: Optional[float] = None, revolutions: Optional[float] = None,
-             time_step: float = 3e-6, decimation: int = 1, record_from: Optional[float] = None,
-             record_last_revolutions: Optional[float] = None, gamma: Optional[float] = None,
-             beta: Optional[float] = None, hht_alpha: float = 0.0, linear_solver: str = "auto",
-             residual_tolerance: float = 1e-10, increment_tolerance: float = 1e-10, max_iterations: int = 25,
-             max_halvings: int = 6, max_output_bytes: float = 4.0 * 1024 ** 3,
-             progress: Optional[Callable[[int, int], Optional[bool]]] = None,
-             progress_interval: float = 0.2, settle: bool = False, settle_tolerance: float = 1e-4,
-             settle_dofs: Optional[Sequence[str]] = None, settle_min_revolutions: int = 2,
-             settle_max_revolutions: int = 200, initial_state=None, method: str = "newmark",
-             tolerance: Optional[float] = None, max_step: Optional[float] = None) -> Result:
+def simulate(
+    system,
+    *,
+    duration: Optional[float] = None,
+    revolutions: Optional[float] = None,
+    time_step: float = 3e-6,
+    decimation: int = 1,
+    record_from: Optional[float] = None,
+    record_last_revolutions: Optional[float] = None,
+    gamma: Optional[float] = None,
+    beta: Optional[float] = None,
+    hht_alpha: float = 0.0,
+    linear_solver: str = "auto",
+    residual_tolerance: float = 1e-10,
+    increment_tolerance: float = 1e-10,
+    max_iterations: int = 25,
+    max_halvings: int = 6,
+    max_output_bytes: float = 4.0 * 1024**3,
+    progress: Optional[Callable[[int, int], Optional[bool]]] = None,
+    progress_interval: float = 0.2,
+    settle: bool = False,
+    settle_tolerance: float = 1e-4,
+    settle_dofs: Optional[Sequence[str]] = None,
+    settle_min_revolutions: int = 2,
+    settle_max_revolutions: int = 200,
+    initial_state=None,
+    method: str = "newmark",
+    tolerance: Optional[float] = None,
+    max_step: Optional[float] = None,
+) -> Result:
     """Integrate ``system`` from its initial state (static equilibrium, at rest) and return a Result.
 
     Give ``duration`` (s) or ``revolutions`` (of the camshaft, for systems with a ``period``). One row
@@ -87,24 +106,47 @@ def simulate(system, *, duration: Optional[float] = None, revolutions: Optional[
 
     Raises ValueError for bad input and RuntimeError when Newton fails after ``max_halvings``.
     """
-    args, settle_dofs = _run_arguments(system, duration=duration, revolutions=revolutions, time_step=time_step,
-                                       decimation=decimation, record_from=record_from,
-                                       record_last_revolutions=record_last_revolutions, gamma=gamma, beta=beta,
-                                       hht_alpha=hht_alpha, linear_solver=linear_solver,
-                                       residual_tolerance=residual_tolerance,
-                                       increment_tolerance=increment_tolerance, max_iterations=max_iterations,
-                                       max_halvings=max_halvings, max_output_bytes=max_output_bytes,
-                                       progress_interval=progress_interval, settle=settle,
-                                       settle_tolerance=settle_tolerance, settle_dofs=settle_dofs,
-                                       settle_min_revolutions=settle_min_revolutions,
-                                       settle_max_revolutions=settle_max_revolutions, initial_state=initial_state,
-                                       method=method, tolerance=tolerance, max_step=max_step, progress=progress)
+    args, settle_dofs = _run_arguments(
+        system,
+        duration=duration,
+        revolutions=revolutions,
+        time_step=time_step,
+        decimation=decimation,
+        record_from=record_from,
+        record_last_revolutions=record_last_revolutions,
+        gamma=gamma,
+        beta=beta,
+        hht_alpha=hht_alpha,
+        linear_solver=linear_solver,
+        residual_tolerance=residual_tolerance,
+        increment_tolerance=increment_tolerance,
+        max_iterations=max_iterations,
+        max_halvings=max_halvings,
+        max_output_bytes=max_output_bytes,
+        progress_interval=progress_interval,
+        settle=settle,
+        settle_tolerance=settle_tolerance,
+        settle_dofs=settle_dofs,
+        settle_min_revolutions=settle_min_revolutions,
+        settle_max_revolutions=settle_max_revolutions,
+        initial_state=initial_state,
+        method=method,
+        tolerance=tolerance,
+        max_step=max_step,
+        progress=progress,
+    )
     return _result(_capped(lambda: _core._run(system, progress=progress, **args), args, max_output_bytes), settle_dofs)
 
 
-def simulate_many(systems: Sequence, *, threads: Optional[int] = None, errors: str = "raise",
-                  progress: Optional[Callable[[int, int], Optional[bool]]] = None, progress_interval: float = 0.2,
-                  **options) -> List[Optional[Result]]:
+def simulate_many(
+    systems: Sequence,
+    *,
+    threads: Optional[int] = None,
+    errors: str = "raise",
+    progress: Optional[Callable[[int, int], Optional[bool]]] = None,
+    progress_interval: float = 0.2,
+    **options,
+) -> List[Optional[Result]]:
     """Run :func:`simulate` on every system of ``systems`` at once, on ``threads`` C++ threads (default:
     one per CPU core) with the GIL released, and return their Results in the systems' order.
 
@@ -126,10 +168,13 @@ def simulate_many(systems: Sequence, *, threads: Optional[int] = None, errors: s
             raise TypeError(f"simulate_many() takes no {name}: every case starts from its own static equilibrium")
     unknown = sorted(set(options) - set(_SIMULATE_OPTIONS))
     if unknown:
-        raise TypeError(f"simulate_many() got unexpected keyword argument(s) {unknown}; simulate() takes "
-                        f"{sorted(_SIMULATE_OPTIONS)}")
-    if threads is not None and (isinstance(threads, bool) or not isinstance(threads, numbers.Integral)
-                                or not 1 <= threads <= 1024):
+        raise TypeError(
+            f"simulate_many() got unexpected keyword argument(s) {unknown}; simulate() takes "
+            f"{sorted(_SIMULATE_OPTIONS)}"
+        )
+    if threads is not None and (
+        isinstance(threads, bool) or not isinstance(threads, numbers.Integral) or not 1 <= threads <= 1024
+    ):
         raise ValueError(f"threads must be an integer in [1, 1024] (None: one per CPU core), got {threads!r}")
     if errors not in ("raise", "return"):
         raise ValueError(f"errors must be 'raise' or 'return', got {errors!r}")
@@ -143,21 +188,36 @@ def simulate_many(systems: Sequence, *, threads: Optional[int] = None, errors: s
             args, settle_dofs = _run_arguments(system, **kw)
         except (TypeError, ValueError) as e:
             raise type(e)(f"systems[{i}]: {e}") from None
-        cases.append((system, args.pop("duration"), args.pop("record_from"), args.pop("settle_period", None),
-                      args.pop("settle_dofs", [])))
+        cases.append(
+            (
+                system,
+                args.pop("duration"),
+                args.pop("record_from"),
+                args.pop("settle_period", None),
+                args.pop("settle_dofs", []),
+            )
+        )
         dofs.append(settle_dofs)
         for name in ("q0", "v0", "settle_tolerance", "settle_min_revolutions", "settle_max_revolutions"):
             args.pop(name, None)
         shared = args
     shared["max_output_bytes"] /= len(systems)
-    raw = _core._run_many(cases, threads=threads or 0, progress=progress,
-                          settle_tolerance=kw["settle_tolerance"], settle_min_revolutions=kw["settle_min_revolutions"],
-                          settle_max_revolutions=kw["settle_max_revolutions"], **shared)
+    raw = _core._run_many(
+        cases,
+        threads=threads or 0,
+        progress=progress,
+        settle_tolerance=kw["settle_tolerance"],
+        settle_min_revolutions=kw["settle_min_revolutions"],
+        settle_max_revolutions=kw["settle_max_revolutions"],
+        **shared,
+    )
     out: List[Optional[Result]] = []
     for i, r in enumerate(raw):
         if isinstance(r, tuple):
             kind, message = r
-            error = {"ValueError": ValueError, "MemoryError": MemoryError}.get(kind, RuntimeError)(f"systems[{i}]: {message}")
+            error = {"ValueError": ValueError, "MemoryError": MemoryError}.get(kind, RuntimeError)(
+                f"systems[{i}]: {message}"
+            )
             if errors == "raise":
                 raise error
             out.append(error)
@@ -174,31 +234,74 @@ def _result(raw, settle_dofs) -> Result:
     return Result(raw["names"], raw["dofs"], raw["data"], stats, raw["contact_loss"], report, raw["events"])
 
 
-def _run_arguments(system, *, duration, revolutions, time_step, decimation, record_from, record_last_revolutions,
-                   gamma, beta, hht_alpha, linear_solver, residual_tolerance, increment_tolerance, max_iterations,
-                   max_halvings, max_output_bytes, progress_interval, settle, settle_tolerance, settle_dofs,
-                   settle_min_revolutions, settle_max_revolutions, initial_state, method, tolerance, max_step,
-                   progress=None):
+def _run_arguments(
+    system,
+    *,
+    duration,
+    revolutions,
+    time_step,
+    decimation,
+    record_from,
+    record_last_revolutions,
+    gamma,
+    beta,
+    hht_alpha,
+    linear_solver,
+    residual_tolerance,
+    increment_tolerance,
+    max_iterations,
+    max_halvings,
+    max_output_bytes,
+    progress_interval,
+    settle,
+    settle_tolerance,
+    settle_dofs,
+    settle_min_revolutions,
+    settle_max_revolutions,
+    initial_state,
+    method,
+    tolerance,
+    max_step,
+    progress=None,
+):
     """simulate()'s arguments checked and turned into _core._run's (but for system and progress), and the
     watched DOFs' names (None without settle)."""
     if not isinstance(system, (_core.Mechanism, _core.CamFollowerModel)):
-        raise TypeError(f"system must be a camfollower Mechanism (MechanismBuilder.build(), camfollower.presets, "
-                        f"a config's .mechanism) or a CamFollowerModel, got {type(system).__name__}")
+        raise TypeError(
+            f"system must be a camfollower Mechanism (MechanismBuilder.build(), camfollower.presets, "
+            f"a config's .mechanism) or a CamFollowerModel, got {type(system).__name__}"
+        )
     if progress is not None and not callable(progress):
-        raise TypeError(f"progress must be a callable progress(steps_done, steps_planned) or None, "
-                        f"got {type(progress).__name__}")
+        raise TypeError(
+            f"progress must be a callable progress(steps_done, steps_planned) or None, got {type(progress).__name__}"
+        )
     # Numbers and counts checked here by name (pybind11 would say "incompatible function arguments").
-    for name, value in (("time_step", time_step), ("hht_alpha", hht_alpha), ("residual_tolerance", residual_tolerance),
-                        ("increment_tolerance", increment_tolerance), ("max_output_bytes", max_output_bytes),
-                        ("progress_interval", progress_interval), ("settle_tolerance", settle_tolerance),
-                        ("duration", duration), ("revolutions", revolutions), ("record_from", record_from),
-                        ("record_last_revolutions", record_last_revolutions), ("gamma", gamma), ("beta", beta),
-                        ("tolerance", tolerance), ("max_step", max_step)):
+    for name, value in (
+        ("time_step", time_step),
+        ("hht_alpha", hht_alpha),
+        ("residual_tolerance", residual_tolerance),
+        ("increment_tolerance", increment_tolerance),
+        ("max_output_bytes", max_output_bytes),
+        ("progress_interval", progress_interval),
+        ("settle_tolerance", settle_tolerance),
+        ("duration", duration),
+        ("revolutions", revolutions),
+        ("record_from", record_from),
+        ("record_last_revolutions", record_last_revolutions),
+        ("gamma", gamma),
+        ("beta", beta),
+        ("tolerance", tolerance),
+        ("max_step", max_step),
+    ):
         if value is not None and (isinstance(value, bool) or not isinstance(value, numbers.Real)):
             raise TypeError(f"{name} must be a number, got {type(value).__name__}")
-    for name, value in (("decimation", decimation), ("max_iterations", max_iterations), ("max_halvings", max_halvings),
-                        ("settle_min_revolutions", settle_min_revolutions),
-                        ("settle_max_revolutions", settle_max_revolutions)):
+    for name, value in (
+        ("decimation", decimation),
+        ("max_iterations", max_iterations),
+        ("max_halvings", max_halvings),
+        ("settle_min_revolutions", settle_min_revolutions),
+        ("settle_max_revolutions", settle_max_revolutions),
+    ):
         if isinstance(value, bool) or not isinstance(value, numbers.Integral):
             raise TypeError(f"{name} must be an integer, got {type(value).__name__} {value!r}")
         if not 0 <= value <= 2**53:
@@ -226,11 +329,15 @@ def _run_arguments(system, *, duration, revolutions, time_step, decimation, reco
             raise ValueError(f"record_last_revolutions must be finite and > 0, got {record_last_revolutions!r}")
         window = record_last_revolutions * period
         if window > duration * (1 + 1e-12):
-            raise ValueError(f"record_last_revolutions = {record_last_revolutions:g} is longer than the run "
-                             f"({duration / period:g} revolutions)")
+            raise ValueError(
+                f"record_last_revolutions = {record_last_revolutions:g} is longer than the run "
+                f"({duration / period:g} revolutions)"
+            )
         if isinstance(time_step, numbers.Real) and window < 2 * decimation * time_step:
-            raise ValueError(f"record_last_revolutions = {record_last_revolutions:g} ({window:g} s) holds fewer than two "
-                             f"rows at decimation {decimation} x time_step {time_step:g} s; record a longer window")
+            raise ValueError(
+                f"record_last_revolutions = {record_last_revolutions:g} ({window:g} s) holds fewer than two "
+                f"rows at decimation {decimation} x time_step {time_step:g} s; record a longer window"
+            )
         start = duration - window
     settle_args = {}
     if settle:
@@ -243,9 +350,13 @@ def _run_arguments(system, *, duration, revolutions, time_step, decimation, reco
         unknown = [d for d in settle_dofs if d not in names]
         if unknown:
             raise ValueError(f"settle_dofs: unknown DOF(s) {unknown}; the system's DOFs are {names}")
-        settle_args = dict(settle_period=float(period), settle_dofs=[names.index(d) for d in settle_dofs],
-                           settle_tolerance=settle_tolerance, settle_min_revolutions=settle_min_revolutions,
-                           settle_max_revolutions=settle_max_revolutions)
+        settle_args = dict(
+            settle_period=float(period),
+            settle_dofs=[names.index(d) for d in settle_dofs],
+            settle_tolerance=settle_tolerance,
+            settle_min_revolutions=settle_min_revolutions,
+            settle_max_revolutions=settle_max_revolutions,
+        )
     q0 = v0 = None
     if initial_state is not None:
         if hasattr(initial_state, "q") and hasattr(initial_state, "v"):
@@ -259,11 +370,28 @@ def _run_arguments(system, *, duration, revolutions, time_step, decimation, reco
     # (ValueError), not left to fail with a MemoryError half way through allocating.
     memory = _physical_memory()
     cap = min(float(max_output_bytes), memory) if memory else float(max_output_bytes)
-    args = dict(duration=float(duration), time_step=time_step, decimation=decimation, gamma=gamma, beta=beta,
-                hht_alpha=hht_alpha, linear_solver=linear_solver, residual_tolerance=residual_tolerance,
-                increment_tolerance=increment_tolerance, max_iterations=max_iterations, max_halvings=max_halvings,
-                record_from=start, max_output_bytes=cap, progress_interval=progress_interval, **settle_args,
-                q0=q0, v0=v0, method=method, tolerance=tolerance, max_step=max_step)
+    args = dict(
+        duration=float(duration),
+        time_step=time_step,
+        decimation=decimation,
+        gamma=gamma,
+        beta=beta,
+        hht_alpha=hht_alpha,
+        linear_solver=linear_solver,
+        residual_tolerance=residual_tolerance,
+        increment_tolerance=increment_tolerance,
+        max_iterations=max_iterations,
+        max_halvings=max_halvings,
+        record_from=start,
+        max_output_bytes=cap,
+        progress_interval=progress_interval,
+        **settle_args,
+        q0=q0,
+        v0=v0,
+        method=method,
+        tolerance=tolerance,
+        max_step=max_step,
+    )
     return args, (list(settle_dofs) if settle else None)
 
 
@@ -274,14 +402,19 @@ def _capped(call, args, max_output_bytes):
     except ValueError as e:
         cap = args["max_output_bytes"]
         if cap < max_output_bytes and "max_output_bytes" in str(e):
-            raise ValueError(f"{e} (max_output_bytes = {max_output_bytes:g} B was capped at this machine's memory, "
-                             f"{_physical_memory() / 2**30:.3g} GiB)") from None
+            raise ValueError(
+                f"{e} (max_output_bytes = {max_output_bytes:g} B was capped at this machine's memory, "
+                f"{_physical_memory() / 2**30:.3g} GiB)"
+            ) from None
         raise
 
 
 #: simulate()'s keyword options and their defaults (simulate_many takes the same).
-_SIMULATE_OPTIONS = {name: p.default for name, p in inspect.signature(simulate).parameters.items()
-                     if p.kind is inspect.Parameter.KEYWORD_ONLY}
+_SIMULATE_OPTIONS = {
+    name: p.default
+    for name, p in inspect.signature(simulate).parameters.items()
+    if p.kind is inspect.Parameter.KEYWORD_ONLY
+}
 
 
 def _physical_memory() -> float:

@@ -54,6 +54,7 @@ KINDS = ("translating_roller", "translating_flat", "oscillating_roller", "oscill
 @dataclass(frozen=True)
 class _Design:
     """The fixed part of a design: everything but the base radius and the free variable."""
+
     kind: str
     roller_radius: Optional[float]
     arm_length: Optional[float]
@@ -121,6 +122,7 @@ def _best_variable(program, design: _Design, base_radius: float, tolerance: floa
     the offset in (-(r_b + r_r), r_b + r_r) of a translating roller, or the dwell pressure angle in
     DWELL_PRESSURE_ANGLE_RANGE of an oscillating roller (which moves the pivot). Either trades the
     rise's peak against the return's, so the cost is unimodal."""
+
     def cost(v):
         r = _evaluate(program, design, base_radius, v)
         return math.inf if r is None else r[0]
@@ -137,8 +139,12 @@ def _positive(name: str, v, unit: str) -> float:
     return float(v)
 
 
-_TURNS = {"counter_clockwise": "counter_clockwise", "ccw": "counter_clockwise", "clockwise": "clockwise",
-          "cw": "clockwise"}
+_TURNS = {
+    "counter_clockwise": "counter_clockwise",
+    "ccw": "counter_clockwise",
+    "clockwise": "clockwise",
+    "cw": "clockwise",
+}
 
 
 def _turn(turn) -> str:
@@ -146,19 +152,30 @@ def _turn(turn) -> str:
     if isinstance(turn, ArmTurn):
         return turn.name
     if not isinstance(turn, str):
-        raise TypeError(f"turn must be an ArmTurn or one of 'counter_clockwise', 'clockwise', got {type(turn).__name__}")
+        raise TypeError(
+            f"turn must be an ArmTurn or one of 'counter_clockwise', 'clockwise', got {type(turn).__name__}"
+        )
     if turn not in _TURNS:
         raise ValueError(f"turn must be 'counter_clockwise' or 'clockwise' (or an ArmTurn), got {turn!r}")
     return _TURNS[turn]
 
 
-def smallest_base_radius(program: MotionProgram, follower: str = "translating_roller", *,
-                         max_pressure_angle: float = math.radians(30.0), min_surface_radius: float = 0.0,
-                         roller_radius: Optional[float] = None, offset: Optional[float] = 0.0,
-                         arm_length: Optional[float] = None, dwell_pressure_angle: Optional[float] = 0.0,
-                         pivot_distance_ratio: Optional[float] = 2.0, face_offset: float = 0.0,
-                         turn: Union[str, ArmTurn] = "counter_clockwise", upper: float = 1.0,
-                         tolerance: float = 1e-6) -> Sizing:
+def smallest_base_radius(
+    program: MotionProgram,
+    follower: str = "translating_roller",
+    *,
+    max_pressure_angle: float = math.radians(30.0),
+    min_surface_radius: float = 0.0,
+    roller_radius: Optional[float] = None,
+    offset: Optional[float] = 0.0,
+    arm_length: Optional[float] = None,
+    dwell_pressure_angle: Optional[float] = 0.0,
+    pivot_distance_ratio: Optional[float] = 2.0,
+    face_offset: float = 0.0,
+    turn: Union[str, ArmTurn] = "counter_clockwise",
+    upper: float = 1.0,
+    tolerance: float = 1e-6,
+) -> Sizing:
     """Smallest base radius (m) for which the cam is followable (no undercut, no cusp, |alpha| < 90
     deg), its largest |pressure angle| is at most ``max_pressure_angle`` (rad; not for the translating
     flat face, whose pressure angle is its face angle) and its smallest convex surface radius of
@@ -192,8 +209,9 @@ def smallest_base_radius(program: MotionProgram, follower: str = "translating_ro
         raise ValueError(f"follower must be one of {', '.join(repr(k) for k in KINDS)}, got {follower!r}")
     if follower.endswith("roller"):
         if roller_radius is None or not (math.isfinite(roller_radius) and roller_radius > 0):
-            raise ValueError(f"roller_radius must be finite and > 0 m for a {follower.replace('_', ' ')}, "
-                             f"got {roller_radius!r}")
+            raise ValueError(
+                f"roller_radius must be finite and > 0 m for a {follower.replace('_', ' ')}, got {roller_radius!r}"
+            )
     if follower.startswith("translating"):
         if offset is None and follower != "translating_roller":
             raise ValueError("offset=None (best offset) applies to the translating roller only")
@@ -203,19 +221,27 @@ def smallest_base_radius(program: MotionProgram, follower: str = "translating_ro
         if follower == "oscillating_roller":
             arm_length = _positive("arm_length", arm_length, "m for an oscillating roller")
             if dwell_pressure_angle is not None and not (
-                    math.isfinite(dwell_pressure_angle) and abs(dwell_pressure_angle) < math.pi / 2):
-                raise ValueError(f"dwell_pressure_angle must be None or finite with |value| < pi/2 rad, "
-                                 f"got {dwell_pressure_angle!r}")
+                math.isfinite(dwell_pressure_angle) and abs(dwell_pressure_angle) < math.pi / 2
+            ):
+                raise ValueError(
+                    f"dwell_pressure_angle must be None or finite with |value| < pi/2 rad, got {dwell_pressure_angle!r}"
+                )
             variable = dwell_pressure_angle
         else:
             if pivot_distance_ratio is None:
-                raise ValueError("pivot_distance_ratio=None (best) is not offered for the oscillating flat face: its "
-                                 "smallest surface radius only grows as the pivot approaches the cam, so the 'best' "
-                                 "pivot would touch the base circle; choose the ratio from the layout")
-            if not (isinstance(pivot_distance_ratio, (int, float)) and math.isfinite(pivot_distance_ratio)
-                    and pivot_distance_ratio > 1):
-                raise ValueError(f"pivot_distance_ratio (|pivot| / base_radius) must be finite and > 1, "
-                                 f"got {pivot_distance_ratio!r}")
+                raise ValueError(
+                    "pivot_distance_ratio=None (best) is not offered for the oscillating flat face: its "
+                    "smallest surface radius only grows as the pivot approaches the cam, so the 'best' "
+                    "pivot would touch the base circle; choose the ratio from the layout"
+                )
+            if not (
+                isinstance(pivot_distance_ratio, (int, float))
+                and math.isfinite(pivot_distance_ratio)
+                and pivot_distance_ratio > 1
+            ):
+                raise ValueError(
+                    f"pivot_distance_ratio (|pivot| / base_radius) must be finite and > 1, got {pivot_distance_ratio!r}"
+                )
             if not math.isfinite(face_offset):
                 raise ValueError(f"face_offset must be finite (m), got {face_offset!r}")
             variable = pivot_distance_ratio
@@ -236,8 +262,10 @@ def smallest_base_radius(program: MotionProgram, follower: str = "translating_ro
 
     good, _, _ = ok(upper)
     if not good:
-        raise ValueError(f"no base radius up to upper = {upper} m meets the limits (max_pressure_angle = "
-                         f"{math.degrees(max_pressure_angle):.3g} deg, min_surface_radius = {min_surface_radius} m)")
+        raise ValueError(
+            f"no base radius up to upper = {upper} m meets the limits (max_pressure_angle = "
+            f"{math.degrees(max_pressure_angle):.3g} deg, min_surface_radius = {min_surface_radius} m)"
+        )
     lo, hi = 0.0, upper
     while hi - lo > tolerance:
         mid = 0.5 * (lo + hi)
@@ -257,9 +285,16 @@ def smallest_base_radius(program: MotionProgram, follower: str = "translating_ro
         extra = dict(pivot_distance=design.pivot_distance(hi, v))
         if follower == "oscillating_roller":
             extra.update(arm_length=arm_length, dwell_pressure_angle=v)
-    return Sizing(base_radius=hi, offset=v if follower.startswith("translating") else 0.0,
-                  max_pressure_angle=r[2], max_pressure_angle_at=r[1], min_surface_radius=r[3],
-                  min_surface_radius_at=r[4], binding=binding, **extra)
+    return Sizing(
+        base_radius=hi,
+        offset=v if follower.startswith("translating") else 0.0,
+        max_pressure_angle=r[2],
+        max_pressure_angle_at=r[1],
+        min_surface_radius=r[3],
+        min_surface_radius_at=r[4],
+        binding=binding,
+        **extra,
+    )
 
 
 def roller_size_check(program: MotionProgram, base_radius: float, roller_radius: float, offset: float = 0.0) -> dict:

@@ -45,7 +45,9 @@ def _check_speeds(speeds, name: str = "speeds") -> List[float]:
         raise ValueError(f"{name}: give at least one camshaft speed (rpm)")
     bad = [s for s in out if not (math.isfinite(s) and _MIN_RPM <= s <= _MAX_RPM)]
     if bad:
-        raise ValueError(f"{name} must be finite camshaft speeds in [{_MIN_RPM:.6g}, {_MAX_RPM:.6g}] rpm, got {bad[:3]}")
+        raise ValueError(
+            f"{name} must be finite camshaft speeds in [{_MIN_RPM:.6g}, {_MAX_RPM:.6g}] rpm, got {bad[:3]}"
+        )
     return out
 
 
@@ -59,9 +61,18 @@ def _rows(outcomes, speeds) -> List[Dict[str, Any]]:
     return rows
 
 
-def margin_curve(system, speeds: Sequence[float], *, contact: Optional[str] = None, accuracy: Optional[float] = None,
-                 steps_per_revolution: Optional[int] = None, fallback: Optional[str] = "transient",
-                 executor=None, workers: Optional[int] = None, progress: bool = True) -> List[Dict[str, Any]]:
+def margin_curve(
+    system,
+    speeds: Sequence[float],
+    *,
+    contact: Optional[str] = None,
+    accuracy: Optional[float] = None,
+    steps_per_revolution: Optional[int] = None,
+    fallback: Optional[str] = "transient",
+    executor=None,
+    workers: Optional[int] = None,
+    progress: bool = True,
+) -> List[Dict[str, Any]]:
     """The periodic steady state at each speed (one :func:`camfollower.response.steady_response` row
     per speed, in order): minimum contact force (the margin) and where, contact loss, accelerations,
     harmonics, each at ``accuracy`` (steady_response: default 1e-3 of the peak force and acceleration;
@@ -71,8 +82,11 @@ def margin_curve(system, speeds: Sequence[float], *, contact: Optional[str] = No
     speeds = _check_speeds(speeds)
     if accuracy is not None:
         check_accuracy(accuracy)
-    fn = functools.partial(_at_speed, system, options=dict(contact=contact, accuracy=accuracy,
-                                                           steps_per_revolution=steps_per_revolution, fallback=fallback))
+    fn = functools.partial(
+        _at_speed,
+        system,
+        options=dict(contact=contact, accuracy=accuracy, steps_per_revolution=steps_per_revolution, fallback=fallback),
+    )
     return _rows(run_cases(fn, speeds, executor=executor, workers=workers, progress=progress, desc="speeds"), speeds)
 
 
@@ -121,15 +135,19 @@ class JumpSpeed:
     warnings: List[str] = field(default_factory=list)
 
     def __repr__(self) -> str:  # the answer, not every evaluation's 64 harmonics
-        return (f"JumpSpeed(rpm={g(self.rpm)}, angle_deg={g(self.angle_deg, 4)}, "
-                f"bracket=({g(self.bracket[0])}, {g(self.bracket[1])}), "
-                f"min_force_below_N={g(self.min_force_below_N, 4)}, windows={len(self.windows)}, "
-                f"warnings={len(self.warnings)}, evaluations={len(self.evaluations)})")
+        return (
+            f"JumpSpeed(rpm={g(self.rpm)}, angle_deg={g(self.angle_deg, 4)}, "
+            f"bracket=({g(self.bracket[0])}, {g(self.bracket[1])}), "
+            f"min_force_below_N={g(self.min_force_below_N, 4)}, windows={len(self.windows)}, "
+            f"warnings={len(self.warnings)}, evaluations={len(self.evaluations)})"
+        )
 
     def __str__(self) -> str:
-        text = (f"jump speed {g(self.rpm)} rpm (bracket {g(self.bracket[0])} to {g(self.bracket[1])} rpm): the "
-                f"follower leaves the cam at {g(self.angle_deg, 4)} deg; min contact force just below "
-                f"{g(self.min_force_below_N, 4)} N; {len(self.evaluations)} evaluations")
+        text = (
+            f"jump speed {g(self.rpm)} rpm (bracket {g(self.bracket[0])} to {g(self.bracket[1])} rpm): the "
+            f"follower leaves the cam at {g(self.angle_deg, 4)} deg; min contact force just below "
+            f"{g(self.min_force_below_N, 4)} N; {len(self.evaluations)} evaluations"
+        )
         if len(self.windows) > 1:
             text += "; contact lost " + ", ".join(str(w) for w in self.windows)
         return text + "".join(f"\nwarning: {w}" for w in self.warnings)
@@ -137,23 +155,33 @@ class JumpSpeed:
     def summary(self) -> Dict[str, Any]:
         """JSON-ready facts (no per-speed harmonics)."""
         keep = ("rpm", "min_force_N", "min_force_angle_deg", "contact_lost", "accuracy", "steps_per_revolution")
-        return {"rpm": self.rpm, "angle_deg": self.angle_deg, "bracket": list(self.bracket),
-                "min_force_below_N": self.min_force_below_N, "resolution_rpm": self.resolution_rpm,
-                "accuracy": self.accuracy, "scan_accuracy": self.scan_accuracy, "evaluations": len(self.evaluations),
-                "windows": [{"start_rpm": w.start_rpm, "end_rpm": w.end_rpm, "angle_deg": w.angle_deg}
-                            for w in self.windows],
-                "margin": [{k: r.get(k) for k in keep} for r in self.margin], "warnings": list(self.warnings)}
+        return {
+            "rpm": self.rpm,
+            "angle_deg": self.angle_deg,
+            "bracket": list(self.bracket),
+            "min_force_below_N": self.min_force_below_N,
+            "resolution_rpm": self.resolution_rpm,
+            "accuracy": self.accuracy,
+            "scan_accuracy": self.scan_accuracy,
+            "evaluations": len(self.evaluations),
+            "windows": [
+                {"start_rpm": w.start_rpm, "end_rpm": w.end_rpm, "angle_deg": w.angle_deg} for w in self.windows
+            ],
+            "margin": [{k: r.get(k) for k in keep} for r in self.margin],
+            "warnings": list(self.warnings),
+        }
 
 
-def resonance_speeds(system, lo: float, hi: float, *, contact: Optional[str] = None,
-                     max_order: int = HARMONICS, threshold: float = 1e-3) -> List[Tuple[int, float, float]]:
+def resonance_speeds(
+    system, lo: float, hi: float, *, contact: Optional[str] = None, max_order: int = HARMONICS, threshold: float = 1e-3
+) -> List[Tuple[int, float, float]]:
     """Where a shaft order of the cam's excitation meets a natural frequency of the mechanism inside
     (lo, hi) rpm: (order k, mode Hz, rpm = 60 f / k), sorted by speed. Orders 1 to the last one at
     which the rigid follower's acceleration has a harmonic of at least ``threshold`` of its largest
     (at most ``max_order``); modes are the mechanism's at cam angle 0, contacts linearized."""
     c = contact_of(system, contact)
     d2h = np.asarray(c["program"].evaluate(np.linspace(0, 2 * math.pi, 4096, endpoint=False))["d2h"])
-    amp = np.abs(np.fft.rfft(d2h))[1:max_order + 1]
+    amp = np.abs(np.fft.rfft(d2h))[1 : max_order + 1]
     # Every order up to the last significant one: a symmetric lift cancels some orders in the rigid
     # excitation, but the flexible, nonlinear mechanism excites them again.
     significant = np.nonzero(amp >= threshold * amp.max())[0] if amp.size and amp.max() > 0 else []
@@ -204,7 +232,13 @@ class _Scan:
     with the evaluation budget and the order they were run in."""
 
     def __init__(self, system, options, executor, workers, progress, max_evaluations, what):
-        self.system, self.options, self.executor, self.workers, self.progress = system, options, executor, workers, progress
+        self.system, self.options, self.executor, self.workers, self.progress = (
+            system,
+            options,
+            executor,
+            workers,
+            progress,
+        )
         self.max_evaluations, self.what = max_evaluations, what
         self.rows: Dict[float, Dict[str, Any]] = {}
         self.evaluations: List[Dict[str, Any]] = []
@@ -212,11 +246,14 @@ class _Scan:
     def run(self, batch: Sequence[float]) -> None:
         batch = [x for x in dict.fromkeys(batch) if x not in self.rows]
         if len(self.evaluations) + len(batch) > self.max_evaluations:
-            raise RuntimeError(f"{self.what} needs more than max_evaluations = {self.max_evaluations} periodic steady "
-                               "states; narrow the speed range or coarsen tolerance")
+            raise RuntimeError(
+                f"{self.what} needs more than max_evaluations = {self.max_evaluations} periodic steady "
+                "states; narrow the speed range or coarsen tolerance"
+            )
         fn = functools.partial(_at_speed, self.system, options=self.options)
-        outcomes = run_cases(fn, batch, executor=self.executor, workers=self.workers, progress=self.progress,
-                             desc="speeds")
+        outcomes = run_cases(
+            fn, batch, executor=self.executor, workers=self.workers, progress=self.progress, desc="speeds"
+        )
         for o, x in zip(outcomes, batch):
             if not o.ok:
                 raise RuntimeError(f"{self.what}: the periodic steady state at {x:g} rpm failed: {o.error}")
@@ -235,14 +272,15 @@ def _refine_dips(scan: _Scan, tolerance: float) -> None:
     for _ in range(12):
         xs, rows, new = scan.sorted(), scan.rows, []
         for i in range(1, len(xs) - 1):
-            a, b, c = (rows[x] for x in xs[i - 1:i + 2])
-            if any(map(_is_lost, (a, b, c))) or not (b["min_force_N"] < a["min_force_N"] and
-                                                      b["min_force_N"] <= c["min_force_N"]):
+            a, b, c = (rows[x] for x in xs[i - 1 : i + 2])
+            if any(map(_is_lost, (a, b, c))) or not (
+                b["min_force_N"] < a["min_force_N"] and b["min_force_N"] <= c["min_force_N"]
+            ):
                 continue
             depth = max(a["min_force_N"], c["min_force_N"]) - b["min_force_N"]
             if b["min_force_N"] > max(depth, 5.0 * b.get("force_error_N", 0.0)):
                 continue
-            x0, x1, x2 = xs[i - 1:i + 2]
+            x0, x1, x2 = xs[i - 1 : i + 2]
             if min(x1 - x0, x2 - x1) <= tolerance * x1:
                 continue
             new += [0.5 * (x0 + x1), 0.5 * (x1 + x2)]
@@ -261,8 +299,9 @@ def _check_range(speed_range, tolerance, resolution, accuracy) -> Tuple[float, f
         raise ValueError(f"speed_range must be two increasing speeds (lo, hi) in rpm, got {speed_range!r}")
     if isinstance(tolerance, bool) or not isinstance(tolerance, numbers.Real) or not 1e-6 <= tolerance < 0.5:
         raise ValueError(f"tolerance must be in [1e-06, 0.5) (relative), got {tolerance!r}")
-    if resolution is not None and (isinstance(resolution, bool) or not isinstance(resolution, numbers.Real)
-                                   or not 0.0 < resolution <= hi - lo):
+    if resolution is not None and (
+        isinstance(resolution, bool) or not isinstance(resolution, numbers.Real) or not 0.0 < resolution <= hi - lo
+    ):
         raise ValueError(f"resolution must be a speed step in (0, {hi - lo:g}] rpm, got {resolution!r}")
     if accuracy is not None:
         check_accuracy(accuracy)
@@ -280,53 +319,114 @@ def _scan_accuracy(accuracy: Optional[float], steps_per_revolution: Optional[int
 
 
 def _scan_options(contact, accuracy, steps_per_revolution) -> Dict[str, Any]:
-    return dict(contact=contact, accuracy=accuracy, steps_per_revolution=steps_per_revolution, fallback="transient",
-                multipliers=False, keep_orbit=True, stop_at_loss=True)
+    return dict(
+        contact=contact,
+        accuracy=accuracy,
+        steps_per_revolution=steps_per_revolution,
+        fallback="transient",
+        multipliers=False,
+        keep_orbit=True,
+        stop_at_loss=True,
+    )
 
 
-def _scan_range(system, lo, hi, *, contact, tolerance, accuracy, steps_per_revolution, resolution, max_evaluations,
-                executor, workers, progress, what) -> Tuple[_Scan, float, List[str]]:
+def _scan_range(
+    system,
+    lo,
+    hi,
+    *,
+    contact,
+    tolerance,
+    accuracy,
+    steps_per_revolution,
+    resolution,
+    max_evaluations,
+    executor,
+    workers,
+    progress,
+    what,
+) -> Tuple[_Scan, float, List[str]]:
     """The margin scan of (lo, hi): the resonance grid, then its dips refined; (scan, resolution used,
     warnings)."""
-    scan = _Scan(system, _scan_options(contact, _scan_accuracy(accuracy, steps_per_revolution), steps_per_revolution),
-                 executor, workers, progress, max_evaluations, what)
+    scan = _Scan(
+        system,
+        _scan_options(contact, _scan_accuracy(accuracy, steps_per_revolution), steps_per_revolution),
+        executor,
+        workers,
+        progress,
+        max_evaluations,
+        what,
+    )
     resonances = resonance_speeds(system, lo, hi, contact=contact)
     grid, used = _scan_grid(lo, hi, resonances, resolution)
     warned = []
     if resolution is not None and resonances:
         needed = _scan_grid(lo, hi, resonances, None)[1]
         if resolution > 1.5 * needed:
-            warned.append(f"resolution {resolution:g} rpm is coarser than the model's resonances need "
-                          f"({needed:.4g} rpm: shaft orders meet its modes that close together); a loss window "
-                          "between scan points can be missed")
+            warned.append(
+                f"resolution {resolution:g} rpm is coarser than the model's resonances need "
+                f"({needed:.4g} rpm: shaft orders meet its modes that close together); a loss window "
+                "between scan points can be missed"
+            )
     scan.run(grid)
     _refine_dips(scan, tolerance)
     return scan, used, warned
 
 
-def margin_scan(system, speed_range: Tuple[float, float], *, contact: Optional[str] = None, tolerance: float = 1e-3,
-                accuracy: Optional[float] = None, steps_per_revolution: Optional[int] = None,
-                resolution: Optional[float] = None, max_evaluations: int = 400, executor="serial",
-                workers: Optional[int] = None, progress: bool = False) -> List[Dict[str, Any]]:
+def margin_scan(
+    system,
+    speed_range: Tuple[float, float],
+    *,
+    contact: Optional[str] = None,
+    tolerance: float = 1e-3,
+    accuracy: Optional[float] = None,
+    steps_per_revolution: Optional[int] = None,
+    resolution: Optional[float] = None,
+    max_evaluations: int = 400,
+    executor="serial",
+    workers: Optional[int] = None,
+    progress: bool = False,
+) -> List[Dict[str, Any]]:
     """The margin curve over ``speed_range = (lo, hi)`` rpm at the speeds the model needs: every
     resonance speed (:func:`resonance_speeds`), the midpoints between them, at most ``resolution`` rpm
     apart (default from the resonances' spacing), and every dip of the minimum contact force refined to
     ``tolerance`` (relative) or until it loses contact. steady_response rows sorted by speed (the same
     scan :func:`jump_speed` and :func:`size_spring` run)."""
     lo, hi = _check_range(speed_range, tolerance, resolution, accuracy)
-    scan, _, warned = _scan_range(system, lo, hi, contact=contact, tolerance=tolerance, accuracy=accuracy,
-                                  steps_per_revolution=steps_per_revolution, resolution=resolution,
-                                  max_evaluations=max_evaluations, executor=executor, workers=workers,
-                                  progress=progress, what=f"the margin scan of ({lo:g}, {hi:g}) rpm")
+    scan, _, warned = _scan_range(
+        system,
+        lo,
+        hi,
+        contact=contact,
+        tolerance=tolerance,
+        accuracy=accuracy,
+        steps_per_revolution=steps_per_revolution,
+        resolution=resolution,
+        max_evaluations=max_evaluations,
+        executor=executor,
+        workers=workers,
+        progress=progress,
+        what=f"the margin scan of ({lo:g}, {hi:g}) rpm",
+    )
     for w in warned:
         warnings.warn(w, StudyWarning, stacklevel=2)
     return [{k: v for k, v in scan.rows[x].items() if k != "orbit"} for x in scan.sorted()]
 
 
-def jump_speed(system, speed_range: Tuple[float, float], *, contact: Optional[str] = None, tolerance: float = 1e-3,
-               accuracy: Optional[float] = None, steps_per_revolution: Optional[int] = None,
-               resolution: Optional[float] = None, max_evaluations: int = 400, executor="serial",
-               workers: Optional[int] = None, progress: bool = False) -> JumpSpeed:
+def jump_speed(
+    system,
+    speed_range: Tuple[float, float],
+    *,
+    contact: Optional[str] = None,
+    tolerance: float = 1e-3,
+    accuracy: Optional[float] = None,
+    steps_per_revolution: Optional[int] = None,
+    resolution: Optional[float] = None,
+    max_evaluations: int = 400,
+    executor="serial",
+    workers: Optional[int] = None,
+    progress: bool = False,
+) -> JumpSpeed:
     """The jump speed: the lowest camshaft speed in ``speed_range = (lo, hi)`` rpm whose periodic steady
     state loses contact, found whatever the range.
 
@@ -348,13 +448,31 @@ def jump_speed(system, speed_range: Tuple[float, float], *, contact: Optional[st
     ``executor``/``workers`` run the scan's speeds as :func:`margin_curve` does (default serial).
     """
     lo, hi = _check_range(speed_range, tolerance, resolution, accuracy)
-    scan, used, warned = _scan_range(system, lo, hi, contact=contact, tolerance=tolerance, accuracy=accuracy,
-                                     steps_per_revolution=steps_per_revolution, resolution=resolution,
-                                     max_evaluations=max_evaluations, executor=executor, workers=workers,
-                                     progress=progress, what=f"jump_speed over ({lo:g}, {hi:g}) rpm")
+    scan, used, warned = _scan_range(
+        system,
+        lo,
+        hi,
+        contact=contact,
+        tolerance=tolerance,
+        accuracy=accuracy,
+        steps_per_revolution=steps_per_revolution,
+        resolution=resolution,
+        max_evaluations=max_evaluations,
+        executor=executor,
+        workers=workers,
+        progress=progress,
+        what=f"jump_speed over ({lo:g}, {hi:g}) rpm",
+    )
     coarse = scan.rows
-    fine = _Scan(system, _scan_options(contact, accuracy, steps_per_revolution), executor, workers, progress,
-                 max_evaluations, scan.what)
+    fine = _Scan(
+        system,
+        _scan_options(contact, accuracy, steps_per_revolution),
+        executor,
+        workers,
+        progress,
+        max_evaluations,
+        scan.what,
+    )
     rows = fine.rows
 
     def lost_at(x: float) -> bool:
@@ -396,9 +514,11 @@ def jump_speed(system, speed_range: Tuple[float, float], *, contact: Optional[st
 
     if lost_at(lo):
         r = rows[lo]
-        raise ValueError(f"speed_range: the contact is already lost at the lower speed {lo:g} rpm (min force "
-                         f"{r['min_force_N']:.4g} N, first loss at {r['first_loss_angle_deg']:.4g} deg): the first "
-                         "loss is below the range; lower it")
+        raise ValueError(
+            f"speed_range: the contact is already lost at the lower speed {lo:g} rpm (min force "
+            f"{r['min_force_N']:.4g} N, first loss at {r['first_loss_angle_deg']:.4g} deg): the first "
+            "loss is below the range; lower it"
+        )
     windows, first_bracket = [], None
     for i, j in runs:
         low = edge(i - 1, +1)
@@ -407,49 +527,77 @@ def jump_speed(system, speed_range: Tuple[float, float], *, contact: Optional[st
         if first_bracket is None:
             first_bracket = low
         high = edge(j + 1, -1) if j + 1 < len(xs) else None
-        windows.append(LossWindow(start_rpm=low[1], end_rpm=high[1] if high else math.nan,
-                                  angle_deg=rows[low[0]]["min_force_angle_deg"]))
+        windows.append(
+            LossWindow(
+                start_rpm=low[1], end_rpm=high[1] if high else math.nan, angle_deg=rows[low[0]]["min_force_angle_deg"]
+            )
+        )
     if first_bracket is None:
         merged = {**coarse, **rows}
         k = min(merged, key=lambda x: merged[x]["min_force_N"])
         r = merged[k]
-        raise ValueError(f"speed_range: no contact loss between {lo:g} and {hi:g} rpm ({len(merged)} speeds scanned, "
-                         f"resolution {used:.4g} rpm); the smallest margin is {r['min_force_N']:.4g} N at {k:.6g} rpm, "
-                         f"at {r['min_force_angle_deg']:.4g} deg of cam angle: raise the upper speed")
+        raise ValueError(
+            f"speed_range: no contact loss between {lo:g} and {hi:g} rpm ({len(merged)} speeds scanned, "
+            f"resolution {used:.4g} rpm); the smallest margin is {r['min_force_N']:.4g} N at {k:.6g} rpm, "
+            f"at {r['min_force_angle_deg']:.4g} deg of cam angle: raise the upper speed"
+        )
     kept, lost = first_bracket
     below = rows[kept]
     # Coexisting states: come down from the first losing speed to the kept one, from the losing orbit.
-    down = steady_response(system.with_camshaft_speed_rpm(kept), guess=rows[lost].get("orbit"),
-                           **{k: v for k, v in fine.options.items() if k != "keep_orbit"})
+    down = steady_response(
+        system.with_camshaft_speed_rpm(kept),
+        guess=rows[lost].get("orbit"),
+        **{k: v for k, v in fine.options.items() if k != "keep_orbit"},
+    )
     fine.evaluations.append(down)
     rows = {**coarse, **rows}  # the margin curve: the scan's speeds, at the accuracy asked where it was rerun
     if _is_lost(down):
-        warned.append(f"coexisting steady states at {kept:.6g} rpm: coming down from {lost:.6g} rpm the follower "
-                      f"keeps losing contact (min force {down['min_force_N']:.4g} N) where the state reached from "
-                      f"rest keeps it ({below['min_force_N']:.4g} N): the jump depends on how the speed is reached")
+        warned.append(
+            f"coexisting steady states at {kept:.6g} rpm: coming down from {lost:.6g} rpm the follower "
+            f"keeps losing contact (min force {down['min_force_N']:.4g} N) where the state reached from "
+            f"rest keeps it ({below['min_force_N']:.4g} N): the jump depends on how the speed is reached"
+        )
     xs = sorted(rows)
-    dips = [x for a, x, b in zip(xs, xs[1:], xs[2:]) if x < kept and not _is_lost(rows[x])
-            and rows[x]["min_force_N"] < rows[a]["min_force_N"] and rows[x]["min_force_N"] < rows[b]["min_force_N"]]
+    dips = [
+        x
+        for a, x, b in zip(xs, xs[1:], xs[2:])
+        if x < kept
+        and not _is_lost(rows[x])
+        and rows[x]["min_force_N"] < rows[a]["min_force_N"]
+        and rows[x]["min_force_N"] < rows[b]["min_force_N"]
+    ]
     if dips:
         shown = ", ".join(f"{x:.5g} rpm ({rows[x]['min_force_N']:.4g} N)" for x in dips[:6])
         more = f" and {len(dips) - 6} more" if len(dips) > 6 else ""
-        warned.append(f"the margin is not monotonic in speed: below the jump it dips at {shown}{more} "
-                      "(shaft orders meeting natural frequencies)")
+        warned.append(
+            f"the margin is not monotonic in speed: below the jump it dips at {shown}{more} "
+            "(shaft orders meeting natural frequencies)"
+        )
     if len(windows) > 1:
-        warned.append(f"contact is lost in {len(windows)} windows: " + "; ".join(str(w) for w in windows) +
-                      " — it holds again between them")
+        warned.append(
+            f"contact is lost in {len(windows)} windows: "
+            + "; ".join(str(w) for w in windows)
+            + " — it holds again between them"
+        )
     for w in warned:
         warnings.warn(w, StudyWarning, stacklevel=2)
     gaps = [b - a for a, b in zip(xs, xs[1:]) if b <= kept]
     evaluations = scan.evaluations + fine.evaluations
     for r in evaluations:
         r.pop("orbit", None)
-    return JumpSpeed(rpm=lost, angle_deg=below["min_force_angle_deg"], bracket=(kept, lost),
-                     min_force_below_N=below["min_force_N"], evaluations=evaluations, windows=windows,
-                     margin=[rows[x] for x in xs], resolution_rpm=max(gaps, default=lost - kept),
-                     accuracy=fine.rows[kept]["accuracy"],
-                     scan_accuracy=max((coarse[x]["accuracy"] for x in coarse if x <= kept), default=math.nan),
-                     warnings=warned)
+    return JumpSpeed(
+        rpm=lost,
+        angle_deg=below["min_force_angle_deg"],
+        bracket=(kept, lost),
+        min_force_below_N=below["min_force_N"],
+        evaluations=evaluations,
+        windows=windows,
+        margin=[rows[x] for x in xs],
+        resolution_rpm=max(gaps, default=lost - kept),
+        accuracy=fine.rows[kept]["accuracy"],
+        scan_accuracy=max((coarse[x]["accuracy"] for x in coarse if x <= kept), default=math.nan),
+        warnings=warned,
+    )
 
 
 def _parabola_vertex(x0, x1, x2, y0, y1, y2) -> Optional[float]:
@@ -480,15 +628,27 @@ class SpringSize:
 
     def __repr__(self) -> str:
         at = "" if math.isnan(self.critical_rpm) else f"critical_rpm={g(self.critical_rpm)}, "
-        return (f"SpringSize(rate={g(self.rate)}, preload={g(self.preload)}, min_force_N={g(self.min_force_N, 4)}, "
-                f"min_force_angle_deg={g(self.min_force_angle_deg, 4)}, {at}"
-                f"max_spring_force_N={g(self.max_spring_force_N)}, evaluations={self.evaluations})")
+        return (
+            f"SpringSize(rate={g(self.rate)}, preload={g(self.preload)}, min_force_N={g(self.min_force_N, 4)}, "
+            f"min_force_angle_deg={g(self.min_force_angle_deg, 4)}, {at}"
+            f"max_spring_force_N={g(self.max_spring_force_N)}, evaluations={self.evaluations})"
+        )
 
 
-def size_spring(build: Callable[[float, float], Any], rpm: float, margin: float, rates: Sequence[float], *,
-                contact: Optional[str] = None, preload_guess: float = 100.0, accuracy: Optional[float] = None,
-                steps_per_revolution: Optional[int] = None, tolerance: float = 1e-3,
-                speed_range: Optional[Tuple[float, float]] = None, max_evaluations: int = 30) -> List[SpringSize]:
+def size_spring(
+    build: Callable[[float, float], Any],
+    rpm: float,
+    margin: float,
+    rates: Sequence[float],
+    *,
+    contact: Optional[str] = None,
+    preload_guess: float = 100.0,
+    accuracy: Optional[float] = None,
+    steps_per_revolution: Optional[int] = None,
+    tolerance: float = 1e-3,
+    speed_range: Optional[Tuple[float, float]] = None,
+    max_evaluations: int = 30,
+) -> List[SpringSize]:
     """For each spring ``rate`` (N/m), the smallest preload (N) whose periodic response keeps at least
     ``margin`` N of contact force all round at ``rpm`` — and, given ``speed_range = (lo, rpm)``, at
     every speed of that range (secant steps on the preload: the minimum force is nearly affine in it).
@@ -509,7 +669,9 @@ def size_spring(build: Callable[[float, float], Any], rpm: float, margin: float,
     if speed_range is not None:
         lo, hi = _check_range(speed_range, tolerance, None, accuracy)
         if hi != rpm:
-            raise ValueError(f"speed_range must end at rpm = {rpm:g} (the margin is kept up to it), got {speed_range!r}")
+            raise ValueError(
+                f"speed_range must end at rpm = {rpm:g} (the margin is kept up to it), got {speed_range!r}"
+            )
     out = []
     for k in rates:
         count = 0
@@ -518,8 +680,14 @@ def size_spring(build: Callable[[float, float], Any], rpm: float, margin: float,
             nonlocal count
             count += 1
             mech = build(k, p).with_camshaft_speed_rpm(at_rpm)
-            row = steady_response(mech, contact=contact, accuracy=accuracy, steps_per_revolution=steps_per_revolution,
-                                  fallback="transient", multipliers=False)
+            row = steady_response(
+                mech,
+                contact=contact,
+                accuracy=accuracy,
+                steps_per_revolution=steps_per_revolution,
+                fallback="transient",
+                multipliers=False,
+            )
             # With contact lost the minimum force is 0 whatever the shortfall: extrapolate from the
             # lost fraction so the secant still sees a slope.
             short = row["min_force_N"] - margin - (row["lost_fraction"] * p if row["contact_lost"] else 0.0)
@@ -531,14 +699,17 @@ def size_spring(build: Callable[[float, float], Any], rpm: float, margin: float,
             f1, row1, mech = margin_at(p1, at_rpm)
             while abs(p1 - p0) > tolerance * abs(p1) or f1 < 0.0:
                 if count >= max_evaluations:
-                    raise RuntimeError(f"size_spring: no preload found for rate {k:g} N/m in {max_evaluations} "
-                                       f"evaluations (last {p1:g} N, margin shortfall {f1:.4g} N at {at_rpm:g} rpm)")
+                    raise RuntimeError(
+                        f"size_spring: no preload found for rate {k:g} N/m in {max_evaluations} "
+                        f"evaluations (last {p1:g} N, margin shortfall {f1:.4g} N at {at_rpm:g} rpm)"
+                    )
                 slope = (f1 - f0) / (p1 - p0) if p1 != p0 else 1.0
                 step = -f1 / slope if slope > 0 else p1
                 p_next = min(max(p1 + step, 0.5 * p1), 4.0 * p1 + 1.0)
                 if p_next > 1e6:
-                    raise RuntimeError(f"size_spring: rate {k:g} N/m needs a preload above 1e6 N for {margin:g} N at "
-                                       f"{at_rpm:g} rpm")
+                    raise RuntimeError(
+                        f"size_spring: rate {k:g} N/m needs a preload above 1e6 N for {margin:g} N at {at_rpm:g} rpm"
+                    )
                 if f1 >= 0.0 and abs(p_next - p1) <= tolerance * p1:
                     break
                 p0, f0 = p1, f1
@@ -549,8 +720,14 @@ def size_spring(build: Callable[[float, float], Any], rpm: float, margin: float,
         critical = rpm
         p, row, mech = size_at(rpm, preload_guess)
         for _ in range(4 if speed_range is not None else 0):
-            rows = margin_scan(build(k, p), (lo, rpm), contact=contact, tolerance=tolerance, accuracy=accuracy,
-                               steps_per_revolution=steps_per_revolution)
+            rows = margin_scan(
+                build(k, p),
+                (lo, rpm),
+                contact=contact,
+                tolerance=tolerance,
+                accuracy=accuracy,
+                steps_per_revolution=steps_per_revolution,
+            )
             count += len(rows)
             worst = min(rows, key=lambda r: r["min_force_N"] - (r["lost_fraction"] * p if r["contact_lost"] else 0.0))
             if worst["min_force_N"] >= margin - max(worst.get("force_error_N", 0.0), tolerance * margin):
@@ -559,11 +736,21 @@ def size_spring(build: Callable[[float, float], Any], rpm: float, margin: float,
                 break
             critical = worst["rpm"]
             p, row, mech = size_at(critical, p)
-        lift = max(float(np.max(np.asarray(c["program"].evaluate(np.linspace(0, 2 * math.pi, 4097))["h"])))
-                   for c in mech.builder().__getstate__()["contacts"])
-        out.append(SpringSize(rate=k, preload=p, min_force_N=row["min_force_N"],
-                              min_force_angle_deg=row["min_force_angle_deg"], max_spring_force_N=p + k * lift,
-                              evaluations=count, critical_rpm=critical))
+        lift = max(
+            float(np.max(np.asarray(c["program"].evaluate(np.linspace(0, 2 * math.pi, 4097))["h"])))
+            for c in mech.builder().__getstate__()["contacts"]
+        )
+        out.append(
+            SpringSize(
+                rate=k,
+                preload=p,
+                min_force_N=row["min_force_N"],
+                min_force_angle_deg=row["min_force_angle_deg"],
+                max_spring_force_N=p + k * lift,
+                evaluations=count,
+                critical_rpm=critical,
+            )
+        )
     return out
 
 
@@ -579,15 +766,20 @@ def speed_sweep(system, speeds: Sequence[float], **options) -> Dict[str, Any]:
     spectrum = np.full((width, len(rows)), np.nan)
     for j, r in enumerate(rows):
         if "harmonics" in r:
-            spectrum[:len(r["harmonics"]), j] = r["harmonics"]
+            spectrum[: len(r["harmonics"]), j] = r["harmonics"]
     try:
         natural = [float(f) for f in system.modal_analysis(0.0)["frequencies_hz"]]
     except (AttributeError, RuntimeError, ValueError):
         natural = []
     lo, hi = min(r["rpm"] for r in rows), max(r["rpm"] for r in rows)
     resonances = [(k, f, 60.0 * f / k) for f in natural for k in range(1, width + 1) if lo <= 60.0 * f / k <= hi]
-    return {"rows": rows, "orders": list(range(1, width + 1)), "spectrum": spectrum, "natural_hz": natural,
-            "resonances": resonances}
+    return {
+        "rows": rows,
+        "orders": list(range(1, width + 1)),
+        "spectrum": spectrum,
+        "natural_hz": natural,
+        "resonances": resonances,
+    }
 
 
 def _resonance_strength(sweep: Dict[str, Any], rpm: np.ndarray, spec: np.ndarray) -> List[float]:
@@ -609,8 +801,11 @@ def plot_waterfall(sweep: Dict[str, Any], *, labels: int = 12, ax=None):
     mode stays readable. Returns the figure."""
     import matplotlib.pyplot as plt
 
-    missing = [k for k in ("rows", "spectrum", "orders", "natural_hz", "resonances")
-               if not isinstance(sweep, dict) or k not in sweep]
+    missing = [
+        k
+        for k in ("rows", "spectrum", "orders", "natural_hz", "resonances")
+        if not isinstance(sweep, dict) or k not in sweep
+    ]
     if missing:
         raise ValueError(f"sweep must be a speed_sweep() result; missing {missing}")
     rows = sweep["rows"]
@@ -631,12 +826,28 @@ def plot_waterfall(sweep: Dict[str, Any], *, labels: int = 12, ax=None):
         ax.set_ylim(0, 1.05 * fmax)
         for i, f in enumerate(f for f in sweep["natural_hz"] if f <= fmax):
             ax.axhline(f, color="tab:red", lw=0.8, ls="--", label="natural frequency (dwell)" if i == 0 else None)
-            ax.annotate(f"mode {f:.4g} Hz", (0.0, f), xycoords=("axes fraction", "data"), xytext=(3, -3),
-                        textcoords="offset points", ha="left", va="top", fontsize=7, color="tab:red")
+            ax.annotate(
+                f"mode {f:.4g} Hz",
+                (0.0, f),
+                xycoords=("axes fraction", "data"),
+                xytext=(3, -3),
+                textcoords="offset points",
+                ha="left",
+                va="top",
+                fontsize=7,
+                color="tab:red",
+            )
         res = sweep["resonances"]
         if res:
-            ax.plot([r for _, _, r in res], [f for _, f, _ in res], "|", color="tab:red", ms=6, mew=0.8,
-                    label="shaft order × mode crossing")
+            ax.plot(
+                [r for _, _, r in res],
+                [f for _, f, _ in res],
+                "|",
+                color="tab:red",
+                ms=6,
+                mew=0.8,
+                label="shaft order × mode crossing",
+            )
         # Label the strongest crossings first; skip one whose label would touch a label already placed
         # (in display space, with the axes' final limits).
         fig.canvas.draw_idle()
@@ -654,10 +865,13 @@ def plot_waterfall(sweep: Dict[str, Any], *, labels: int = 12, ax=None):
             if any(abs(x - px) < gap_x and abs(y - py) < gap_y for px, py in placed):
                 continue
             placed.append((x, y))
-            ax.plot(r, f, "o", mfc="none", mec="tab:red", ms=9, label="labelled resonance" if len(placed) == 1 else None)
+            ax.plot(
+                r, f, "o", mfc="none", mec="tab:red", ms=9, label="labelled resonance" if len(placed) == 1 else None
+            )
             ax.plot(line, k * line / 60.0, color="0.5", lw=0.5)
-            ax.annotate(f"{k}×", (r, f), xytext=(0, 7), textcoords="offset points", ha="center", fontsize=7,
-                        color="tab:red")
+            ax.annotate(
+                f"{k}×", (r, f), xytext=(0, 7), textcoords="offset points", ha="center", fontsize=7, color="tab:red"
+            )
         if ax.get_legend_handles_labels()[0]:
             ax.legend(loc="upper left", fontsize=7)
     ax.set_xlabel("camshaft speed (rpm)")
@@ -685,9 +899,17 @@ def plot_margin(rows: Sequence[Dict[str, Any]], jump: Optional[JumpSpeed] = None
     if jump is not None:
         for i, w in enumerate(jump.windows):
             end = w.end_rpm if math.isfinite(w.end_rpm) else max(speeds + [w.start_rpm])
-            ax.axvspan(w.start_rpm, max(end, w.start_rpm), color="tab:red", alpha=0.12, lw=0,
-                       label="contact lost (windows)" if i == 0 else None)
-        ax.axvline(jump.rpm, color="tab:red", ls="--", label=f"first loss {jump.rpm:.0f} rpm at {jump.angle_deg:.0f} deg")
+            ax.axvspan(
+                w.start_rpm,
+                max(end, w.start_rpm),
+                color="tab:red",
+                alpha=0.12,
+                lw=0,
+                label="contact lost (windows)" if i == 0 else None,
+            )
+        ax.axvline(
+            jump.rpm, color="tab:red", ls="--", label=f"first loss {jump.rpm:.0f} rpm at {jump.angle_deg:.0f} deg"
+        )
         speeds.append(jump.rpm)
     if speeds:  # the jump line off the last speed stays inside, clear of the frame
         lo, hi = min(speeds), max(speeds)
@@ -709,9 +931,18 @@ def _program_case(build, speed, options, item):
     return row
 
 
-def compare_programs(build: Callable[[Any], Any], programs: Dict[str, Any], rpm: float, *, contact: Optional[str] = None,
-                     accuracy: Optional[float] = None, steps_per_revolution: Optional[int] = None, executor=None,
-                     workers: Optional[int] = None, progress: bool = True) -> List[Dict[str, Any]]:
+def compare_programs(
+    build: Callable[[Any], Any],
+    programs: Dict[str, Any],
+    rpm: float,
+    *,
+    contact: Optional[str] = None,
+    accuracy: Optional[float] = None,
+    steps_per_revolution: Optional[int] = None,
+    executor=None,
+    workers: Optional[int] = None,
+    progress: bool = True,
+) -> List[Dict[str, Any]]:
     """Motion laws side by side: ``build(program)`` returns the mechanism for a MotionProgram; one
     steady_response row per named program at ``rpm`` (with ``program``: its name): margin, peak
     accelerations against the rigid follower's, residual vibration in the dwells."""
@@ -719,12 +950,28 @@ def compare_programs(build: Callable[[Any], Any], programs: Dict[str, Any], rpm:
         raise ValueError("programs: give at least one named MotionProgram")
     speed = _check_speeds([rpm])[0]
     items = list(programs.items())
-    fn = functools.partial(_program_case, build, speed, dict(contact=contact, accuracy=accuracy,
-                                                             steps_per_revolution=steps_per_revolution,
-                                                             fallback="transient"))
+    fn = functools.partial(
+        _program_case,
+        build,
+        speed,
+        dict(contact=contact, accuracy=accuracy, steps_per_revolution=steps_per_revolution, fallback="transient"),
+    )
     out = run_cases(fn, items, executor=executor, workers=workers, progress=progress, desc="programs")
     return [o.value if o.ok else {"program": name, "error": o.error} for o, (name, _) in zip(out, items)]
 
 
-__all__ = ["JumpSpeed", "LossWindow", "SpringSize", "StudyWarning", "compare_programs", "jump_speed", "margin_curve",
-           "margin_scan", "plot_margin", "plot_waterfall", "resonance_speeds", "size_spring", "speed_sweep"]
+__all__ = [
+    "JumpSpeed",
+    "LossWindow",
+    "SpringSize",
+    "StudyWarning",
+    "compare_programs",
+    "jump_speed",
+    "margin_curve",
+    "margin_scan",
+    "plot_margin",
+    "plot_waterfall",
+    "resonance_speeds",
+    "size_spring",
+    "speed_sweep",
+]

@@ -50,8 +50,16 @@ def _shown(value, limit: int = 60) -> str:
 def _a(value) -> str:
     """The TOML type of a value as messages name it: "a table", "an array", ..."""
     name = type(value).__name__
-    for kind, toml_name in ((bool, "boolean"), (int, "integer"), (float, "float"), (str, "string"), (list, "array"),
-                            (dict, "table"), (datetime.date, "date"), (datetime.time, "time")):
+    for kind, toml_name in (
+        (bool, "boolean"),
+        (int, "integer"),
+        (float, "float"),
+        (str, "string"),
+        (list, "array"),
+        (dict, "table"),
+        (datetime.date, "date"),
+        (datetime.time, "time"),
+    ):
         if isinstance(value, kind):
             name = toml_name
             break
@@ -87,8 +95,10 @@ def _unknown(table: Dict[str, Any], known, path, prefix: str) -> None:
 def _int(table, key, default, lo, hi, path, prefix):
     v = table.get(key, default)
     if isinstance(v, bool) or not isinstance(v, int) or not lo <= v <= hi:
-        raise ValueError(f"{_where(path, prefix + '.' + key if prefix else key)}: must be an integer in [{lo}, {hi}], "
-                         f"got {_shown(v)}")
+        raise ValueError(
+            f"{_where(path, prefix + '.' + key if prefix else key)}: must be an integer in [{lo}, {hi}], "
+            f"got {_shown(v)}"
+        )
     return v
 
 
@@ -97,8 +107,10 @@ def _contact(table, key: str, path, contacts: Optional[Sequence[str]]):
     if contact is not None and not isinstance(contact, str):
         raise ValueError(f"{_where(path, key)}: must be a contact's name (a string), got {_a(contact)}")
     if contact is not None and contacts is not None and contact not in contacts:
-        raise ValueError(f"{_where(path, key)}: no contact named {_shown(contact)}; the mechanism's contacts: "
-                         f"{', '.join(_shown(c) for c in contacts[:20])}")
+        raise ValueError(
+            f"{_where(path, key)}: no contact named {_shown(contact)}; the mechanism's contacts: "
+            f"{', '.join(_shown(c) for c in contacts[:20])}"
+        )
     return contact
 
 
@@ -113,13 +125,16 @@ def _tolerance(block, key: str, path):
     name = block["parameter"]
     if not isinstance(name, str) or not name:
         got = "an empty string" if name == "" else _a(name)
-        raise ValueError(f"{_where(path, key + '.parameter')}: must name a numeric value of this file by its key path "
-                         f"(a string), got {got}")
+        raise ValueError(
+            f"{_where(path, key + '.parameter')}: must name a numeric value of this file by its key path "
+            f"(a string), got {got}"
+        )
     kind = block["distribution"]
     if not isinstance(kind, str) or kind not in DISTRIBUTIONS:
         got = _shown(kind) if isinstance(kind, str) else _a(kind)
-        raise ValueError(f"{_where(path, key + '.distribution')}: must be one of {', '.join(DISTRIBUTIONS)} (a string), "
-                         f"got {got}")
+        raise ValueError(
+            f"{_where(path, key + '.distribution')}: must be one of {', '.join(DISTRIBUTIONS)} (a string), got {got}"
+        )
     cls = DISTRIBUTIONS[kind]
     fields = [f.name for f in dataclasses.fields(cls)]
     _unknown(block, ("parameter", "distribution", *fields), path, key)
@@ -136,8 +151,9 @@ def _tolerance(block, key: str, path):
 
 def _speed(v, key, path) -> float:
     if isinstance(v, bool) or not isinstance(v, (int, float)) or not (math.isfinite(v) and _MIN_RPM <= v <= _MAX_RPM):
-        raise ValueError(f"{_where(path, key)}: must be a camshaft speed in [{_MIN_RPM:.6g}, {_MAX_RPM:.6g}] rpm, "
-                         f"got {_shown(v)}")
+        raise ValueError(
+            f"{_where(path, key)}: must be a camshaft speed in [{_MIN_RPM:.6g}, {_MAX_RPM:.6g}] rpm, got {_shown(v)}"
+        )
     return float(v)
 
 
@@ -147,19 +163,28 @@ def sweep_settings(table: Dict[str, Any], *, rpm=None, jump=None, path=None, con
     ``contact`` against."""
     if not isinstance(table, dict):
         raise ValueError(f"{_where(path, 'sweep')}: must be a table, got {_a(table)}")
-    _unknown(table, ("rpm", "rpm_from", "rpm_to", "count", "jump", "accuracy", "steps_per_revolution", "contact"), path,
-             "sweep")
+    _unknown(
+        table,
+        ("rpm", "rpm_from", "rpm_to", "count", "jump", "accuracy", "steps_per_revolution", "contact"),
+        path,
+        "sweep",
+    )
     if rpm:
         speeds = [_speed(float(r), "--rpm", None) for r in rpm]
     elif "rpm" in table:
         if "rpm_from" in table or "rpm_to" in table or "count" in table:
             raise ValueError(f"{_where(path, 'sweep.rpm')}: give rpm (a list) or rpm_from/rpm_to/count, not both")
         if not isinstance(table["rpm"], list) or not table["rpm"]:
-            raise ValueError(f"{_where(path, 'sweep.rpm')}: must be a non-empty array of speeds (rpm), got "
-                             f"{'an empty array' if table['rpm'] == [] else _a(table['rpm'])}")
+            raise ValueError(
+                f"{_where(path, 'sweep.rpm')}: must be a non-empty array of speeds (rpm), got "
+                f"{'an empty array' if table['rpm'] == [] else _a(table['rpm'])}"
+            )
         speeds = [_speed(r, f"sweep.rpm[{i}]", path) for i, r in enumerate(table["rpm"])]
     elif "rpm_from" in table or "rpm_to" in table:
-        lo, hi = _speed(table.get("rpm_from"), "sweep.rpm_from", path), _speed(table.get("rpm_to"), "sweep.rpm_to", path)
+        lo, hi = (
+            _speed(table.get("rpm_from"), "sweep.rpm_from", path),
+            _speed(table.get("rpm_to"), "sweep.rpm_to", path),
+        )
         if not lo < hi:
             raise ValueError(f"{_where(path, 'sweep.rpm_to')}: must be above rpm_from ({lo:g}), got {hi:g}")
         n = _int(table, "count", 20, 2, 10000, path, "sweep")
@@ -173,12 +198,22 @@ def sweep_settings(table: Dict[str, Any], *, rpm=None, jump=None, path=None, con
             raise ValueError(f"{_where(where, key)}: must be two speeds [lo, hi] in rpm, got {_shown(bracket)}")
         bracket = [_speed(b, key, where) for b in bracket]
         if not bracket[0] < bracket[1]:
-            raise ValueError(f"{_where(where, key)}: the low speed {bracket[0]:g} must be below the high speed "
-                             f"{bracket[1]:g} rpm")
+            raise ValueError(
+                f"{_where(where, key)}: the low speed {bracket[0]:g} must be below the high speed {bracket[1]:g} rpm"
+            )
     contact = _contact(table, "sweep.contact", path, contacts)
-    steps = _int(table, "steps_per_revolution", None, 64, 1 << 22, path, "sweep") if "steps_per_revolution" in table else None
-    return {"rpm": speeds, "jump": bracket, "contact": contact, "accuracy": _accuracy(table, path, "sweep"),
-            "steps_per_revolution": steps}
+    steps = (
+        _int(table, "steps_per_revolution", None, 64, 1 << 22, path, "sweep")
+        if "steps_per_revolution" in table
+        else None
+    )
+    return {
+        "rpm": speeds,
+        "jump": bracket,
+        "contact": contact,
+        "accuracy": _accuracy(table, path, "sweep"),
+        "steps_per_revolution": steps,
+    }
 
 
 def _accuracy(table, path, prefix) -> Optional[float]:
@@ -192,8 +227,9 @@ def _accuracy(table, path, prefix) -> Optional[float]:
         raise ValueError(f"{_where(path, prefix + '.accuracy')}: {str(e).removeprefix('accuracy ')}") from None
 
 
-def montecarlo_settings(table: Optional[Dict[str, Any]], *, cases=None, seed=None, rpm=None, path=None, build=None,
-                        contacts=None) -> Dict[str, Any]:
+def montecarlo_settings(
+    table: Optional[Dict[str, Any]], *, cases=None, seed=None, rpm=None, path=None, build=None, contacts=None
+) -> Dict[str, Any]:
     """Cases, seed, camshaft speed, roller tolerance, steps per revolution, contact and the tolerances
     {key path: distribution} from a [montecarlo] table, with command-line overrides (``cases``, ``seed``,
     ``rpm``). Given the model's ``build`` (a ConfigCase), it is set to the table's speed and roller
@@ -202,13 +238,17 @@ def montecarlo_settings(table: Optional[Dict[str, Any]], *, cases=None, seed=Non
     ``contacts`` as in sweep_settings. ``rpm`` is None when neither the table nor the override gives it
     (the config's own speed)."""
     if table is None:
-        raise ValueError(f"{_where(path, 'montecarlo')}: the config has no [montecarlo] table with its tolerances "
-                         "(docs/studies.md)")
+        raise ValueError(
+            f"{_where(path, 'montecarlo')}: the config has no [montecarlo] table with its tolerances (docs/studies.md)"
+        )
     if not isinstance(table, dict):
         raise ValueError(f"{_where(path, 'montecarlo')}: must be a table, got {_a(table)}")
-    _unknown(table, ("cases", "seed", "rpm", "roller_tolerance", "accuracy", "steps_per_revolution", "contact",
-                     "tolerance"), path,
-             "montecarlo")
+    _unknown(
+        table,
+        ("cases", "seed", "rpm", "roller_tolerance", "accuracy", "steps_per_revolution", "contact", "tolerance"),
+        path,
+        "montecarlo",
+    )
     # The speed: --rpm (named so) over the table's rpm; checked before any model is built.
     if rpm is not None:
         speed = _speed(rpm, "--rpm", None)
@@ -219,14 +259,18 @@ def montecarlo_settings(table: Optional[Dict[str, Any]], *, cases=None, seed=Non
     mode = table.get("roller_tolerance", "fixed_cam")
     if not isinstance(mode, str) or mode not in ROLLER_TOLERANCES:
         got = _shown(mode) if isinstance(mode, str) else _a(mode)
-        raise ValueError(f"{_where(path, 'montecarlo.roller_tolerance')}: must be one of "
-                         f"{', '.join(ROLLER_TOLERANCES)} (a string), got {got}")
+        raise ValueError(
+            f"{_where(path, 'montecarlo.roller_tolerance')}: must be one of "
+            f"{', '.join(ROLLER_TOLERANCES)} (a string), got {got}"
+        )
     if build is not None:
         build = build.with_options(roller_tolerance=mode, camshaft_speed_rpm=speed)
     blocks = table.get("tolerance")
     if not isinstance(blocks, list) or not blocks:
         got = "" if blocks is None or blocks == [] else f", got {_a(blocks)}"
-        raise ValueError(f"{_where(path, 'montecarlo.tolerance')}: give at least one [[montecarlo.tolerance]] block{got}")
+        raise ValueError(
+            f"{_where(path, 'montecarlo.tolerance')}: give at least one [[montecarlo.tolerance]] block{got}"
+        )
     tolerances = {}
     for i, b in enumerate(blocks):
         key = f"montecarlo.tolerance[{i}]"
@@ -241,16 +285,29 @@ def montecarlo_settings(table: Optional[Dict[str, Any]], *, cases=None, seed=Non
                 kind = ValueError if isinstance(e, ValueError) else RuntimeError
                 raise kind(f"{_where(path, key + '.parameter')}: {_shown(str(e), 1000)}") from None
     # Overrides (the command line's --cases, --seed) obey the table's ranges, named as options.
-    cases = _int(table, "cases", 100, 1, 10_000_000, path, "montecarlo") if cases is None else \
-        _int({"--cases": cases}, "--cases", None, 1, 10_000_000, None, "")
-    seed = _int(table, "seed", 0, 0, 2 ** 63 - 1, path, "montecarlo") if seed is None else \
-        _int({"--seed": seed}, "--seed", None, 0, 2 ** 63 - 1, None, "")
+    cases = (
+        _int(table, "cases", 100, 1, 10_000_000, path, "montecarlo")
+        if cases is None
+        else _int({"--cases": cases}, "--cases", None, 1, 10_000_000, None, "")
+    )
+    seed = (
+        _int(table, "seed", 0, 0, 2**63 - 1, path, "montecarlo")
+        if seed is None
+        else _int({"--seed": seed}, "--seed", None, 0, 2**63 - 1, None, "")
+    )
     contact = _contact(table, "montecarlo.contact", path, contacts)
-    out = {"tolerances": tolerances, "cases": cases, "seed": seed, "contact": contact, "rpm": speed,
-           "roller_tolerance": mode,
-           "accuracy": _accuracy(table, path, "montecarlo"),
-           "steps_per_revolution": _int(table, "steps_per_revolution", None, 64, 1 << 22, path, "montecarlo")
-           if "steps_per_revolution" in table else None}
+    out = {
+        "tolerances": tolerances,
+        "cases": cases,
+        "seed": seed,
+        "contact": contact,
+        "rpm": speed,
+        "roller_tolerance": mode,
+        "accuracy": _accuracy(table, path, "montecarlo"),
+        "steps_per_revolution": _int(table, "steps_per_revolution", None, 64, 1 << 22, path, "montecarlo")
+        if "steps_per_revolution" in table
+        else None,
+    }
     if build is not None:
         out["build"] = build
     return out

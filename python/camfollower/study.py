@@ -121,8 +121,12 @@ def build(cfg: StudyConfig, follower: str, formulation: str, defect: str, p: Par
     p = p or parameters(cfg, follower)
     if formulation == "paper":
         if defect == "clearance":
-            return CamFollowerModel(p, defects=Defects(backlash=cfg.clearance,
-                                                       backlash_switch_width=math.radians(cfg.backlash_switch_width_deg)))
+            return CamFollowerModel(
+                p,
+                defects=Defects(
+                    backlash=cfg.clearance, backlash_switch_width=math.radians(cfg.backlash_switch_width_deg)
+                ),
+            )
         ecc = CamEccentricity(cfg.eccentricity, formulation="paper_force_both") if defect == "eccentricity" else None
         with warnings.catch_warnings():  # the literal force exceeds the preload: reported in the summary
             warnings.simplefilter("ignore", UserWarning)
@@ -141,8 +145,14 @@ def _channel(r, *names):
 
 def _run_options(cfg: StudyConfig, model) -> dict:
     """simulate()'s options for a case: settle on the follower, then record the analysed revolutions."""
-    return dict(revolutions=cfg.analysed_revolutions, time_step=model.period / cfg.steps_per_revolution, settle=True,
-                settle_dofs=["y4"], settle_tolerance=cfg.settle_tolerance, settle_max_revolutions=cfg.max_revolutions)
+    return dict(
+        revolutions=cfg.analysed_revolutions,
+        time_step=model.period / cfg.steps_per_revolution,
+        settle=True,
+        settle_dofs=["y4"],
+        settle_tolerance=cfg.settle_tolerance,
+        settle_max_revolutions=cfg.max_revolutions,
+    )
 
 
 def _case_result(cfg: StudyConfig, key: str, model, r) -> CaseResult:
@@ -163,12 +173,27 @@ def _case_result(cfg: StudyConfig, key: str, model, r) -> CaseResult:
     sample_rate = n / model.period
     guide = an.clearance_statistics(r, "guide", model.period) if "guide.side" in r else None
     return CaseResult(
-        key=key, model=model, program=program, omega=omega, period=model.period,
-        theta=theta, follower_disp=np.asarray(r["q.y4"])[w], follower_acc=a4, theory_acc=theory, shaft_acc=a1, contact_force=force,
-        contact_stiffness_vertical=k_vertical, pressure_angle=pressure_angle, rod_lateral=np.asarray(r["q.x3"])[w],
-        shaft_spectrum=an.spectrum(a1, sample_rate), stiffness_spectrum=an.spectrum(k_vertical, sample_rate),
-        settle=dict(r.settle), contact_loss_time=float(sum(b - a for a, b in lost)) / cfg.analysed_revolutions,
-        clearance=guide, stats=dict(r.stats))
+        key=key,
+        model=model,
+        program=program,
+        omega=omega,
+        period=model.period,
+        theta=theta,
+        follower_disp=np.asarray(r["q.y4"])[w],
+        follower_acc=a4,
+        theory_acc=theory,
+        shaft_acc=a1,
+        contact_force=force,
+        contact_stiffness_vertical=k_vertical,
+        pressure_angle=pressure_angle,
+        rod_lateral=np.asarray(r["q.x3"])[w],
+        shaft_spectrum=an.spectrum(a1, sample_rate),
+        stiffness_spectrum=an.spectrum(k_vertical, sample_rate),
+        settle=dict(r.settle),
+        contact_loss_time=float(sum(b - a for a, b in lost)) / cfg.analysed_revolutions,
+        clearance=guide,
+        stats=dict(r.stats),
+    )
 
 
 def run_case(cfg: StudyConfig, follower: str, formulation: str, defect: str, p: Parameters | None = None) -> CaseResult:
@@ -180,9 +205,11 @@ def run_case(cfg: StudyConfig, follower: str, formulation: str, defect: str, p: 
 def deviation_figures(case: CaseResult) -> dict:
     """Dwell peak and rise / return RMS of the follower acceleration's deviation from omega^2 h''."""
     st = an.phase_statistics(case.program, case.theta, case.follower_acc - case.theory_acc)
-    return {"dwell_peak": max(s["peak"] for s in st if s["phase"].startswith("dwell")),
-            "rise_rms": max(s["rms"] for s in st if s["phase"].startswith("rise")),
-            "return_rms": max(s["rms"] for s in st if s["phase"].startswith("return"))}
+    return {
+        "dwell_peak": max(s["peak"] for s in st if s["phase"].startswith("dwell")),
+        "rise_rms": max(s["rms"] for s in st if s["phase"].startswith("rise")),
+        "return_rms": max(s["rms"] for s in st if s["phase"].startswith("return")),
+    }
 
 
 def summarize(case: CaseResult, carrier: float) -> dict:
@@ -191,17 +218,21 @@ def summarize(case: CaseResult, carrier: float) -> dict:
         "settle": {k: case.settle[k] for k in ("settled", "revolutions", "change", "change_absolute", "tolerance")},
         "newton_iterations_per_step": case.stats["mean_iterations"],
         "peak_follower_acceleration_m_s2": float(np.max(np.abs(case.follower_acc))),
-        "follower_acceleration_minus_theory_m_s2": an.phase_statistics(case.program, case.theta,
-                                                                     case.follower_acc - case.theory_acc),
+        "follower_acceleration_minus_theory_m_s2": an.phase_statistics(
+            case.program, case.theta, case.follower_acc - case.theory_acc
+        ),
         "dwell_deviation_peak_m_s2": dev["dwell_peak"],
         "rise_deviation_rms_m_s2": dev["rise_rms"],
         "return_deviation_rms_m_s2": dev["return_rms"],
         "contact_force_range_N": [float(case.contact_force.min()), float(case.contact_force.max())],
         "contact_loss_time_per_revolution_s": case.contact_loss_time,
         "shaft_acceleration_rms_m_s2": float(np.sqrt(np.mean(case.shaft_acc**2))),
-        "shaft_acceleration_spectral_peaks": [{"frequency_hz": f, "amplitude_m_s2": a}
-                                              for f, a in an.find_peaks(case.shaft_spectrum, 6, lo=50.0)],
-        "shaft_acceleration_sidebands": an.sidebands(case.shaft_spectrum, carrier, case.omega / (2 * math.pi), orders=3),
+        "shaft_acceleration_spectral_peaks": [
+            {"frequency_hz": f, "amplitude_m_s2": a} for f, a in an.find_peaks(case.shaft_spectrum, 6, lo=50.0)
+        ],
+        "shaft_acceleration_sidebands": an.sidebands(
+            case.shaft_spectrum, carrier, case.omega / (2 * math.pi), orders=3
+        ),
     }
     if case.clearance is not None:
         out["guide_clearance"] = case.clearance
@@ -254,18 +285,27 @@ def sensitivity(cfg: StudyConfig, progress=None) -> list[dict]:
     short = replace(cfg, analysed_revolutions=2)
     for exponent in cfg.contact_exponents:
         for mass in cfg.camshaft_masses:
-            p = base.replace(camshaft_mass=mass, contact_exponent=exponent,
-                             contact_stiffness=matched_contact_stiffness(base, exponent, force))
+            p = base.replace(
+                camshaft_mass=mass,
+                contact_exponent=exponent,
+                contact_stiffness=matched_contact_stiffness(base, exponent, force),
+            )
             c = run_case(short, "offset", "physical", "healthy", p)
             dev = deviation_figures(c)
-            out.append({"contact_exponent": exponent, "camshaft_mass_kg": mass,
-                        "contact_stiffness": p.get("contact_stiffness"), "rise_deviation_rms_m_s2": dev["rise_rms"],
-                        "return_deviation_rms_m_s2": dev["return_rms"], "dwell_deviation_peak_m_s2": dev["dwell_peak"],
-                        "settled": c.settle["settled"]})
+            out.append(
+                {
+                    "contact_exponent": exponent,
+                    "camshaft_mass_kg": mass,
+                    "contact_stiffness": p.get("contact_stiffness"),
+                    "rise_deviation_rms_m_s2": dev["rise_rms"],
+                    "return_deviation_rms_m_s2": dev["return_rms"],
+                    "dwell_deviation_peak_m_s2": dev["dwell_peak"],
+                    "settled": c.settle["settled"],
+                }
+            )
             if progress:
                 progress.step(f"sensitivity n={exponent:.3g} m1={mass:g} kg")
     return out
-
 
 
 class Progress:
@@ -277,8 +317,10 @@ class Progress:
     def step(self, label: str) -> None:
         self.done += 1
         filled = int(30 * self.done / self.total)
-        line = (f"[{'#' * filled}{'.' * (30 - filled)}] {self.done}/{self.total} "
-                f"{time.perf_counter() - self.start:5.1f} s  {label:<40s}")
+        line = (
+            f"[{'#' * filled}{'.' * (30 - filled)}] {self.done}/{self.total} "
+            f"{time.perf_counter() - self.start:5.1f} s  {label:<40s}"
+        )
         # Redraw in place on a terminal; one line per step in a log.
         tty = sys.stderr.isatty()
         sys.stderr.write(("\r" + line) if tty else (line.rstrip() + "\n"))
@@ -341,8 +383,6 @@ def kinematics_summary(cam: DiskCam, rpm: float) -> dict:
     }
 
 
-
-
 def make_figures(cases: dict, carrier: float, modal: dict, bands: list, cfg: StudyConfig, folder: Path, progress):
     import matplotlib
 
@@ -357,7 +397,7 @@ def make_figures(cases: dict, carrier: float, modal: dict, bands: list, cfg: Stu
     every = 4  # decimation of the time plots and their data
 
     def last_rev(c, x):
-        return x[c.theta.size - n:][::every]
+        return x[c.theta.size - n :][::every]
 
     def deg(c):
         return np.degrees(np.mod(last_rev(c, c.theta), 2 * math.pi))
@@ -413,11 +453,20 @@ def make_figures(cases: dict, carrier: float, modal: dict, bands: list, cfg: Stu
     c = cases
     acc = lambda x: x.follower_acc  # noqa: E731
     force = lambda x: x.contact_force  # noqa: E731
-    both = [("paper formulation (paper's dampers)", [("healthy", c["offset/paper/healthy"], "-")]),
-            ("physical formulation (3 % damping)", [("healthy", c["offset/physical/healthy"], "-")])]
-    time_panels("fig06_follower_acceleration", "Follower acceleration ÿ4 over one period, offset follower, healthy",
-                "ÿ4 (m/s²)", both, acc)
-    time_panels("fig07_contact_force", "Cam-roller contact force, offset follower, healthy", "contact force (N)", both, force)
+    both = [
+        ("paper formulation (paper's dampers)", [("healthy", c["offset/paper/healthy"], "-")]),
+        ("physical formulation (3 % damping)", [("healthy", c["offset/physical/healthy"], "-")]),
+    ]
+    time_panels(
+        "fig06_follower_acceleration",
+        "Follower acceleration ÿ4 over one period, offset follower, healthy",
+        "ÿ4 (m/s²)",
+        both,
+        acc,
+    )
+    time_panels(
+        "fig07_contact_force", "Cam-roller contact force, offset follower, healthy", "contact force (N)", both, force
+    )
     spectrum_panels("fig08_bearing_spectrum", "Camshaft bearing acceleration ÿ1, offset follower, healthy", both)
     fig, ax = plt.subplots(figsize=(9, 4.5))
     cols, header = [], []
@@ -434,24 +483,52 @@ def make_figures(cases: dict, carrier: float, modal: dict, bands: list, cfg: Stu
     for defect, (fa, ff, fs) in {"eccentricity": (10, 11, 12), "clearance": (13, 14, 15)}.items():
         literal = "K_h ε sin θ force (eq 6)" if defect == "eccentricity" else "imposed side switch"
         physical = "displaced cam centre" if defect == "eccentricity" else "gap with wall contacts"
-        panels = [(f"paper formulation: {literal}", [(defect, c[f"offset/paper/{defect}"], "-"),
-                                                     ("healthy", c["offset/paper/healthy"], "-")]),
-                  (f"physical formulation: {physical}", [(defect, c[f"offset/physical/{defect}"], "-"),
-                                                         ("healthy", c["offset/physical/healthy"], "-")])]
-        time_panels(f"fig{fa}_{defect}_follower_acceleration", f"Follower acceleration: {defect} vs healthy (offset)",
-                    "ÿ4 (m/s²)", panels, acc)
-        time_panels(f"fig{ff}_{defect}_contact_force", f"Contact force: {defect} vs healthy (offset)",
-                    "contact force (N)", panels, force)
-        spectrum_panels(f"fig{fs}_{defect}_bearing_spectrum", f"Bearing acceleration ÿ1: {defect} vs healthy (offset)",
-                        panels)
+        panels = [
+            (
+                f"paper formulation: {literal}",
+                [(defect, c[f"offset/paper/{defect}"], "-"), ("healthy", c["offset/paper/healthy"], "-")],
+            ),
+            (
+                f"physical formulation: {physical}",
+                [(defect, c[f"offset/physical/{defect}"], "-"), ("healthy", c["offset/physical/healthy"], "-")],
+            ),
+        ]
+        time_panels(
+            f"fig{fa}_{defect}_follower_acceleration",
+            f"Follower acceleration: {defect} vs healthy (offset)",
+            "ÿ4 (m/s²)",
+            panels,
+            acc,
+        )
+        time_panels(
+            f"fig{ff}_{defect}_contact_force",
+            f"Contact force: {defect} vs healthy (offset)",
+            "contact force (N)",
+            panels,
+            force,
+        )
+        spectrum_panels(
+            f"fig{fs}_{defect}_bearing_spectrum", f"Bearing acceleration ÿ1: {defect} vs healthy (offset)", panels
+        )
 
     # In-line follower: the lateral load reverses, so the rod crosses its clearance.
-    panels = [("paper formulation: imposed side switch", [("clearance", c["inline/paper/clearance"], "-"),
-                                                          ("healthy", c["inline/paper/healthy"], "-")]),
-              ("physical formulation: gap with wall contacts", [("clearance", c["inline/physical/clearance"], "-"),
-                                                                ("healthy", c["inline/physical/healthy"], "-")])]
-    time_panels("fig16_inline_clearance_follower_acceleration",
-                "In-line follower (e = 0): follower acceleration with guide clearance", "ÿ4 (m/s²)", panels, acc)
+    panels = [
+        (
+            "paper formulation: imposed side switch",
+            [("clearance", c["inline/paper/clearance"], "-"), ("healthy", c["inline/paper/healthy"], "-")],
+        ),
+        (
+            "physical formulation: gap with wall contacts",
+            [("clearance", c["inline/physical/clearance"], "-"), ("healthy", c["inline/physical/healthy"], "-")],
+        ),
+    ]
+    time_panels(
+        "fig16_inline_clearance_follower_acceleration",
+        "In-line follower (e = 0): follower acceleration with guide clearance",
+        "ÿ4 (m/s²)",
+        panels,
+        acc,
+    )
     fig, ax = plt.subplots(figsize=(9, 4.5))
     header, cols = ["theta_deg"], [deg(c["inline/physical/clearance"])]
     for key in ("inline/physical/clearance", "offset/physical/clearance"):
@@ -475,8 +552,14 @@ def make_figures(cases: dict, carrier: float, modal: dict, bands: list, cfg: Stu
         rows += [(key, i + 2, v) for i, v in enumerate(h)]
     ax.axhline(cfg.settle_tolerance, color="k", lw=0.6)
     ax.set_xlabel("revolution"), ax.set_ylabel("max |Δÿ4| / max |ÿ4| vs the previous revolution")
-    ax.set_title("Settling to the periodic response (black: tolerance)"), ax.legend(fontsize=6, ncol=2), ax.grid(alpha=0.3)
-    _files.write_text(data / "fig18_settling.csv", "case,revolution,change\n" + "".join(f"{k},{i},{v:.9g}\n" for k, i, v in rows))
+    (
+        ax.set_title("Settling to the periodic response (black: tolerance)"),
+        ax.legend(fontsize=6, ncol=2),
+        ax.grid(alpha=0.3),
+    )
+    _files.write_text(
+        data / "fig18_settling.csv", "case,revolution,change\n" + "".join(f"{k},{i},{v:.9g}\n" for k, i, v in rows)
+    )
     save(fig, "fig18_settling")
 
     fig, ax = plt.subplots(figsize=(9, 4.5))
@@ -489,9 +572,16 @@ def make_figures(cases: dict, carrier: float, modal: dict, bands: list, cfg: Stu
     ax.set_title("Rise vs return vibration over what the paper does not give (offset, physical, healthy)")
     ax.legend(fontsize=8), ax.grid(alpha=0.3)
     keys = list(bands[0])
-    _files.write_text(data / "fig19_sensitivity.csv", ",".join(keys) + "\n" + "".join(
-        ",".join(f"{b[k]:.9g}" if isinstance(b[k], float) else str(b[k]) for k in keys) + "\n" for b in bands))
+    _files.write_text(
+        data / "fig19_sensitivity.csv",
+        ",".join(keys)
+        + "\n"
+        + "".join(
+            ",".join(f"{b[k]:.9g}" if isinstance(b[k], float) else str(b[k]) for k in keys) + "\n" for b in bands
+        ),
+    )
     save(fig, "fig19_sensitivity")
+
 
 FIGURES = 14  # make_figures' progress steps
 
@@ -503,7 +593,9 @@ def run_study(cfg: StudyConfig, out: Path, figures: bool = True) -> dict:
     # written last, marks a complete run.
     out = _files.output_folder(out)
     bands_count = len(cfg.camshaft_masses) * len(cfg.contact_exponents)
-    progress = Progress(len(FOLLOWERS) * len(FORMULATIONS) * len(DEFECTS) + bands_count + 1 + (FIGURES if figures else 0))
+    progress = Progress(
+        len(FOLLOWERS) * len(FORMULATIONS) * len(DEFECTS) + bands_count + 1 + (FIGURES if figures else 0)
+    )
     cases = run_cases(cfg, progress)
     bands = sensitivity(cfg, progress)
     healthy = cases["offset/physical/healthy"]
@@ -533,7 +625,8 @@ def run_study(cfg: StudyConfig, out: Path, figures: bool = True) -> dict:
         if defect != "healthy":
             lines = summary["cases"][f"{follower}/{formulation}/healthy"]["shaft_acceleration_sidebands"]["levels"]
             c["shaft_acceleration_sidebands"]["defect_modulation"] = defect_modulation(
-                c["shaft_acceleration_sidebands"]["levels"], lines)
+                c["shaft_acceleration_sidebands"]["levels"], lines
+            )
     progress.step("analysed")
 
     if figures:
@@ -546,28 +639,41 @@ def run_study(cfg: StudyConfig, out: Path, figures: bool = True) -> dict:
 
 def print_summary(summary: dict) -> None:
     k = summary["kinematics"]
-    print(f"\npaper cam at {summary['rpm']:g} rpm (offset follower): max |pressure angle| rise "
-          f"{abs(k['max_pressure_angle_rise_deg']):.2f} deg, return {abs(k['max_pressure_angle_return_deg']):.2f} deg; "
-          f"peak theoretical follower acceleration {k['max_theoretical_follower_acceleration_m_s2']:.2f} m/s^2")
-    print("natural frequencies on the dwell (Hz): " + ", ".join(f"{f:.0f}" for f in summary["natural_frequencies_hz_dwell"]))
-    print(f"\n{'case':30s} {'settled':>8s} {'revs':>5s} {'change':>8s} {'peak a4':>9s} {'dwell':>7s} {'rise':>6s} "
-          f"{'return':>6s} {'Fc min':>7s} {'Fc max':>8s} {'loss/rev':>8s} {'mod.':>7s} {'impacts':>7s}")
+    print(
+        f"\npaper cam at {summary['rpm']:g} rpm (offset follower): max |pressure angle| rise "
+        f"{abs(k['max_pressure_angle_rise_deg']):.2f} deg, return {abs(k['max_pressure_angle_return_deg']):.2f} deg; "
+        f"peak theoretical follower acceleration {k['max_theoretical_follower_acceleration_m_s2']:.2f} m/s^2"
+    )
+    print(
+        "natural frequencies on the dwell (Hz): "
+        + ", ".join(f"{f:.0f}" for f in summary["natural_frequencies_hz_dwell"])
+    )
+    print(
+        f"\n{'case':30s} {'settled':>8s} {'revs':>5s} {'change':>8s} {'peak a4':>9s} {'dwell':>7s} {'rise':>6s} "
+        f"{'return':>6s} {'Fc min':>7s} {'Fc max':>8s} {'loss/rev':>8s} {'mod.':>7s} {'impacts':>7s}"
+    )
     for key, c in summary["cases"].items():
         s = c["settle"]
         lo, hi = c["contact_force_range_N"]
         impacts = c.get("guide_clearance", {}).get("impacts_per_revolution", float("nan"))
-        print(f"{key:30s} {str(s['settled']):>8s} {s['revolutions']:5d} {s['change']:8.1e} "
-              f"{c['peak_follower_acceleration_m_s2']:9.1f} {c['dwell_deviation_peak_m_s2']:7.2f} "
-              f"{c['rise_deviation_rms_m_s2']:6.2f} {c['return_deviation_rms_m_s2']:6.2f} {lo:7.1f} {hi:8.1f} "
-              f"{round(c['contact_loss_time_per_revolution_s'], 12) + 0.0:8.1e} "  # rounding noise of 0 s: 0
-              f"{c['shaft_acceleration_sidebands'].get('defect_modulation', 0.0):7.4f} {impacts:7.1f}")
-    print("  (m/s^2 and N; settled/revs/change: periodic steady state reached, revolutions to reach it, last relative\n"
-          "   change of a4; dwell = peak |a4 - omega^2 h''| on the dwells, rise/return = its RMS; mod. = added\n"
-          f"   modulation of the camshaft-bearing acceleration around {summary['carrier_hz']:.1f} Hz; impacts per revolution of the rod on its guide walls)")
+        print(
+            f"{key:30s} {str(s['settled']):>8s} {s['revolutions']:5d} {s['change']:8.1e} "
+            f"{c['peak_follower_acceleration_m_s2']:9.1f} {c['dwell_deviation_peak_m_s2']:7.2f} "
+            f"{c['rise_deviation_rms_m_s2']:6.2f} {c['return_deviation_rms_m_s2']:6.2f} {lo:7.1f} {hi:8.1f} "
+            f"{round(c['contact_loss_time_per_revolution_s'], 12) + 0.0:8.1e} "  # rounding noise of 0 s: 0
+            f"{c['shaft_acceleration_sidebands'].get('defect_modulation', 0.0):7.4f} {impacts:7.1f}"
+        )
+    print(
+        "  (m/s^2 and N; settled/revs/change: periodic steady state reached, revolutions to reach it, last relative\n"
+        "   change of a4; dwell = peak |a4 - omega^2 h''| on the dwells, rise/return = its RMS; mod. = added\n"
+        f"   modulation of the camshaft-bearing acceleration around {summary['carrier_hz']:.1f} Hz; impacts per revolution of the rod on its guide walls)"
+    )
     print("sensitivity (offset, physical, healthy): rise / return RMS deviation (m/s^2)")
     for b in summary["sensitivity"]:
-        print(f"  n = {b['contact_exponent']:.3g}, camshaft {b['camshaft_mass_kg']:g} kg: "
-              f"{b['rise_deviation_rms_m_s2']:.2f} / {b['return_deviation_rms_m_s2']:.2f}")
+        print(
+            f"  n = {b['contact_exponent']:.3g}, camshaft {b['camshaft_mass_kg']:g} kg: "
+            f"{b['rise_deviation_rms_m_s2']:.2f} / {b['return_deviation_rms_m_s2']:.2f}"
+        )
 
 
 def main(argv: list[str] | None = None, prog: str = "camfollower study") -> int:
@@ -575,24 +681,54 @@ def main(argv: list[str] | None = None, prog: str = "camfollower study") -> int:
     d = StudyConfig()
     parser.add_argument("--out", default="out", help="output folder (created if missing); default: out")
     parser.add_argument("--rpm", type=float, default=d.rpm, help=f"camshaft speed (rpm); default {d.rpm:g}")
-    parser.add_argument("--eccentricity", type=float, default=d.eccentricity, help="cam centre offset (m); default 10e-6")
-    parser.add_argument("--clearance", type=float, default=d.clearance, help="radial guide clearance (m); default 10e-6")
-    parser.add_argument("--backlash-switch-width", type=float, default=d.backlash_switch_width_deg,
-                        help=f"paper formulation: cam angle of the imposed side switch (deg); default {d.backlash_switch_width_deg:g}")
-    parser.add_argument("--damping-ratio", type=float, default=d.damping_ratio,
-                        help=f"physical formulation: modal damping of the lowest modes; default {d.damping_ratio:g}")
-    parser.add_argument("--analysed-revolutions", type=int, default=d.analysed_revolutions,
-                        help=f"revolutions analysed after settling; default {d.analysed_revolutions}")
-    parser.add_argument("--max-revolutions", type=int, default=d.max_revolutions,
-                        help=f"at most this many revolutions to settle; default {d.max_revolutions}")
-    parser.add_argument("--steps-per-revolution", type=int, default=d.steps_per_revolution,
-                        help=f"time steps per revolution; default {d.steps_per_revolution}")
+    parser.add_argument(
+        "--eccentricity", type=float, default=d.eccentricity, help="cam centre offset (m); default 10e-6"
+    )
+    parser.add_argument(
+        "--clearance", type=float, default=d.clearance, help="radial guide clearance (m); default 10e-6"
+    )
+    parser.add_argument(
+        "--backlash-switch-width",
+        type=float,
+        default=d.backlash_switch_width_deg,
+        help=f"paper formulation: cam angle of the imposed side switch (deg); default {d.backlash_switch_width_deg:g}",
+    )
+    parser.add_argument(
+        "--damping-ratio",
+        type=float,
+        default=d.damping_ratio,
+        help=f"physical formulation: modal damping of the lowest modes; default {d.damping_ratio:g}",
+    )
+    parser.add_argument(
+        "--analysed-revolutions",
+        type=int,
+        default=d.analysed_revolutions,
+        help=f"revolutions analysed after settling; default {d.analysed_revolutions}",
+    )
+    parser.add_argument(
+        "--max-revolutions",
+        type=int,
+        default=d.max_revolutions,
+        help=f"at most this many revolutions to settle; default {d.max_revolutions}",
+    )
+    parser.add_argument(
+        "--steps-per-revolution",
+        type=int,
+        default=d.steps_per_revolution,
+        help=f"time steps per revolution; default {d.steps_per_revolution}",
+    )
     parser.add_argument("--no-figures", action="store_true", help="skip the PNG figures")
     args = parser.parse_args(argv)
-    cfg = StudyConfig(rpm=args.rpm, eccentricity=args.eccentricity, clearance=args.clearance,
-                      backlash_switch_width_deg=args.backlash_switch_width, damping_ratio=args.damping_ratio,
-                      analysed_revolutions=args.analysed_revolutions, max_revolutions=args.max_revolutions,
-                      steps_per_revolution=args.steps_per_revolution)
+    cfg = StudyConfig(
+        rpm=args.rpm,
+        eccentricity=args.eccentricity,
+        clearance=args.clearance,
+        backlash_switch_width_deg=args.backlash_switch_width,
+        damping_ratio=args.damping_ratio,
+        analysed_revolutions=args.analysed_revolutions,
+        max_revolutions=args.max_revolutions,
+        steps_per_revolution=args.steps_per_revolution,
+    )
     out = Path(args.out)
     try:
         cfg.validate()

@@ -47,9 +47,20 @@ from .executors import check_executor, run_cases
 from .response import check_accuracy, steady_response
 
 #: Metrics of each case kept in the table (from camfollower.response.steady_response).
-METRICS = ("min_force_N", "min_force_angle_deg", "max_force_N", "contact_lost", "lost_fraction",
-           "max_abs_acceleration", "dwell_residual", "converged", "revolutions", "iterations", "accuracy",
-           "steps_per_revolution")
+METRICS = (
+    "min_force_N",
+    "min_force_angle_deg",
+    "max_force_N",
+    "contact_lost",
+    "lost_fraction",
+    "max_abs_acceleration",
+    "dwell_residual",
+    "converged",
+    "revolutions",
+    "iterations",
+    "accuracy",
+    "steps_per_revolution",
+)
 
 
 def _finite(name: str, v) -> float:
@@ -130,8 +141,10 @@ class TruncatedNormal:
         _flag("TruncatedNormal relative", self.relative)
         cdf = lambda x: 0.5 * (1 + math.erf((x - self.mean) / (self.std * math.sqrt(2))))  # noqa: E731
         if cdf(self.high) - cdf(self.low) < 1e-3:
-            raise ValueError(f"TruncatedNormal [{self.low}, {self.high}] holds less than 1e-3 of N({self.mean}, "
-                             f"{self.std}^2): widen the interval or move the mean")
+            raise ValueError(
+                f"TruncatedNormal [{self.low}, {self.high}] holds less than 1e-3 of N({self.mean}, "
+                f"{self.std}^2): widen the interval or move the mean"
+            )
 
     def sample(self, rng) -> float:
         while True:
@@ -211,8 +224,10 @@ def _on_fixed_cam(follower, design, radius: float, t):
         across2 = rho2 - along * along
         if np.any(across2 < 0.0):
             k = int(np.argmax(across2 < 0.0))
-            raise ValueError(f"roller_radius: a roller of {radius:.6g} m cannot touch the cam at "
-                             f"{math.degrees(float(t[k])):.4g} deg on an arm of {arm:.6g} m")
+            raise ValueError(
+                f"roller_radius: a roller of {radius:.6g} m cannot touch the cam at "
+                f"{math.degrees(float(t[k])):.4g} deg on an arm of {arm:.6g} m"
+            )
         across = side * np.sqrt(across2)
         cx, cy = along * ux - across * uy, along * uy + across * ux
         theta = np.arctan2(cy, cx) - psi
@@ -250,45 +265,45 @@ def _end_derivatives(follower, segment, radius: float, t: float) -> List[float]:
         C = pivot + arm * u
         C1 = sigma * arm * h1 * J(u)
         C2 = sigma * arm * h2 * J(u) - arm * h1 * h1 * u
-        C3 = sigma * arm * (h3 - h1 ** 3) * J(u) - 3.0 * arm * h1 * h2 * u
+        C3 = sigma * arm * (h3 - h1**3) * J(u) - 3.0 * arm * h1 * h2 * u
     N, N1, N2 = C + J(C1), C1 + J(C2), C2 + J(C3)
     m = math.hypot(*N)
     a, b = N @ N1, N1 @ N1 + N @ N2
-    n1 = N1 / m - N * a / m ** 3
-    n2 = N2 / m - 2.0 * N1 * a / m ** 3 - N * b / m ** 3 + 3.0 * N * a * a / m ** 5
+    n1 = N1 / m - N * a / m**3
+    n2 = N2 / m - 2.0 * N1 * a / m**3 - N * b / m**3 + 3.0 * N * a * a / m**5
     d = radius - follower.roller_radius
     G, G1, G2 = C + d * N / m, C1 + d * n1, C2 + d * n2
     r2 = G @ G
     rho = math.sqrt(r2)
     rho1 = (G @ G1) / rho
-    rho2 = (G1 @ G1 + G @ G2) / rho - (G @ G1) ** 2 / rho ** 3
+    rho2 = (G1 @ G1 + G @ G2) / rho - (G @ G1) ** 2 / rho**3
     ang1 = _cross(G, G1) / r2
-    ang2 = _cross(G, G2) / r2 - 2.0 * _cross(G, G1) * (G @ G1) / r2 ** 2
+    ang2 = _cross(G, G2) / r2 - 2.0 * _cross(G, G1) * (G @ G1) / r2**2
     if isinstance(follower, _core.TranslatingRoller):
         # the centre at (e, Y), Y = sqrt(rho^2 - e^2); theta - t = atan2(Y, e) - angle(G)
         Y = math.sqrt(r2 - e * e)
         Y1 = rho * rho1 / Y
-        Y2 = (rho1 ** 2 + rho * rho2) / Y - (rho * rho1) ** 2 / Y ** 3
+        Y2 = (rho1**2 + rho * rho2) / Y - (rho * rho1) ** 2 / Y**3
         beta1 = e * Y1 / r2
-        beta2 = e * Y2 / r2 - 2.0 * e * Y1 * rho * rho1 / r2 ** 2
+        beta2 = e * Y2 / r2 - 2.0 * e * Y1 * rho * rho1 / r2**2
         th1, th2, s1, s2 = 1.0 + beta1 - ang1, beta2 - ang2, Y1, Y2
     else:
         # the centre Q = A p + side B Jp, rho from the axis and arm from the pivot; theta - t = angle(Q) - angle(G)
         dist = math.hypot(*pivot)
         p = pivot / dist
         A = (r2 - arm * arm + dist * dist) / (2.0 * dist)
-        A1, A2 = rho * rho1 / dist, (rho1 ** 2 + rho * rho2) / dist
+        A1, A2 = rho * rho1 / dist, (rho1**2 + rho * rho2) / dist
         B = math.sqrt(r2 - A * A)
         B1 = (rho * rho1 - A * A1) / B
-        B2 = (rho1 ** 2 + rho * rho2 - A1 ** 2 - A * A2) / B - (rho * rho1 - A * A1) ** 2 / B ** 3
+        B2 = (rho1**2 + rho * rho2 - A1**2 - A * A2) / B - (rho * rho1 - A * A1) ** 2 / B**3
         side = 1.0 if _cross(p, C) >= 0.0 else -1.0
         Q, Q1, Q2 = (x * p + side * y * J(p) for x, y in ((A, B), (A1, B1), (A2, B2)))
         gam1 = _cross(Q, Q1) / r2
-        gam2 = _cross(Q, Q2) / r2 - 2.0 * _cross(Q, Q1) * (Q @ Q1) / r2 ** 2
+        gam2 = _cross(Q, Q2) / r2 - 2.0 * _cross(Q, Q1) * (Q @ Q1) / r2**2
         R = Q - pivot  # |R| = arm, so R . Q' = 0: the arm angle's rates are R x Q' / arm^2 and R x Q'' / arm^2
         th1, th2 = 1.0 + gam1 - ang1, gam2 - ang2
-        s1, s2 = sigma * _cross(R, Q1) / arm ** 2, sigma * _cross(R, Q2) / arm ** 2
-    return [s1 / th1, (s2 * th1 - s1 * th2) / th1 ** 3]
+        s1, s2 = sigma * _cross(R, Q1) / arm**2, sigma * _cross(R, Q2) / arm**2
+    return [s1 / th1, (s2 * th1 - s1 * th2) / th1**3]
 
 
 def roller_on_fixed_cam(follower, program, roller_radius: float, *, step: float = FIXED_CAM_STEP):
@@ -312,8 +327,10 @@ def roller_on_fixed_cam(follower, program, roller_radius: float, *, step: float 
     radius outside (0, 1 m] is refused: ValueError naming ``roller_radius``.
     """
     if not isinstance(follower, (_core.TranslatingRoller, _core.OscillatingRoller)):
-        raise ValueError(f"roller_on_fixed_cam needs a TranslatingRoller or OscillatingRoller follower, got "
-                         f"{type(follower).__name__}")
+        raise ValueError(
+            f"roller_on_fixed_cam needs a TranslatingRoller or OscillatingRoller follower, got "
+            f"{type(follower).__name__}"
+        )
     radius = _finite("roller_radius", roller_radius)
     if not 0.0 < radius <= 1.0:
         raise ValueError(f"roller_radius must be in (0, 1] m, got {roller_radius!r}")
@@ -324,8 +341,9 @@ def roller_on_fixed_cam(follower, program, roller_radius: float, *, step: float 
     if isinstance(follower, _core.TranslatingRoller):
         new = _core.TranslatingRoller(follower.base_radius, radius, follower.offset)
     else:
-        new = _core.OscillatingRoller(follower.base_radius, radius, np.asarray(follower.pivot).reshape(2),
-                                      follower.arm_length, follower.turn)
+        new = _core.OscillatingRoller(
+            follower.base_radius, radius, np.asarray(follower.pivot).reshape(2), follower.arm_length, follower.turn
+        )
     error = program.profile_error
     design = program.with_profile_error(_core.ProfileError()) if error else program
     # A concave flank of radius below the roller's: the roller cannot reach its bottom.
@@ -334,9 +352,11 @@ def roller_on_fixed_cam(follower, program, roller_radius: float, *, step: float 
     hollow = (surface < 0.0) & (-surface <= radius)
     if hollow.any():
         k = int(np.argmax(hollow))
-        raise ValueError(f"roller_radius: a roller of {radius:.6g} m does not fit the cam's concave flank of radius "
-                         f"{-surface[k]:.6g} m at {math.degrees(t[k]):.4g} deg (the cam was cut for "
-                         f"{follower.roller_radius:.6g} m): it would bridge the hollow")
+        raise ValueError(
+            f"roller_radius: a roller of {radius:.6g} m does not fit the cam's concave flank of radius "
+            f"{-surface[k]:.6g} m at {math.degrees(t[k]):.4g} deg (the cam was cut for "
+            f"{follower.roller_radius:.6g} m): it would bridge the hollow"
+        )
 
     def path(t):
         return _on_fixed_cam(follower, design, radius, np.atleast_1d(np.asarray(t, dtype=float)))
@@ -369,8 +389,18 @@ def roller_on_fixed_cam(follower, program, roller_radius: float, *, step: float 
             break
         n = k + 1 if k + 1 < len(pieces) else k - 1
         a, b = min(k, n), max(k, n)
-        pieces[a:b + 1] = [[pieces[a][0], pieces[b][1], pieces[a][2], pieces[b][3], pieces[a][4], pieces[b][5],
-                            pieces[n][6], pieces[n][7]]]
+        pieces[a : b + 1] = [
+            [
+                pieces[a][0],
+                pieces[b][1],
+                pieces[a][2],
+                pieces[b][3],
+                pieces[a][4],
+                pieces[b][5],
+                pieces[n][6],
+                pieces[n][7],
+            ]
+        ]
     for i, q in enumerate(pieces):  # a dwell is level (its ends differ by rounding): the next piece starts there
         if dwell[q[6]]:
             q[5] = q[4]
@@ -385,11 +415,21 @@ def roller_on_fixed_cam(follower, program, roller_radius: float, *, step: float 
         thg, sg = path(tg)
         if np.any(np.diff(thg) <= 0.0):
             k = int(np.argmax(np.diff(thg) <= 0.0))
-            raise ValueError(f"roller_radius: a roller of {radius:.6g} m does not follow the cam cut for "
-                             f"{follower.roller_radius:.6g} m near {math.degrees(thg[k]):.4g} deg")
+            raise ValueError(
+                f"roller_radius: a roller of {radius:.6g} m does not follow the cam cut for "
+                f"{follower.roller_radius:.6g} m near {math.degrees(thg[k]):.4g} deg"
+            )
         thg[0], thg[-1], sg[0], sg[-1] = tha, thb, sa, sb
-        out.append(_core.Segment.from_table(thg, sg, 5, 0.0, _end_derivatives(follower, segments[j], radius, ta - turn),
-                                            _end_derivatives(follower, segments[j], radius, tb - turn)))
+        out.append(
+            _core.Segment.from_table(
+                thg,
+                sg,
+                5,
+                0.0,
+                _end_derivatives(follower, segments[j], radius, ta - turn),
+                _end_derivatives(follower, segments[j], radius, tb - turn),
+            )
+        )
     result = _core.MotionProgram(out)
     return new, (result.with_profile_error(error) if error else result)
 
@@ -402,8 +442,11 @@ def _fixed_cam(actual, cam):
     changed = False
     for c, nominal in zip(state["contacts"], cam_state["contacts"]):
         f, g = c["follower"], nominal["follower"]
-        if (isinstance(f, (_core.TranslatingRoller, _core.OscillatingRoller)) and type(f) is type(g)
-                and f.roller_radius != g.roller_radius):
+        if (
+            isinstance(f, (_core.TranslatingRoller, _core.OscillatingRoller))
+            and type(f) is type(g)
+            and f.roller_radius != g.roller_radius
+        ):
             c["program"] = roller_on_fixed_cam(g, nominal["program"], f.roller_radius)[1]
             changed = True
     if not changed:
@@ -439,13 +482,17 @@ class PaperCase:
 
     def _check(self, name: str) -> None:
         if name not in self.EXTRA and name not in _core.Parameters.names():
-            raise ValueError(f"PaperCase: unknown parameter {name!r}; known: {_core.Parameters.names() + list(self.EXTRA)}")
+            raise ValueError(
+                f"PaperCase: unknown parameter {name!r}; known: {_core.Parameters.names() + list(self.EXTRA)}"
+            )
 
     def nominal(self, name: str) -> float:
         self._check(name)
         if name == "contact_damping":
-            raise ValueError("PaperCase: contact_damping is a model choice, not a number to scatter; "
-                             "fix it with PaperCase(contact_damping=...)")
+            raise ValueError(
+                "PaperCase: contact_damping is a model choice, not a number to scatter; "
+                "fix it with PaperCase(contact_damping=...)"
+            )
         if name in self.fixed:
             return float(self.fixed[name])
         return self.EXTRA[name] if name in self.EXTRA else _core.Parameters().get(name)
@@ -459,9 +506,13 @@ class PaperCase:
         if extra.get("waviness", 0.0):
             program = program.with_profile_error(_core.ProfileError.waviness(extra["waviness"], self.waviness_order))
         ecc = _core.CamEccentricity(extra["eccentricity"]) if extra.get("eccentricity", 0.0) else None
-        return presets.paper(_core.Parameters(**v), program, eccentricity=ecc,
-                             guide_clearance=extra.get("guide_clearance", 0.0),
-                             element_damping_ratio=extra.get("element_damping_ratio", 0.0))
+        return presets.paper(
+            _core.Parameters(**v),
+            program,
+            eccentricity=ecc,
+            guide_clearance=extra.get("guide_clearance", 0.0),
+            element_damping_ratio=extra.get("element_damping_ratio", 0.0),
+        )
 
     def __call__(self, values: Mapping[str, float]):
         m = self._build(values)
@@ -484,8 +535,14 @@ class ConfigCase:
     ``roller_tolerance`` as in :class:`PaperCase` ("fixed_cam" by default: the cam is the config's, cut for
     its roller). ``camshaft_speed_rpm``: every case at that camshaft speed (rpm) instead of the config's."""
 
-    def __init__(self, data: Mapping[str, Any], base_dir: os.PathLike | str = ".", *,
-                 roller_tolerance: str = "fixed_cam", camshaft_speed_rpm: Optional[float] = None):
+    def __init__(
+        self,
+        data: Mapping[str, Any],
+        base_dir: os.PathLike | str = ".",
+        *,
+        roller_tolerance: str = "fixed_cam",
+        camshaft_speed_rpm: Optional[float] = None,
+    ):
         self.data = copy.deepcopy(dict(data))
         self.base_dir = os.fspath(base_dir)
         self.roller_tolerance = _roller_tolerance(roller_tolerance)
@@ -494,8 +551,10 @@ class ConfigCase:
 
             rpm = _finite("camshaft_speed_rpm", camshaft_speed_rpm)
             if not _MIN_RPM <= rpm <= _MAX_RPM:
-                raise ValueError(f"camshaft_speed_rpm must be a camshaft speed in [{_MIN_RPM:.6g}, {_MAX_RPM:.6g}] "
-                                 f"rpm, got {_echo(camshaft_speed_rpm)}")
+                raise ValueError(
+                    f"camshaft_speed_rpm must be a camshaft speed in [{_MIN_RPM:.6g}, {_MAX_RPM:.6g}] "
+                    f"rpm, got {_echo(camshaft_speed_rpm)}"
+                )
             camshaft_speed_rpm = rpm
         self.camshaft_speed_rpm = camshaft_speed_rpm
 
@@ -508,8 +567,11 @@ class ConfigCase:
 
     def with_options(self, **options) -> "ConfigCase":
         """A copy with other ``roller_tolerance`` / ``camshaft_speed_rpm``."""
-        return ConfigCase(self.data, self.base_dir, **{"roller_tolerance": self.roller_tolerance,
-                                                       "camshaft_speed_rpm": self.camshaft_speed_rpm, **options})
+        return ConfigCase(
+            self.data,
+            self.base_dir,
+            **{"roller_tolerance": self.roller_tolerance, "camshaft_speed_rpm": self.camshaft_speed_rpm, **options},
+        )
 
     def _slot(self, data, path: str):
         parts = path.split(".")
@@ -518,7 +580,7 @@ class ConfigCase:
             try:
                 node = node[int(p)] if isinstance(node, list) else node[p]
             except (KeyError, IndexError, ValueError, TypeError):
-                raise ValueError(f"parameter {path!r}: no {'.'.join(parts[:i + 1])!r} in the config") from None
+                raise ValueError(f"parameter {path!r}: no {'.'.join(parts[: i + 1])!r} in the config") from None
         last = parts[-1]
         if isinstance(node, list):
             try:
@@ -532,12 +594,16 @@ class ConfigCase:
 
     def nominal(self, name: str) -> float:
         if self.camshaft_speed_rpm is not None and name.split(".")[0] == "camshaft":
-            raise ValueError(f"parameter {name!r}: the study runs at {self.camshaft_speed_rpm:g} rpm "
-                             "(camshaft_speed_rpm, --rpm): a tolerance on the config's speed would not reach the model")
+            raise ValueError(
+                f"parameter {name!r}: the study runs at {self.camshaft_speed_rpm:g} rpm "
+                "(camshaft_speed_rpm, --rpm): a tolerance on the config's speed would not reach the model"
+            )
         node, key = self._slot(self.data, name)
         v = node[key]
         if isinstance(v, bool) or not isinstance(v, (int, float)):
-            raise ValueError(f"parameter {name!r}: its nominal value {v!r} must be a plain number in SI units to be toleranced")
+            raise ValueError(
+                f"parameter {name!r}: its nominal value {v!r} must be a plain number in SI units to be toleranced"
+            )
         return float(v)
 
     def _build(self, values: Mapping[str, float]):
@@ -598,10 +664,14 @@ class MonteCarloResult:
     def __repr__(self) -> str:  # a line, not every row
         ok = [r for r in self.rows if r["ok"]]
         lost = sum(bool(r.get("contact_lost")) for r in ok)
-        forces = [r["min_force_N"] for r in ok if isinstance(r.get("min_force_N"), float) and math.isfinite(r["min_force_N"])]
-        spread = (f", min_force_N {_text.g(min(forces), 4)} to {_text.g(max(forces), 4)}" if forces else "")
-        return (f"MonteCarloResult({len(self.rows)} cases, {len(self.rows) - len(ok)} failed, {lost} lost contact"
-                f"{spread}; seed {self.seed}; parameters: {', '.join(self.parameters)})")
+        forces = [
+            r["min_force_N"] for r in ok if isinstance(r.get("min_force_N"), float) and math.isfinite(r["min_force_N"])
+        ]
+        spread = f", min_force_N {_text.g(min(forces), 4)} to {_text.g(max(forces), 4)}" if forces else ""
+        return (
+            f"MonteCarloResult({len(self.rows)} cases, {len(self.rows) - len(ok)} failed, {lost} lost contact"
+            f"{spread}; seed {self.seed}; parameters: {', '.join(self.parameters)})"
+        )
 
     def _matrix(self, names: Sequence[str]) -> np.ndarray:
         ok = [r for r in self.rows if r["ok"]]
@@ -612,18 +682,29 @@ class MonteCarloResult:
         failures and cases that lost contact."""
         numeric = [m for m in self.metrics if m not in ("converged", "contact_lost")]
         X = self._matrix(numeric)
-        out: Dict[str, Any] = {"cases": len(self.rows), "failed": len(self.failed()),
-                               "contact_lost": int(sum(bool(r.get("contact_lost")) for r in self.rows if r["ok"])),
-                               "seed": self.seed, "metrics": {}}
+        out: Dict[str, Any] = {
+            "cases": len(self.rows),
+            "failed": len(self.failed()),
+            "contact_lost": int(sum(bool(r.get("contact_lost")) for r in self.rows if r["ok"])),
+            "seed": self.seed,
+            "metrics": {},
+        }
         for j, m in enumerate(numeric):
             x = X[:, j] if X.size else np.zeros(0)
             x = x[np.isfinite(x)]
             if x.size == 0:
                 continue
             p5, p50, p95 = np.percentile(x, [5, 50, 95])
-            out["metrics"][m] = {"mean": float(x.mean()), "std": float(x.std(ddof=1)) if x.size > 1 else 0.0,
-                                 "min": float(x.min()), "p5": float(p5), "p50": float(p50), "p95": float(p95),
-                                 "max": float(x.max()), "nominal": float(self.nominal[m])}
+            out["metrics"][m] = {
+                "mean": float(x.mean()),
+                "std": float(x.std(ddof=1)) if x.size > 1 else 0.0,
+                "min": float(x.min()),
+                "p5": float(p5),
+                "p50": float(p50),
+                "p95": float(p95),
+                "max": float(x.max()),
+                "nominal": float(self.nominal[m]),
+            }
         return out
 
     def sensitivities(self, metric: str = "min_force_N") -> List[Dict[str, Any]]:
@@ -646,7 +727,9 @@ class MonteCarloResult:
         X = self._matrix(list(self.parameters) + [metric])
         X = X[np.all(np.isfinite(X), axis=1)]
         if X.shape[0] < len(self.parameters) + 2:
-            raise ValueError(f"sensitivities need at least {len(self.parameters) + 2} successful cases, got {X.shape[0]}")
+            raise ValueError(
+                f"sensitivities need at least {len(self.parameters) + 2} successful cases, got {X.shape[0]}"
+            )
         sd = X.std(axis=0, ddof=1)
         Z = np.divide(X - X.mean(axis=0), sd, out=np.zeros_like(X), where=sd > 0)
         coef = np.linalg.lstsq(Z[:, :-1], Z[:, -1], rcond=None)[0]
@@ -654,9 +737,16 @@ class MonteCarloResult:
         for j, p in enumerate(self.parameters):
             r = float(np.corrcoef(X[:, j], X[:, -1])[0, 1]) if sd[j] > 0 and sd[-1] > 0 else 0.0
             effect = float(coef[j] * sd[-1])
-            out.append({"parameter": p, "effect_of_one_std": effect,
-                        "slope": effect / float(sd[j]) if sd[j] > 0 else math.nan,
-                        "parameter_std": float(sd[j]), "standardized_coefficient": float(coef[j]), "correlation": r})
+            out.append(
+                {
+                    "parameter": p,
+                    "effect_of_one_std": effect,
+                    "slope": effect / float(sd[j]) if sd[j] > 0 else math.nan,
+                    "parameter_std": float(sd[j]),
+                    "standardized_coefficient": float(coef[j]),
+                    "correlation": r,
+                }
+            )
         return sorted(out, key=lambda d: -abs(d["effect_of_one_std"]))
 
     def to_parquet(self, path: os.PathLike | str, *, protect=()) -> None:
@@ -700,15 +790,26 @@ def _check_ranges(build, tolerances, nominal) -> None:
                 build({name: value})
             except ValueError as e:
                 kind = type(dist).__name__
-                raise ValueError(f"tolerance on {name!r}: the {kind} reaches {value:.6g} (nominal {nominal[name]:.6g}), "
-                                 f"which the model refuses: {e}. Narrow it or use a TruncatedNormal inside the valid "
-                                 "range") from None
+                raise ValueError(
+                    f"tolerance on {name!r}: the {kind} reaches {value:.6g} (nominal {nominal[name]:.6g}), "
+                    f"which the model refuses: {e}. Narrow it or use a TruncatedNormal inside the valid "
+                    "range"
+                ) from None
 
 
-def monte_carlo(build: Callable[[Mapping[str, float]], Any], tolerances: Mapping[str, Any], *, cases: int = 100,
-                seed: int = 0, contact: Optional[str] = None, accuracy: Optional[float] = None,
-                steps_per_revolution: Optional[int] = None, executor=None, workers: Optional[int] = None,
-                progress: bool = True) -> MonteCarloResult:
+def monte_carlo(
+    build: Callable[[Mapping[str, float]], Any],
+    tolerances: Mapping[str, Any],
+    *,
+    cases: int = 100,
+    seed: int = 0,
+    contact: Optional[str] = None,
+    accuracy: Optional[float] = None,
+    steps_per_revolution: Optional[int] = None,
+    executor=None,
+    workers: Optional[int] = None,
+    progress: bool = True,
+) -> MonteCarloResult:
     """``cases`` random variants of the model ``build`` describes (module docstring), each solved to
     its periodic steady state and measured (:data:`METRICS`), on ``executor`` (camfollower.executors).
 
@@ -723,7 +824,9 @@ def monte_carlo(build: Callable[[Mapping[str, float]], Any], tolerances: Mapping
         raise ValueError("tolerances: give at least one {parameter: distribution}")
     for name, d in tolerances.items():
         if not isinstance(d, (Normal, Uniform, TruncatedNormal)):
-            raise TypeError(f"tolerance on {name!r} must be a Normal, Uniform or TruncatedNormal, got {type(d).__name__}")
+            raise TypeError(
+                f"tolerance on {name!r} must be a Normal, Uniform or TruncatedNormal, got {type(d).__name__}"
+            )
     if isinstance(cases, bool) or not isinstance(cases, int) or not 1 <= cases <= 10_000_000:
         raise ValueError(f"cases must be an integer in [1, 1e7], got {cases!r}")
     if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
@@ -733,8 +836,13 @@ def monte_carlo(build: Callable[[Mapping[str, float]], Any], tolerances: Mapping
     _check_ranges(build, tolerances, nominal)
     if accuracy is not None:
         check_accuracy(accuracy)
-    options = dict(contact=contact, accuracy=accuracy, steps_per_revolution=steps_per_revolution, fallback="transient",
-                   multipliers=False)
+    options = dict(
+        contact=contact,
+        accuracy=accuracy,
+        steps_per_revolution=steps_per_revolution,
+        fallback="transient",
+        multipliers=False,
+    )
     nominal_row = steady_response(build({}), **{**options, "multipliers": True})
     values = [_draw(tolerances, nominal, seed, i) for i in range(cases)]
     fn = functools.partial(_mc_case, build, options)
@@ -747,9 +855,23 @@ def monte_carlo(build: Callable[[Mapping[str, float]], Any], tolerances: Mapping
         else:
             row.update({m: math.nan for m in METRICS}, ok=False, error=o.error)
         rows.append(row)
-    return MonteCarloResult(rows=rows, nominal={k: nominal_row[k] for k in METRICS}, parameters=list(tolerances),
-                            seed=seed)
+    return MonteCarloResult(
+        rows=rows, nominal={k: nominal_row[k] for k in METRICS}, parameters=list(tolerances), seed=seed
+    )
 
 
-__all__ = ["ConfigCase", "DISTRIBUTIONS", "FIXED_CAM_STEP", "METRICS", "MonteCarloResult", "Normal", "PaperCase",
-           "ROLLER_TOLERANCES", "TruncatedNormal", "Uniform", "distribution", "monte_carlo", "roller_on_fixed_cam"]
+__all__ = [
+    "ConfigCase",
+    "DISTRIBUTIONS",
+    "FIXED_CAM_STEP",
+    "METRICS",
+    "MonteCarloResult",
+    "Normal",
+    "PaperCase",
+    "ROLLER_TOLERANCES",
+    "TruncatedNormal",
+    "Uniform",
+    "distribution",
+    "monte_carlo",
+    "roller_on_fixed_cam",
+]

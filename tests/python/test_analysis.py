@@ -49,7 +49,12 @@ def test_phase_statistics_and_theoretical_acceleration():
     theta = np.linspace(0, 2 * np.pi, 36001)[:-1]
     theory = an.theoretical_follower_acceleration(model, theta)
     stats = an.phase_statistics(model, theta, theory)
-    assert [s["phase"] for s in stats] == ["dwell 0-30 deg", "rise 30-180 deg", "dwell 180-210 deg", "return 210-360 deg"]
+    assert [s["phase"] for s in stats] == [
+        "dwell 0-30 deg",
+        "rise 30-180 deg",
+        "dwell 180-210 deg",
+        "return 210-360 deg",
+    ]
     assert stats[0]["peak"] == 0.0 and stats[2]["rms"] == 0.0
     peak = model.omega**2 * 0.010 * (8 * np.pi / (np.pi + 2)) / np.radians(150) ** 2
     assert stats[1]["peak"] == pytest.approx(peak, rel=1e-9)

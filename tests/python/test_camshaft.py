@@ -27,20 +27,47 @@ def two_cam_shaft(contact_damping=0.0, max_element_length=0.012):
     # In the config reader's order: DOFs, the shaft, bearings, drive, spring chains, contacts.
     for k in (1, 2):
         b.add_dof(f"valve{k}", 0.085, [0, 0, 1])
-    b.add_shaft("camshaft", length=0.176, outer_diameter=0.026, inner_diameter=0.012, max_element_length=max_element_length,
-                stations=[0.0, 0.088, 0.176, 0.044, 0.132], damping=5e-6)
+    b.add_shaft(
+        "camshaft",
+        length=0.176,
+        outer_diameter=0.026,
+        inner_diameter=0.012,
+        max_element_length=max_element_length,
+        stations=[0.0, 0.088, 0.176, 0.044, 0.132],
+        damping=5e-6,
+    )
     for name, x in (("front", 0.0), ("middle", 0.088), ("rear", 0.176)):
         b.add_bearing(name, "camshaft", x, stiffness=2e8, damping=400)
     b.add_drive("drive", "camshaft", 0.0, stiffness=6000, damping=1.5)
     b.add_mass(b.shaft_dof("camshaft", 0.0, "rx"), 1.5e-3)
     for k in (1, 2):
-        b.add_spring_chain(f"spring{k}", f"valve{k}", stiffness=4.5e4, mass=0.045, elements=6, damping=2.5,
-                           preload=280, direction=[0, 0, 1])
+        b.add_spring_chain(
+            f"spring{k}",
+            f"valve{k}",
+            stiffness=4.5e4,
+            mass=0.045,
+            elements=6,
+            damping=2.5,
+            preload=280,
+            direction=[0, 0, 1],
+        )
     law = cf.LineContact.palmgren_law(0.012)
     for k, (x, phase) in enumerate(((0.044, 0.0), (0.132, math.pi)), start=1):
-        b.mount_cam(f"cam{k}", program, cf.TranslatingRoller(0.018, 0.009, 0.0), follower_dof=f"valve{k}",
-                    shaft="camshaft", at=x, stiffness=law["stiffness"], exponent=law["exponent"],
-                    damping_factor=contact_damping, phase=phase, width=0.016, cam_mass=0.09, cam_inertia=1.8e-5)
+        b.mount_cam(
+            f"cam{k}",
+            program,
+            cf.TranslatingRoller(0.018, 0.009, 0.0),
+            follower_dof=f"valve{k}",
+            shaft="camshaft",
+            at=x,
+            stiffness=law["stiffness"],
+            exponent=law["exponent"],
+            damping_factor=contact_damping,
+            phase=phase,
+            width=0.016,
+            cam_mass=0.09,
+            cam_inertia=1.8e-5,
+        )
     b.camshaft_speed_rpm = 2000
     return b
 
@@ -58,8 +85,10 @@ def test_the_config_and_the_python_builder_describe_the_same_camshaft():
 def test_sparse_and_dense_backends_agree_and_say_which_ran():
     m = two_cam_shaft(contact_damping=1e-5, max_element_length=0.005).build()
     assert m.size > 100
-    runs = {solver: cf.simulate(m, revolutions=0.1, time_step=2e-5, linear_solver=solver)
-            for solver in ("auto", "low_rank", "klu")}
+    runs = {
+        solver: cf.simulate(m, revolutions=0.1, time_step=2e-5, linear_solver=solver)
+        for solver in ("auto", "low_rank", "klu")
+    }
     assert runs["auto"].stats["backend"] == "sparse"
     assert runs["low_rank"].stats["backend"] == "dense"
     assert runs["klu"].stats["backend"] == "sparse"
@@ -75,8 +104,10 @@ def test_sparse_and_dense_backends_agree_and_say_which_ran():
 def test_sparse_and_dense_backends_agree_under_a_tolerance():
     # Newmark under a tolerance on the sparse backend: the same levels, the same steps, the same run.
     m = two_cam_shaft(contact_damping=1e-5, max_element_length=0.005).build()
-    runs = {solver: cf.simulate(m, revolutions=0.1, time_step=1e-4, linear_solver=solver, tolerance=1e-5)
-            for solver in ("auto", "low_rank")}
+    runs = {
+        solver: cf.simulate(m, revolutions=0.1, time_step=1e-4, linear_solver=solver, tolerance=1e-5)
+        for solver in ("auto", "low_rank")
+    }
     assert runs["auto"].stats["backend"] == "sparse" and runs["low_rank"].stats["backend"] == "dense"
     assert runs["auto"].stats["steps"] == runs["low_rank"].stats["steps"] > 0
     q = np.asarray(runs["low_rank"].q)
@@ -136,9 +167,25 @@ def test_config_camshaft_blocks_refuse_misplaced_keys(tmp_path):
 
 def test_camshaft_study_command_writes_its_table_figures_and_summary(tmp_path):
     out = tmp_path / "study"
-    done = subprocess.run([sys.executable, "-m", "camfollower", "camshaft", str(EXAMPLES / "camshaft.toml"),
-                           "--rpm", "1000", "2500", "--revolutions", "1", "-o", str(out)],
-                          capture_output=True, text=True, timeout=600)
+    done = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "camfollower",
+            "camshaft",
+            str(EXAMPLES / "camshaft.toml"),
+            "--rpm",
+            "1000",
+            "2500",
+            "--revolutions",
+            "1",
+            "-o",
+            str(out),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
     assert done.returncode == 0, done.stderr
     assert "1000 rpm: lift error" in done.stdout and "drive torque" in done.stdout
     summary = json.loads((out / "summary.json").read_text())
@@ -156,8 +203,13 @@ def test_camshaft_study_command_writes_its_table_figures_and_summary(tmp_path):
 
 
 def test_camshaft_study_api_on_a_mechanism():
-    summaries, results = camshaft_study(two_cam_shaft(max_element_length=0.005).build(), [1500.0], revolutions=0.5,
-                                        record_last_revolutions=0.25, time_step=2e-5)
+    summaries, results = camshaft_study(
+        two_cam_shaft(max_element_length=0.005).build(),
+        [1500.0],
+        revolutions=0.5,
+        record_last_revolutions=0.25,
+        time_step=2e-5,
+    )
     s = summaries[0]
     assert s["backend"] == "sparse"
     assert set(s["cams"]) == {"cam1", "cam2"} and set(s["bearings"]) == {"front", "middle", "rear"}

@@ -22,13 +22,46 @@ from hypothesis import strategies as st  # noqa: E402
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = sorted((ROOT / "examples").glob("*.toml"))
 # The sanitized build of scripts/test.sh first (the fuzzer then runs under ASan/UBSan), else a Release one.
-CLI = next((p for p in (ROOT / "build-sanitize" / "src" / "camfollower", ROOT / "build" / "src" / "camfollower")
-            if p.exists()), ROOT / "build-sanitize" / "src" / "camfollower")
+CLI = next(
+    (
+        p
+        for p in (ROOT / "build-sanitize" / "src" / "camfollower", ROOT / "build" / "src" / "camfollower")
+        if p.exists()
+    ),
+    ROOT / "build-sanitize" / "src" / "camfollower",
+)
 
-HOSTILE = ["-1", "0", "1e300", "-1e300", "1e-320", "nan", "inf", "-inf", "2.5", "9223372036854775807",
-           "-9223372036854775808", "true", "[]", "{}", "[1, 2]", '"x"', '""', '"nan"', '"1e999 mm"', '"10 parsec"',
-           '"-3 mm"', '"1e308 rpm"', '"0 deg"', '"\\u0007\\u001b[2J"', '"' + "a" * 5000 + '"', "xnonex", '"none"',
-           '"ground"', "1979-05-27"]
+HOSTILE = [
+    "-1",
+    "0",
+    "1e300",
+    "-1e300",
+    "1e-320",
+    "nan",
+    "inf",
+    "-inf",
+    "2.5",
+    "9223372036854775807",
+    "-9223372036854775808",
+    "true",
+    "[]",
+    "{}",
+    "[1, 2]",
+    '"x"',
+    '""',
+    '"nan"',
+    '"1e999 mm"',
+    '"10 parsec"',
+    '"-3 mm"',
+    '"1e308 rpm"',
+    '"0 deg"',
+    '"\\u0007\\u001b[2J"',
+    '"' + "a" * 5000 + '"',
+    "xnonex",
+    '"none"',
+    '"ground"',
+    "1979-05-27",
+]
 ASSIGNMENT = re.compile(r"^(\s*[A-Za-z_][\w.\"-]*\s*=\s*)(.*)$")
 
 
@@ -68,8 +101,9 @@ def check_message(message: str, path: Path) -> None:
     assert not re.search(r"[\x00-\x08\x0b-\x1f\x7f]", message), repr(message)
 
 
-mutation = st.tuples(st.sampled_from(EXAMPLES), st.integers(0, 8), st.integers(0, 500), st.integers(0, 100),
-                     st.floats(0.0, 1.0))
+mutation = st.tuples(
+    st.sampled_from(EXAMPLES), st.integers(0, 8), st.integers(0, 500), st.integers(0, 100), st.floats(0.0, 1.0)
+)
 
 
 @settings(deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
@@ -98,8 +132,9 @@ def test_the_command_line_never_crashes_on_mutated_configs(tmp_path, m):
         shutil.copytree(example.parent / "data", tmp_path / "data", dirs_exist_ok=True)
     path = tmp_path / example.name
     path.write_bytes(mutate(example.read_text(), op, line_pick, token, cut))
-    r = subprocess.run([str(CLI), "kinematics", str(path)], capture_output=True, timeout=60,
-                       env={**os.environ, "LC_ALL": "C"})
+    r = subprocess.run(
+        [str(CLI), "kinematics", str(path)], capture_output=True, timeout=60, env={**os.environ, "LC_ALL": "C"}
+    )
     assert r.returncode in (0, 1), (r.returncode, r.stderr[-2000:])
     if r.returncode == 1:
         check_message(r.stderr.decode("utf-8", "replace").strip(), path)
@@ -121,8 +156,9 @@ def test_python_and_the_command_line_give_one_answer(tmp_path, m):
         python = None
     except (ValueError, RuntimeError) as e:
         python = str(e)
-    r = subprocess.run([str(CLI), "kinematics", str(path)], capture_output=True, timeout=60,
-                       env={**os.environ, "LC_ALL": "C"})
+    r = subprocess.run(
+        [str(CLI), "kinematics", str(path)], capture_output=True, timeout=60, env={**os.environ, "LC_ALL": "C"}
+    )
     if python is None:
         assert r.returncode == 0, r.stderr[-2000:]
     else:
@@ -151,14 +187,27 @@ def _deep(n):
     return d
 
 
-HOSTILE_VALUES = [_cyclic, _laughs, lambda: _deep(30_000), lambda: _deep(70), lambda: [[[]] * 3] * 3, lambda: {1: "x"},
-                  lambda: 2 ** 70, lambda: -(2 ** 63), lambda: None, lambda: b"bytes", lambda: {"x"}, lambda: "\udc80",
-                  lambda: float("nan"), lambda: "\x1b[2J", lambda: object()]
+HOSTILE_VALUES = [
+    _cyclic,
+    _laughs,
+    lambda: _deep(30_000),
+    lambda: _deep(70),
+    lambda: [[[]] * 3] * 3,
+    lambda: {1: "x"},
+    lambda: 2**70,
+    lambda: -(2**63),
+    lambda: None,
+    lambda: b"bytes",
+    lambda: {"x"},
+    lambda: "\udc80",
+    lambda: float("nan"),
+    lambda: "\x1b[2J",
+    lambda: object(),
+]
 
 
 @settings(deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
-@given(st.sampled_from(EXAMPLES), st.integers(0, 10_000), st.sampled_from(range(len(HOSTILE_VALUES))),
-       st.booleans())
+@given(st.sampled_from(EXAMPLES), st.integers(0, 10_000), st.sampled_from(range(len(HOSTILE_VALUES))), st.booleans())
 def test_mutated_dicts_build_or_are_refused_naming_the_key(tmp_path, example, pick, hostile, replace):
     """config_from_dict on an example's data with one value replaced (or one key added) by a value
     a TOML table cannot hold: a cycle, 2**40 values by shared sub-dicts, 30,000 levels, a non-string key, an integer beyond 64 bits, a
@@ -168,7 +217,7 @@ def test_mutated_dicts_build_or_are_refused_naming_the_key(tmp_path, example, pi
     slots = []  # (container, key) of every value in the tree
 
     def walk(node):
-        for k, v in (node.items() if isinstance(node, dict) else enumerate(node)):
+        for k, v in node.items() if isinstance(node, dict) else enumerate(node):
             slots.append((node, k))
             if isinstance(v, (dict, list)):
                 walk(v)

@@ -53,8 +53,15 @@ stiffness = 1e9
 {contact_extra}
 """
 
-NOMINAL = dict(start_h=0, back=0, h='"12 mm"', interior_h='"6 mm"', program_extra="", contact_extra="",
-               follower='{ type = "translating_roller", base_radius = "40 mm", roller_radius = "10 mm", offset = "5 mm" }')
+NOMINAL = dict(
+    start_h=0,
+    back=0,
+    h='"12 mm"',
+    interior_h='"6 mm"',
+    program_extra="",
+    contact_extra="",
+    follower='{ type = "translating_roller", base_radius = "40 mm", roller_radius = "10 mm", offset = "5 mm" }',
+)
 
 
 def write(tmp_path, **changes):
@@ -75,16 +82,19 @@ def test_the_issue_case_a_bare_25_meant_as_mm_is_refused_with_the_hint(tmp_path)
     with pytest.raises(ValueError) as e:
         load_config(path)
     line = line_of(text, "h = 25 }")
-    assert str(e.value).startswith(f"{path}:{line}: program.feed.segments[1].h: the lift 25 m is more than 10 x the "
-                                   "base radius 0.04 m of contact 'cam'")
+    assert str(e.value).startswith(
+        f"{path}:{line}: program.feed.segments[1].h: the lift 25 m is more than 10 x the "
+        "base radius 0.04 m of contact 'cam'"
+    )
     assert 'did you mean "25 mm"?' in str(e.value)
 
 
 def test_the_same_lifts_with_units_or_plausible_bare_numbers_load(tmp_path):
     for h in ('"25 mm"', "0.025", '"25.0 mm"'):
         path, _ = write(tmp_path, h=h)
-        assert load_config(path).programs["feed"].max_lift() == pytest.approx(float(h.strip('"').split()[0]) *
-                                                                          (1e-3 if "mm" in h else 1.0))
+        assert load_config(path).programs["feed"].max_lift() == pytest.approx(
+            float(h.strip('"').split()[0]) * (1e-3 if "mm" in h else 1.0)
+        )
 
 
 @pytest.mark.parametrize("name", sorted(p.stem for p in EXAMPLES.glob("*.toml")))
@@ -99,34 +109,96 @@ def test_every_example_loads_and_is_force_closed_at_its_speed(name):
 # the message, the limit's words, the hint, the changes that follow the hint). Each value is a
 # millimetre (or micrometre) figure written as a bare number.
 KINDS = [
-    ("lift h", dict(h="25"), "program.feed.segments[1].h", "the lift 25 m", "10 x the base radius 0.04 m", '"25 mm"',
-     dict(h='"25 mm"')),
-    ("lift start_h", dict(start_h="3", back="3"), "program.feed.start_h", "the lift 3 m", "10 x the base radius",
-     '"3 mm"', dict(start_h='"3 mm"', back='"3 mm"')),
-    ("lift interior_h", dict(interior_h="6"), "program.feed.segments[3].interior_h[0]", "the lift 6 m",
-     "10 x the base radius", '"6 mm"', dict(interior_h='"6 mm"')),
-    ("base_radius absolute", dict(follower='{ type = "translating_roller", base_radius = 40, roller_radius = "10 mm" }'),
-     "contact[0].follower.base_radius", "the base radius 40 m", "1 m", '"40 mm"',
-     dict(follower='{ type = "translating_roller", base_radius = "40 mm", roller_radius = "10 mm" }')),
-    ("base_radius vs roller", dict(follower='{ type = "translating_roller", base_radius = 0.9, '
-                                            'roller_radius = "6 mm" }'),
-     "contact[0].follower.base_radius", "the base radius 0.9 m", "100 x the roller radius 0.006 m", '"0.9 mm"', None),
-    ("roller_radius", dict(follower='{ type = "translating_roller", base_radius = "40 mm", roller_radius = 10 }'),
-     "contact[0].follower.roller_radius", "the roller radius 10 m", "10 x the base radius 0.04 m", '"10 mm"',
-     dict(follower='{ type = "translating_roller", base_radius = "40 mm", roller_radius = "10 mm" }')),
-    ("offset", dict(follower='{ type = "translating_flat", base_radius = "40 mm", offset = 5 }'),
-     "contact[0].follower.offset", "the offset 5 m", "10 x the base radius", '"5 mm"',
-     dict(follower='{ type = "translating_flat", base_radius = "40 mm", offset = "5 mm" }')),
-    ("eccentricity radius", dict(contact_extra='eccentricity = { radius = 0.01 }'),
-     "contact[0].eccentricity.radius", "the eccentricity radius 0.01 m", "a tenth of the base radius 0.04 m",
-     '"0.01 mm"', dict(contact_extra='eccentricity = { radius = "0.01 mm" }')),
-    ("waviness amplitude", dict(program_extra='[program.feed.error]\nwaviness = [{ amplitude = 5, order = 3 }]\n'),
-     "program.feed.error.waviness[0].amplitude", "the waviness amplitude 5 m", "a tenth of the base radius",
-     '"5 um"', dict(program_extra='[program.feed.error]\nwaviness = [{ amplitude = "5 um", order = 3 }]\n')),
-    ("dent depth", dict(program_extra='[program.feed.error]\ndent = [{ centre = "100 deg", width = "4 deg", '
-                                      'depth = 20 }]\n'),
-     "program.feed.error.dent[0].depth", "the dent depth 20 m", "a tenth of the base radius", '"20 um"',
-     dict(program_extra='[program.feed.error]\ndent = [{ centre = "100 deg", width = "4 deg", depth = "20 um" }]\n')),
+    (
+        "lift h",
+        dict(h="25"),
+        "program.feed.segments[1].h",
+        "the lift 25 m",
+        "10 x the base radius 0.04 m",
+        '"25 mm"',
+        dict(h='"25 mm"'),
+    ),
+    (
+        "lift start_h",
+        dict(start_h="3", back="3"),
+        "program.feed.start_h",
+        "the lift 3 m",
+        "10 x the base radius",
+        '"3 mm"',
+        dict(start_h='"3 mm"', back='"3 mm"'),
+    ),
+    (
+        "lift interior_h",
+        dict(interior_h="6"),
+        "program.feed.segments[3].interior_h[0]",
+        "the lift 6 m",
+        "10 x the base radius",
+        '"6 mm"',
+        dict(interior_h='"6 mm"'),
+    ),
+    (
+        "base_radius absolute",
+        dict(follower='{ type = "translating_roller", base_radius = 40, roller_radius = "10 mm" }'),
+        "contact[0].follower.base_radius",
+        "the base radius 40 m",
+        "1 m",
+        '"40 mm"',
+        dict(follower='{ type = "translating_roller", base_radius = "40 mm", roller_radius = "10 mm" }'),
+    ),
+    (
+        "base_radius vs roller",
+        dict(follower='{ type = "translating_roller", base_radius = 0.9, roller_radius = "6 mm" }'),
+        "contact[0].follower.base_radius",
+        "the base radius 0.9 m",
+        "100 x the roller radius 0.006 m",
+        '"0.9 mm"',
+        None,
+    ),
+    (
+        "roller_radius",
+        dict(follower='{ type = "translating_roller", base_radius = "40 mm", roller_radius = 10 }'),
+        "contact[0].follower.roller_radius",
+        "the roller radius 10 m",
+        "10 x the base radius 0.04 m",
+        '"10 mm"',
+        dict(follower='{ type = "translating_roller", base_radius = "40 mm", roller_radius = "10 mm" }'),
+    ),
+    (
+        "offset",
+        dict(follower='{ type = "translating_flat", base_radius = "40 mm", offset = 5 }'),
+        "contact[0].follower.offset",
+        "the offset 5 m",
+        "10 x the base radius",
+        '"5 mm"',
+        dict(follower='{ type = "translating_flat", base_radius = "40 mm", offset = "5 mm" }'),
+    ),
+    (
+        "eccentricity radius",
+        dict(contact_extra='eccentricity = { radius = 0.01 }'),
+        "contact[0].eccentricity.radius",
+        "the eccentricity radius 0.01 m",
+        "a tenth of the base radius 0.04 m",
+        '"0.01 mm"',
+        dict(contact_extra='eccentricity = { radius = "0.01 mm" }'),
+    ),
+    (
+        "waviness amplitude",
+        dict(program_extra='[program.feed.error]\nwaviness = [{ amplitude = 5, order = 3 }]\n'),
+        "program.feed.error.waviness[0].amplitude",
+        "the waviness amplitude 5 m",
+        "a tenth of the base radius",
+        '"5 um"',
+        dict(program_extra='[program.feed.error]\nwaviness = [{ amplitude = "5 um", order = 3 }]\n'),
+    ),
+    (
+        "dent depth",
+        dict(program_extra='[program.feed.error]\ndent = [{ centre = "100 deg", width = "4 deg", depth = 20 }]\n'),
+        "program.feed.error.dent[0].depth",
+        "the dent depth 20 m",
+        "a tenth of the base radius",
+        '"20 um"',
+        dict(program_extra='[program.feed.error]\ndent = [{ centre = "100 deg", width = "4 deg", depth = "20 um" }]\n'),
+    ),
 ]
 
 
@@ -136,8 +208,11 @@ def test_each_length_kind_is_refused_at_its_key_with_a_hint(tmp_path, kind, chan
     with pytest.raises(ValueError) as e:
         load_config(path)
     message = str(e.value)
-    m = re.match(rf"{re.escape(str(path))}:(\d+): {re.escape(key)}: {re.escape(value)} is more than "
-                 rf"{re.escape(limit)}.*: did you mean {re.escape(hint)}\?", message)
+    m = re.match(
+        rf"{re.escape(str(path))}:(\d+): {re.escape(key)}: {re.escape(value)} is more than "
+        rf"{re.escape(limit)}.*: did you mean {re.escape(hint)}\?",
+        message,
+    )
     assert m, message
     # The line is the key's own.
     assert key.split(".")[-1].split("[")[0] in text.splitlines()[int(m.group(1)) - 1]
@@ -149,18 +224,24 @@ def test_each_length_kind_is_refused_at_its_key_with_a_hint(tmp_path, kind, chan
 def test_an_offset_the_model_refuses_gets_the_hint_after_the_models_message(tmp_path):
     # A roller's offset must stay within the base and roller radii: the model says so first (as before),
     # and the hint follows when the offset is a bare number far too large.
-    path, text = write(tmp_path, follower='{ type = "translating_roller", base_radius = "40 mm", roller_radius = "10 mm", '
-                                          'offset = 5 }')
+    path, text = write(
+        tmp_path, follower='{ type = "translating_roller", base_radius = "40 mm", roller_radius = "10 mm", offset = 5 }'
+    )
     with pytest.raises(ValueError) as e:
         load_config(path)
     line = line_of(text, "offset = 5 }")
-    assert str(e.value).startswith(f"{path}:{line}: contact[0].follower.offset: must satisfy |offset| < base_radius + "
-                                   "roller_radius")
-    assert str(e.value).endswith('; the offset 5 m is more than 10 x the base radius 0.04 m of contact \'cam\': did you mean '
-                                 '"5 mm"? (a bare number is metres; write "5 m" if you mean it)')
+    assert str(e.value).startswith(
+        f"{path}:{line}: contact[0].follower.offset: must satisfy |offset| < base_radius + roller_radius"
+    )
+    assert str(e.value).endswith(
+        '; the offset 5 m is more than 10 x the base radius 0.04 m of contact \'cam\': did you mean '
+        '"5 mm"? (a bare number is metres; write "5 m" if you mean it)'
+    )
     # Within the radii but written with a unit: no hint, the model's message alone.
-    path, _ = write(tmp_path, follower='{ type = "translating_roller", base_radius = "40 mm", roller_radius = "10 mm", '
-                                       'offset = "5 m" }')
+    path, _ = write(
+        tmp_path,
+        follower='{ type = "translating_roller", base_radius = "40 mm", roller_radius = "10 mm", offset = "5 m" }',
+    )
     with pytest.raises(ValueError, match=r"must satisfy \|offset\| < base_radius \+ roller_radius = 0\.05 m, got 5 m$"):
         load_config(path)
 
@@ -189,18 +270,41 @@ stiffness = 1e8
 """
 
 OSCILLATING = [
-    ("arm_length", '{ type = "oscillating_roller", base_radius = "30 mm", roller_radius = "8 mm", '
-                   'pivot = ["60 mm", "50 mm"], arm_length = 60 }',
-     "contact[0].follower.arm_length", "the arm length 60 m", "100 x the base radius 0.03 m", '"60 mm"'),
-    ("pivot", '{ type = "oscillating_roller", base_radius = "30 mm", roller_radius = "8 mm", pivot = [60, 50], '
-              'arm_length = "60 mm" }',
-     "contact[0].follower.pivot", "the pivot's distance from the cam centre 78.10249676 m",
-     "100 x the base radius 0.03 m", '["60 mm", "50 mm"]'),
-    ("base_radius vs pivot", '{ type = "oscillating_roller", base_radius = 30, roller_radius = "8 mm", '
-                             'pivot = ["60 mm", "50 mm"], arm_length = "60 mm" }',
-     "contact[0].follower.base_radius", "the base radius 30 m", "1 m", '"30 mm"'),
-    ("face_offset", '{ type = "oscillating_flat", base_radius = "35 mm", pivot = ["0 mm", "80 mm"], face_offset = 6 }',
-     "contact[0].follower.face_offset", "the face offset 6 m", "10 x the base radius 0.035 m", '"6 mm"'),
+    (
+        "arm_length",
+        '{ type = "oscillating_roller", base_radius = "30 mm", roller_radius = "8 mm", '
+        'pivot = ["60 mm", "50 mm"], arm_length = 60 }',
+        "contact[0].follower.arm_length",
+        "the arm length 60 m",
+        "100 x the base radius 0.03 m",
+        '"60 mm"',
+    ),
+    (
+        "pivot",
+        '{ type = "oscillating_roller", base_radius = "30 mm", roller_radius = "8 mm", pivot = [60, 50], '
+        'arm_length = "60 mm" }',
+        "contact[0].follower.pivot",
+        "the pivot's distance from the cam centre 78.10249676 m",
+        "100 x the base radius 0.03 m",
+        '["60 mm", "50 mm"]',
+    ),
+    (
+        "base_radius vs pivot",
+        '{ type = "oscillating_roller", base_radius = 30, roller_radius = "8 mm", '
+        'pivot = ["60 mm", "50 mm"], arm_length = "60 mm" }',
+        "contact[0].follower.base_radius",
+        "the base radius 30 m",
+        "1 m",
+        '"30 mm"',
+    ),
+    (
+        "face_offset",
+        '{ type = "oscillating_flat", base_radius = "35 mm", pivot = ["0 mm", "80 mm"], face_offset = 6 }',
+        "contact[0].follower.face_offset",
+        "the face offset 6 m",
+        "10 x the base radius 0.035 m",
+        '"6 mm"',
+    ),
 ]
 
 
@@ -208,18 +312,28 @@ OSCILLATING = [
 def test_each_oscillating_follower_length_is_refused_with_a_hint(tmp_path, kind, follower, key, value, limit, hint):
     path = tmp_path / "swing.toml"
     path.write_text(SWING.format(follower=follower))
-    with pytest.raises(ValueError, match=rf"^{re.escape(str(path))}:\d+: {re.escape(key)}: {re.escape(value)} is more "
-                                         rf"than {re.escape(limit)}.*did you mean {re.escape(hint)}\?"):
+    with pytest.raises(
+        ValueError,
+        match=rf"^{re.escape(str(path))}:\d+: {re.escape(key)}: {re.escape(value)} is more "
+        rf"than {re.escape(limit)}.*did you mean {re.escape(hint)}\?",
+    ):
         load_config(path)
 
 
 def test_base_radius_against_the_arm_and_pivot_below_one_metre(tmp_path):
     # 0.9 m passes the 1 m bound but not 10 x the 60 mm arm (nor 10 x the pivot's 78 mm distance).
     path = tmp_path / "swing.toml"
-    path.write_text(SWING.format(follower='{ type = "oscillating_roller", base_radius = 0.9, roller_radius = "10 mm", '
-                                          'pivot = ["60 mm", "50 mm"], arm_length = "60 mm" }'))
-    with pytest.raises(ValueError, match=r"contact\[0\]\.follower\.base_radius: the base radius 0\.9 m is more than "
-                                         r"10 x the arm length 0\.06 m of contact 'cam'.*\"0\.9 mm\""):
+    path.write_text(
+        SWING.format(
+            follower='{ type = "oscillating_roller", base_radius = 0.9, roller_radius = "10 mm", '
+            'pivot = ["60 mm", "50 mm"], arm_length = "60 mm" }'
+        )
+    )
+    with pytest.raises(
+        ValueError,
+        match=r"contact\[0\]\.follower\.base_radius: the base radius 0\.9 m is more than "
+        r"10 x the arm length 0\.06 m of contact 'cam'.*\"0\.9 mm\"",
+    ):
         load_config(path)
 
 
@@ -238,18 +352,26 @@ def test_the_limits_are_inclusive(tmp_path, factor, refused):
 
 def test_the_presets_lengths_are_checked_too(tmp_path):
     path = tmp_path / "p.toml"
-    base = '[camshaft]\nspeed = 750\n[program.p]\nsegments = [{ law = "cycloidal", end = "180 deg", h = H },' \
-           ' { law = "cycloidal", end = "360 deg", h = 0 }]\n[preset]\nname = "paper"\nprogram = "p"\n'
+    base = (
+        '[camshaft]\nspeed = 750\n[program.p]\nsegments = [{ law = "cycloidal", end = "180 deg", h = H },'
+        ' { law = "cycloidal", end = "360 deg", h = 0 }]\n[preset]\nname = "paper"\nprogram = "p"\n'
+    )
     path.write_text(base.replace("H", "20"))
-    with pytest.raises(ValueError, match=r"p\.toml:4: program\.p\.segments\[0\]\.h: the lift 20 m is more than 10 x the "
-                                         r"base radius .* of the paper preset's cam.*\"20 mm\""):
+    with pytest.raises(
+        ValueError,
+        match=r"p\.toml:4: program\.p\.segments\[0\]\.h: the lift 20 m is more than 10 x the "
+        r"base radius .* of the paper preset's cam.*\"20 mm\"",
+    ):
         load_config(path)
     path.write_text(base.replace("H", '"20 mm"') + "[preset.parameters]\nroller_radius = 12\n")
     with pytest.raises(ValueError, match=r"preset\.parameters\.roller_radius: the roller radius 12 m .*\"12 mm\""):
         load_config(path)
     path.write_text("[camshaft]\nspeed = 2000\n[preset]\nname = \"valve_train\"\n[preset.parameters]\nlift = 9\n")
-    with pytest.raises(ValueError, match=r"p\.toml:6: preset\.parameters\.lift: the lift 9 m is more than 10 x the base "
-                                         r"radius 0\.018 m of the valve-train preset's cams.*\"9 mm\""):
+    with pytest.raises(
+        ValueError,
+        match=r"p\.toml:6: preset\.parameters\.lift: the lift 9 m is more than 10 x the base "
+        r"radius 0\.018 m of the valve-train preset's cams.*\"9 mm\"",
+    ):
         load_config(path)
 
 
@@ -264,12 +386,25 @@ M, K, P, H, BETA, BACK = 0.25, 2.0e4, 60.0, 0.010, math.radians(120.0), math.rad
 def one_mass(rpm, spring=True):
     data = {
         "camshaft": {"speed": rpm},
-        "program": {"c": {"segments": [{"law": "cycloidal", "end": BETA, "h": H},
-                                       {"law": "cycloidal", "end": BETA + BACK, "h": 0},
-                                       {"law": "dwell", "end": 2 * math.pi}]}},
+        "program": {
+            "c": {
+                "segments": [
+                    {"law": "cycloidal", "end": BETA, "h": H},
+                    {"law": "cycloidal", "end": BETA + BACK, "h": 0},
+                    {"law": "dwell", "end": 2 * math.pi},
+                ]
+            }
+        },
         "dof": [{"name": "f", "mass": M}],
-        "contact": [{"name": "cam", "program": "c", "follower_dof": "f", "stiffness": 1e10,
-                     "follower": {"type": "translating_flat", "base_radius": 0.05}}],
+        "contact": [
+            {
+                "name": "cam",
+                "program": "c",
+                "follower_dof": "f",
+                "stiffness": 1e10,
+                "follower": {"type": "translating_flat", "base_radius": 0.05},
+            }
+        ],
     }
     if spring:
         data["spring"] = [{"name": "s", "a": "f", "stiffness": K, "preload": P}]
@@ -284,8 +419,11 @@ def closed_form(omega):
     u = np.where(rise, theta / BETA, np.clip((theta - BETA) / BACK, 0.0, 1.0))
     wave = np.sin(2 * math.pi * u) / (2 * math.pi)
     h = np.where(rise, H * (u - wave), np.where(back, H * (1 - u + wave), 0.0))
-    d2h = np.where(rise, H * 2 * math.pi / BETA**2 * np.sin(2 * math.pi * u),
-                   np.where(back, -H * 2 * math.pi / BACK**2 * np.sin(2 * math.pi * u), 0.0))
+    d2h = np.where(
+        rise,
+        H * 2 * math.pi / BETA**2 * np.sin(2 * math.pi * u),
+        np.where(back, -H * 2 * math.pi / BACK**2 * np.sin(2 * math.pi * u), 0.0),
+    )
     return theta, P + K * h + M * omega**2 * d2h, P + K * h, d2h
 
 
@@ -316,7 +454,7 @@ def test_the_rigid_check_loses_contact_just_above_the_closed_form_speed_and_not_
     assert c["rigid_min_angle_deg"] == pytest.approx(math.degrees(theta[force.argmin()]), abs=0.5)
     assert f"falls to {c['rigid_min_force_N']:.4g} N at cam angle {c['rigid_min_angle_deg']:.1f} deg" in message
     # Where it is negative: the closed form's interval, to the grid's 0.5 deg.
-    (lo, hi), = c["rigid_loss_deg"]
+    ((lo, hi),) = c["rigid_loss_deg"]
     lost = np.degrees(theta[force < 0])
     assert lo == pytest.approx(lost.min(), abs=0.6) and hi == pytest.approx(lost.max(), abs=0.6)
     # At rest the spring holds it: P + K h, smallest on the base circle, less the contact's own
@@ -329,7 +467,9 @@ def test_the_rigid_check_at_another_speed_scales_like_the_closed_form():
     rpm_c = critical_rpm()
     here = force_closure(config_from_dict(one_mass(300.0)), rpm=1.05 * rpm_c)
     there = force_closure(config_from_dict(one_mass(1.05 * rpm_c)))
-    assert here["contacts"][0]["rigid_min_force_N"] == pytest.approx(there["contacts"][0]["rigid_min_force_N"], rel=1e-9)
+    assert here["contacts"][0]["rigid_min_force_N"] == pytest.approx(
+        there["contacts"][0]["rigid_min_force_N"], rel=1e-9
+    )
     assert len(here["warnings"]) == 1
 
 
@@ -347,7 +487,7 @@ def test_a_spring_without_preload_warns_where_the_follower_rests_on_the_base_cir
     data["spring"][0]["preload"] = 0.0
     (c,) = force_closure(config_from_dict(data))["contacts"]
     # P = 0: the force K h is zero exactly on the dwell, from BETA + BACK = 270 deg round to 0.
-    (lo, hi), = c["static_open_deg"]
+    ((lo, hi),) = c["static_open_deg"]
     assert lo == pytest.approx(270.0, abs=0.6) and hi == pytest.approx(0.0, abs=0.6)
 
 
@@ -371,6 +511,7 @@ def test_load_config_warns_with_its_category_and_names_the_file(tmp_path):
 
 def _toml(data):
     """A flat enough dict as TOML text (the few shapes one_mass makes)."""
+
     def value(v):
         if isinstance(v, str):
             return json.dumps(v)
@@ -379,6 +520,7 @@ def _toml(data):
         if isinstance(v, list):
             return "[" + ", ".join(value(x) for x in v) + "]"
         return repr(float(v))
+
     out = [f"[camshaft]\nspeed = {value(data['camshaft']['speed'])}"]
     for name, p in data["program"].items():
         out.append(f"[program.{name}]\nsegments = {value(p['segments'])}")

@@ -24,6 +24,7 @@ DEG = math.pi / 180.0
 
 # --- 1. a rod in a guide with clearance: walls (Hertz, damped), Coulomb friction on the sliding DOF ---
 
+
 class Rod:
     """Lateral DOF x (rod in its guide, radial clearance C) and axial DOF w (the rod's sliding
     coordinate, a follower on a cam, held down by a preloaded spring). The cam's contact force has a
@@ -31,35 +32,55 @@ class Rod:
     wall; in the middle of the rise (R' > e, alpha > 0) it throws the rod across to the -C wall, and
     back. Friction mu N tanh(w' / v_slip) acts on w while the rod touches a wall."""
 
-    MX, MW = 0.2, 0.3                  # kg
-    KS, P = 1e3, 1200.0                # axial spring N/m, preload N (keeps the cam contact closed)
-    KC = 1e8                           # cam contact, N/m, exponent 1, undamped
+    MX, MW = 0.2, 0.3  # kg
+    KS, P = 1e3, 1200.0  # axial spring N/m, preload N (keeps the cam contact closed)
+    KC = 1e8  # cam contact, N/m, exponent 1, undamped
     KW, CHI, MU, VS, C = 2.5e8, 0.5, 0.2, 1e-3, 50e-6  # wall N/m, s/m, -, m/s; clearance m
-    RB, RR, E = 0.030, 0.008, 0.005    # m
+    RB, RR, E = 0.030, 0.008, 0.005  # m
     LIFT, RISE_START, RISE = 0.006, 20 * DEG, 90 * DEG
-    RPM, PHASE = 3000.0, 15 * DEG      # t = 0 is 5 deg before the rise
-    T = 4e-3                           # s: two impacts, one on each wall
+    RPM, PHASE = 3000.0, 15 * DEG  # t = 0 is 5 deg before the rise
+    T = 4e-3  # s: two impacts, one on each wall
 
     def __init__(self):
         self.omega = self.RPM * 2 * math.pi / 60
-        self.s0 = math.sqrt((self.RB + self.RR) ** 2 - self.E ** 2)
+        self.s0 = math.sqrt((self.RB + self.RR) ** 2 - self.E**2)
 
     def builder(self, friction=None):
         friction = self.MU if friction is None else friction
         dwell, cyc = cf.MotionLaw.dwell(), cf.MotionLaw.cycloidal()
         a, b, L = self.RISE_START, self.RISE_START + self.RISE, self.LIFT
-        program = cf.MotionProgram([cf.Segment(dwell, 0, a, 0, 0), cf.Segment(cyc, a, b, 0, L),
-                                    cf.Segment(dwell, b, 200 * DEG, L, L),
-                                    cf.Segment(cyc, 200 * DEG, 2 * math.pi, L, 0)])
+        program = cf.MotionProgram(
+            [
+                cf.Segment(dwell, 0, a, 0, 0),
+                cf.Segment(cyc, a, b, 0, L),
+                cf.Segment(dwell, b, 200 * DEG, L, L),
+                cf.Segment(cyc, 200 * DEG, 2 * math.pi, L, 0),
+            ]
+        )
         m = cf.MechanismBuilder()
         m.add_dof("x", self.MX, direction=(1, 0, 0))
         m.add_dof("w", self.MW, direction=(0, 1, 0))
         m.add_spring("axial", "w", "ground", stiffness=self.KS, preload=self.P)
-        m.add_contact("cam", program, cf.TranslatingRoller(self.RB, self.RR, self.E), follower_dof="w", lateral="x",
-                      stiffness=self.KC, phase=self.PHASE)
-        m.add_clearance("guide", [("x", 1.0)], clearance=self.C, stiffness=self.KW, exponent=1,
-                        damping_factor=self.CHI, friction=friction, sliding_dof="w" if friction else "",
-                        slip_velocity=self.VS)
+        m.add_contact(
+            "cam",
+            program,
+            cf.TranslatingRoller(self.RB, self.RR, self.E),
+            follower_dof="w",
+            lateral="x",
+            stiffness=self.KC,
+            phase=self.PHASE,
+        )
+        m.add_clearance(
+            "guide",
+            [("x", 1.0)],
+            clearance=self.C,
+            stiffness=self.KW,
+            exponent=1,
+            damping_factor=self.CHI,
+            friction=friction,
+            sliding_dof="w" if friction else "",
+            slip_velocity=self.VS,
+        )
         m.camshaft_speed_rpm = self.RPM
         return m
 
@@ -84,8 +105,12 @@ class Rod:
     def rhs(self, t, y):
         x, w, vx, vw = y
         cam, alpha, wall, side, friction = self.forces(t, x, w, vx, vw)
-        return [vx, vw, (-cam * np.sin(alpha) - side * wall) / self.MX,
-                (cam * np.cos(alpha) - self.P - self.KS * w + friction) / self.MW]
+        return [
+            vx,
+            vw,
+            (-cam * np.sin(alpha) - side * wall) / self.MX,
+            (cam * np.cos(alpha) - self.P - self.KS * w + friction) / self.MW,
+        ]
 
 
 @pytest.fixture(scope="module")
@@ -95,8 +120,16 @@ def rod_run():
     y0 = np.concatenate([mech.initial_state, mech.initial_velocity])
     # Radau at rtol 1e-10; max_step 2 us << the ~90 us wall contacts, so none is stepped over (a DOP853
     # run at rtol 1e-12 agrees with it to ~1e-12 m).
-    ref = solve_ivp(rod.rhs, (0, rod.T), y0, method="Radau", rtol=1e-10, atol=[1e-15, 1e-15, 1e-11, 1e-11],
-                    max_step=2e-6, dense_output=True)
+    ref = solve_ivp(
+        rod.rhs,
+        (0, rod.T),
+        y0,
+        method="Radau",
+        rtol=1e-10,
+        atol=[1e-15, 1e-15, 1e-11, 1e-11],
+        max_step=2e-6,
+        dense_output=True,
+    )
     assert ref.status == 0
     dt = 2e-7
     return rod, mech, ref, cf.simulate(mech, duration=rod.T, time_step=dt)
@@ -130,7 +163,7 @@ def test_rod_in_a_guide_with_friction_matches_solve_ivp(rod_run):
     # it then carries on as a displacement error growing over the rest of the run. Factor 2: the
     # impacts' own dynamics reshape these errors (measured: 2.6e-9 m against a bound of 1.0e-8 m).
     rate = np.abs(yf[2][kinks])
-    dv = rod.KW * rate * (1 + rod.CHI * rate) / rod.MX * dt ** 2 / 8
+    dv = rod.KW * rate * (1 + rod.CHI * rate) / rod.MX * dt**2 / 8
     tol_v = 2 * dv.sum()
     tol_x = 2 * float(np.sum(dv * (rod.T - fine[kinks]))) + 1e-10  # + the smooth part (~1e-11 at 2e-7 s)
     err_x = np.abs(r.q[:, 0] - y[0]).max()
@@ -141,8 +174,10 @@ def test_rod_in_a_guide_with_friction_matches_solve_ivp(rod_run):
     err_wall = np.abs(r["guide.force"] - wall).max()
     # Friction mu N on w: mu m_x / m_w ~ 0.13 of the impulse error on x reaches w, and the cam couples
     # them through sin(alpha) ~ 0.1: tol_x covers w.
-    print(f"rod vs solve_ivp at dt = {dt:.0e} s: x {err_x:.2e} m (tol {tol_x:.2e}), w {err_w:.2e} m, "
-          f"wall force {err_wall:.3f} N of {wall.max():.0f} N peak (tol {tol_wall:.2f})")
+    print(
+        f"rod vs solve_ivp at dt = {dt:.0e} s: x {err_x:.2e} m (tol {tol_x:.2e}), w {err_w:.2e} m, "
+        f"wall force {err_wall:.3f} N of {wall.max():.0f} N peak (tol {tol_wall:.2f})"
+    )
     assert err_x <= tol_x
     assert err_w <= tol_x
     assert err_wall <= tol_wall
@@ -172,6 +207,7 @@ def test_the_rod_comparison_can_fail(rod_run):
 
 # --- 2. eccentric circular cam against the exact geometry of a displaced circle ---
 
+
 class EccentricCircle:
     """A base circle (one 360 deg dwell) whose centre sits at u = eps (cos(theta + zeta),
     sin(theta + zeta)); translating roller with offset e; one follower DOF y (the roller centre at
@@ -182,14 +218,14 @@ class EccentricCircle:
 
     M, KS, P = 0.5, 2e4, 300.0
     RB, RR, E = 0.040, 0.0125, 0.010
-    KC, EXPONENT, CHI = 1e10, 1.5, 0.05   # N/m^1.5 (delta ~ 10 um), s/m
+    KC, EXPONENT, CHI = 1e10, 1.5, 0.05  # N/m^1.5 (delta ~ 10 um), s/m
     EPS, ZETA = 0.2e-3, 0.4
-    RPM = 3000.0                          # run-out at 50 Hz; inertia M eps omega^2 ~ 10 N
+    RPM = 3000.0  # run-out at 50 Hz; inertia M eps omega^2 ~ 10 N
 
     def __init__(self):
         self.omega = self.RPM * 2 * math.pi / 60
         self.rp = self.RB + self.RR
-        self.s0 = math.sqrt(self.rp ** 2 - self.E ** 2)
+        self.s0 = math.sqrt(self.rp**2 - self.E**2)
 
     def build(self, zeta=None):
         zeta = self.ZETA if zeta is None else zeta
@@ -197,16 +233,27 @@ class EccentricCircle:
         b.add_dof("y", self.M, direction=(0, 1, 0))
         b.add_spring("spring", "y", "ground", stiffness=self.KS, preload=self.P)
         program = cf.MotionProgram([cf.Segment(cf.MotionLaw.dwell(), 0.0, 2 * math.pi, 0.0, 0.0)])
-        b.add_contact("cam", program, cf.TranslatingRoller(self.RB, self.RR, self.E), follower_dof="y",
-                      stiffness=self.KC, exponent=self.EXPONENT, damping_factor=self.CHI,
-                      eccentricity=cf.CamEccentricity(self.EPS, zeta))
+        b.add_contact(
+            "cam",
+            program,
+            cf.TranslatingRoller(self.RB, self.RR, self.E),
+            follower_dof="y",
+            stiffness=self.KC,
+            exponent=self.EXPONENT,
+            damping_factor=self.CHI,
+            eccentricity=cf.CamEccentricity(self.EPS, zeta),
+        )
         b.camshaft_speed_rpm = self.RPM
         return b.build()
 
     def centre(self, t):
         a = self.omega * np.asarray(t) + self.ZETA
-        return (self.EPS * np.cos(a), self.EPS * np.sin(a),
-                -self.EPS * self.omega * np.sin(a), self.EPS * self.omega * np.cos(a))
+        return (
+            self.EPS * np.cos(a),
+            self.EPS * np.sin(a),
+            -self.EPS * self.omega * np.sin(a),
+            self.EPS * self.omega * np.cos(a),
+        )
 
     def contact(self, t, y, v, moving=True):
         """Force magnitude, normal's y component and penetration (vectorized)."""
@@ -215,8 +262,9 @@ class EccentricCircle:
         dist = np.hypot(dx, dy)
         delta = self.rp - dist
         rate = -(dx * -dux + dy * (v - duy)) / dist if moving else 0.0
-        force = np.where(delta > 0, self.KC * np.maximum(delta, 0) ** self.EXPONENT
-                         * np.maximum(1 + self.CHI * rate, 0.0), 0.0)
+        force = np.where(
+            delta > 0, self.KC * np.maximum(delta, 0) ** self.EXPONENT * np.maximum(1 + self.CHI * rate, 0.0), 0.0
+        )
         return force, dy / dist, delta
 
     def rhs(self, t, s):
@@ -228,7 +276,7 @@ class EccentricCircle:
         """Roller-centre height above s0 touching the displaced pitch circle, and d/dtheta."""
         ux, uy = self.EPS * math.cos(theta + self.ZETA), self.EPS * math.sin(theta + self.ZETA)
         dux, duy = -uy, ux
-        root = math.sqrt(self.rp ** 2 - (self.E - ux) ** 2)
+        root = math.sqrt(self.rp**2 - (self.E - ux) ** 2)
         return uy + root - self.s0, duy + (self.E - ux) * dux / root
 
     def static(self, theta):
@@ -239,6 +287,7 @@ class EccentricCircle:
         def residual(y):
             force, ny, _ = self.contact(t, y, 0.0, moving=False)
             return float(force * ny - self.P - self.KS * y)
+
         return brentq(residual, top - 1e-3, top, xtol=1e-18, rtol=1e-15)
 
 
@@ -262,15 +311,17 @@ def test_eccentric_start_is_the_quasi_static_state_of_the_exact_geometry(eccentr
     # c z - s^2 z^2 / (2 Rp) and the exact normal's y component c - s^2 z / Rp (c, s: cos, sin of the
     # pressure angle), so the linearized force is high by (1 + n / 2) s^2 z / (c Rp) relative, and
     # the linearized equilibrium sits higher by that / n of z: (1 + n / 2) / n z^2 s^2 / (c Rp).
-    z = cam.kinematic_lift(0.0)[0] - exact                       # ~1e-5 m
+    z = cam.kinematic_lift(0.0)[0] - exact  # ~1e-5 m
     s = (cam.E - cam.EPS * math.cos(cam.ZETA)) / cam.rp
     c = math.sqrt(1 - s * s)
     n = cam.EXPONENT
-    offset = (1 + n / 2) / n * z * z * s * s / (c * cam.rp)      # ~8e-11 m
+    offset = (1 + n / 2) / n * z * z * s * s / (c * cam.rp)  # ~8e-11 m
     h = 1e-4
     exact_rate = cam.omega * (cam.static(h) - cam.static(-h)) / (2 * h)
-    print(f"eccentric start: q0 - exact {q0 - exact:.3e} m (predicted linearization offset {offset:.3e}); "
-          f"v0 {v0:.9f}, exact static rate {exact_rate:.9f}, kinematic {kinematic_rate:.9f} m/s")
+    print(
+        f"eccentric start: q0 - exact {q0 - exact:.3e} m (predicted linearization offset {offset:.3e}); "
+        f"v0 {v0:.9f}, exact static rate {exact_rate:.9f}, kinematic {kinematic_rate:.9f} m/s"
+    )
     assert q0 - exact == pytest.approx(offset, rel=5e-3)  # next order: z / Rp ~ 2e-4, k_s / k_contact ~ 4e-4
     assert v0 == pytest.approx(exact_rate, rel=1e-5)  # the linearization: O(delta tan^2 / Rp) ~ 7e-6
 
@@ -286,8 +337,10 @@ def test_eccentric_circular_cam_matches_solve_ivp_on_the_exact_geometry(eccentri
     force, _, _ = cam.contact(r.t, y[0], y[1])
     err_y = np.abs(r.q[:, 0] - y[0]).max()
     err_f = np.abs(r["cam.force"] - force).max()
-    print(f"eccentric cam vs solve_ivp, 2 revolutions at dt = 1e-6 s: y {err_y:.2e} m of {np.ptp(y[0]):.2e} m "
-          f"run-out, force {err_f:.4f} N of {force.min():.1f}..{force.max():.1f} N")
+    print(
+        f"eccentric cam vs solve_ivp, 2 revolutions at dt = 1e-6 s: y {err_y:.2e} m of {np.ptp(y[0]):.2e} m "
+        f"run-out, force {err_f:.4f} N of {force.min():.1f}..{force.max():.1f} N"
+    )
     # Tolerance: the start is quasi-static in velocity, not in acceleration, so a free vibration of
     # about M eps omega^2 / k_contact ~ 2e-7 m rings at f_c ~ 1.5 kHz (little damped); Newmark's
     # period error (omega_c dt)^2 / 12 ~ 8e-6 accumulates over 60 cycles to ~3e-3 rad of phase:
@@ -307,7 +360,7 @@ def test_eccentric_cam_converges_at_second_order_to_its_linearized_equations(ecc
     def kinematics(t):
         th = cam.omega * t
         ux, uy = cam.EPS * math.cos(th + cam.ZETA), cam.EPS * math.sin(th + cam.ZETA)
-        root = math.sqrt(cam.rp ** 2 - (cam.E - ux) ** 2)
+        root = math.sqrt(cam.rp**2 - (cam.E - ux) ** 2)
         return uy + root - cam.s0, root / cam.rp
 
     def linearized(t, s, h=1e-9):
@@ -340,20 +393,26 @@ def test_the_eccentric_comparison_can_fail(eccentric):
 
 # --- 3. settling on the periodic response ---
 
+
 def settle_run(mech, **options):
     return cf.simulate(mech, revolutions=1, time_step=mech.period / 8192, settle=True, **options)
 
 
 @pytest.fixture(scope="module")
 def settled():
-    return {"damped": settle_run(cf.presets.paper_damped()), "paper": settle_run(cf.presets.paper()),
-            "eccentric": settle_run(cf.presets.paper_damped(eccentricity=cf.CamEccentricity(10e-6, 0.4)))}
+    return {
+        "damped": settle_run(cf.presets.paper_damped()),
+        "paper": settle_run(cf.presets.paper()),
+        "eccentric": settle_run(cf.presets.paper_damped(eccentricity=cf.CamEccentricity(10e-6, 0.4))),
+    }
 
 
 def test_realistic_damping_settles_in_a_few_revolutions_the_paper_dampers_take_many(settled):
     d, p = settled["damped"].settle, settled["paper"].settle
-    message = (f"paper_damped settled in {d['revolutions']} revolutions (change {d['change']:.2e}), the paper's "
-               f"own dampers in {p['revolutions']} (change {p['change']:.2e})")
+    message = (
+        f"paper_damped settled in {d['revolutions']} revolutions (change {d['change']:.2e}), the paper's "
+        f"own dampers in {p['revolutions']} (change {p['change']:.2e})"
+    )
     print(message)
     assert d["settled"] and d["change"] <= d["tolerance"] == 1e-4, message
     assert d["revolutions"] <= 8, message
@@ -368,11 +427,15 @@ def test_the_settle_change_recomputed_from_a_plain_run():
     mech = cf.presets.paper_damped()
     report = settle_run(mech).settle
     k, steps = report["revolutions"], 8192
-    plain = cf.simulate(mech, revolutions=k + 1, time_step=mech.period / steps,
-                        record_from=(k - 2) * mech.period + 0.5 * mech.period / steps)
+    plain = cf.simulate(
+        mech,
+        revolutions=k + 1,
+        time_step=mech.period / steps,
+        record_from=(k - 2) * mech.period + 0.5 * mech.period / steps,
+    )
     a = plain.a[:, plain.dof_names.index("y2")]
     assert a.size == 3 * steps
-    previous, last, after = a[:steps], a[steps:2 * steps], a[2 * steps:]
+    previous, last, after = a[:steps], a[steps : 2 * steps], a[2 * steps :]
     change = np.abs(last - previous).max() / np.abs(last).max()
     assert change == pytest.approx(report["change"], rel=1e-9)
     # After settling the response repeats: the next revolution changes as little again.
@@ -381,8 +444,10 @@ def test_the_settle_change_recomputed_from_a_plain_run():
 
 def test_an_exact_eccentric_cam_settles_like_the_healthy_mechanism(settled):
     d, e = settled["damped"].settle, settled["eccentric"].settle
-    print(f"eccentric paper_damped: {e['revolutions']} revolutions, change {e['change']:.2e} "
-          f"(healthy {d['revolutions']}, {d['change']:.2e})")
+    print(
+        f"eccentric paper_damped: {e['revolutions']} revolutions, change {e['change']:.2e} "
+        f"(healthy {d['revolutions']}, {d['change']:.2e})"
+    )
     assert e["settled"] and e["revolutions"] <= d["revolutions"] + 2
     assert e["change"] <= 3 * d["change"]
 
@@ -397,11 +462,12 @@ def test_results_keep_the_settle_report_through_files_and_pickle(settled, tmp_pa
 
 # --- 4. the paper's literal eccentricity force ---
 
+
 def test_the_literal_force_warns_when_it_exceeds_the_static_contact_force():
     p = cf.Parameters()
     # Independent of the code: on the dwell the spring force K_rs delta_rs is carried by the contact
     # along its normal, so F = K_rs delta_rs / cos(alpha_0), alpha_0 = atan(-e / s0).
-    s0 = math.sqrt((p.base_radius + p.roller_radius) ** 2 - p.offset ** 2)
+    s0 = math.sqrt((p.base_radius + p.roller_radius) ** 2 - p.offset**2)
     static_force = p.spring_stiffness * p.spring_preload_deflection / math.cos(math.atan(p.offset / s0))
     with pytest.warns(UserWarning, match=r"static contact force") as record:
         literal = cf.presets.paper(eccentricity=cf.CamEccentricity(10e-6, formulation="paper_force_both"))
@@ -439,14 +505,17 @@ def test_the_literal_force_against_the_exact_eccentricity():
     exact, exact_loss = deviation(eps, "exact")
     literal, literal_loss = deviation(eps, "paper_force_both")
     small, small_loss = deviation(0.5e-6, "paper_force_both")
-    print(f"force deviation from healthy: exact {exact:.3f} N, literal {literal:.0f} N (K_h eps = {k_eps:.0f} N), "
-          f"literal at 0.5 um {small:.1f} N (K_h eps = {p.contact_stiffness * 0.5e-6:.0f} N)")
+    print(
+        f"force deviation from healthy: exact {exact:.3f} N, literal {literal:.0f} N (K_h eps = {k_eps:.0f} N), "
+        f"literal at 0.5 um {small:.1f} N (K_h eps = {p.contact_stiffness * 0.5e-6:.0f} N)"
+    )
     assert exact <= 1e-3 * k_eps and not exact_loss
     assert literal >= k_eps and literal_loss
     assert small == pytest.approx(p.contact_stiffness * 0.5e-6, rel=0.25) and not small_loss
 
 
 # --- 5. pickling a mechanism with eccentricity and clearances ---
+
 
 def defective_builder():
     """A follower (y) on an eccentric cam; its rod laterally (x) and tilting (phi, about z = 0.02 m) in
@@ -456,10 +525,28 @@ def defective_builder():
     b.add_dof("x", 0.3, direction=(1, 0, 0))
     b.add_dof("phi", 2e-4)
     b.add_spring("spring", "y", "ground", stiffness=2e4, preload=300.0)
-    b.add_contact("cam", cf.MotionProgram.paper_default(), cf.TranslatingRoller(0.04, 0.0125, 0.01), follower_dof="y",
-                  lateral="x", stiffness=1e8, eccentricity=cf.CamEccentricity(20e-6, 0.3, unbalance_mass=0.0))
-    b.add_guide("guide", "x", clearance=20e-6, length=0.08, bushings=[0.0, 0.08], tilt_dof="phi",
-                tilt_reference=0.02, stiffness=2.5e8, damping_factor=0.3, friction=0.15, sliding_dof="y")
+    b.add_contact(
+        "cam",
+        cf.MotionProgram.paper_default(),
+        cf.TranslatingRoller(0.04, 0.0125, 0.01),
+        follower_dof="y",
+        lateral="x",
+        stiffness=1e8,
+        eccentricity=cf.CamEccentricity(20e-6, 0.3, unbalance_mass=0.0),
+    )
+    b.add_guide(
+        "guide",
+        "x",
+        clearance=20e-6,
+        length=0.08,
+        bushings=[0.0, 0.08],
+        tilt_dof="phi",
+        tilt_reference=0.02,
+        stiffness=2.5e8,
+        damping_factor=0.3,
+        friction=0.15,
+        sliding_dof="y",
+    )
     b.camshaft_speed_rpm = 1500
     return b
 
@@ -467,8 +554,11 @@ def defective_builder():
 def test_mechanisms_with_defects_pickle_and_rebuild_bit_identically():
     mech = defective_builder().build()
     assert mech.clearance_names == ["guide.bushing1", "guide.bushing2"]
-    copies = [pickle.loads(pickle.dumps(mech)), mech.builder().build(),
-              pickle.loads(pickle.dumps(mech.builder())).build()]
+    copies = [
+        pickle.loads(pickle.dumps(mech)),
+        mech.builder().build(),
+        pickle.loads(pickle.dumps(mech.builder())).build(),
+    ]
     runs = [cf.simulate(m, duration=300 * 2e-6, time_step=2e-6) for m in [mech] + copies]
     for m, r in zip(copies, runs[1:]):
         assert repr(m.builder().__getstate__()["contacts"][0]["eccentricity"]) == repr(cf.CamEccentricity(20e-6, 0.3))
@@ -488,6 +578,7 @@ def test_mechanisms_with_defects_pickle_and_rebuild_bit_identically():
 
 # --- 6. bad input names the parameter ---
 
+
 def _builder():
     b = cf.MechanismBuilder()
     b.add_dof("x", 0.2, direction=(1, 0, 0))
@@ -495,28 +586,52 @@ def _builder():
     return b
 
 
-@pytest.mark.parametrize("change, message", [
-    (lambda b: b.add_clearance("g", [("x", 1.0)], clearance=0.0, stiffness=1e8), "clearance 'g' clearance"),
-    (lambda b: b.add_clearance("g", [("x", 1.0)], clearance=-1e-5, stiffness=1e8), "clearance 'g' clearance"),
-    (lambda b: b.add_clearance("g", [("x", 1.0)], clearance=float("nan"), stiffness=1e8), "clearance 'g' clearance"),
-    (lambda b: b.add_clearance("g", [("x", 1.0)], clearance=1e-5, stiffness=1e8, friction=-0.1, sliding_dof="w"),
-     "friction coefficient"),
-    (lambda b: b.add_clearance("g", [("x", 1.0)], clearance=1e-5, stiffness=1e8, friction=0.1), "sliding DOF"),
-    (lambda b: b.add_clearance("g", [("x", 1.0)], clearance=1e-5, stiffness=1e8, friction=0.1, sliding_dof="w",
-                               slip_velocity=0.0), "slip velocity"),
-    (lambda b: b.add_clearance("g", [("x", 1.0), ("x", 2.0)], clearance=1e-5, stiffness=1e8), "appears twice"),
-    (lambda b: (b.add_clearance("g", [("x", 1.0)], clearance=1e-5, stiffness=1e8, friction=0.1, sliding_dof="v"),
-                b.build()), "sliding_dof refers to DOF 'v'"),
-    (lambda b: b.add_guide("guide", "x", clearance=1e-5, length=0.1, bushings=[0.12], stiffness=1e8),
-     r"bushing position 0.12 m must lie in the guide"),
-    (lambda b: b.add_guide("guide", "x", clearance=1e-5, length=0.1, bushings=[-0.01], stiffness=1e8),
-     r"bushing position -0.01 m"),
-    (lambda b: b.add_guide("guide", "x", clearance=1e-5, length=0.1, bushings=[0.0, 0.1], stiffness=1e8), "tilt_dof"),
-    (lambda b: cf.CamEccentricity(1e-5, formulation="paper"), "eccentricity formulation"),
-    (lambda b: cf.CamEccentricity(-1e-5), "eccentricity radius"),
-    (lambda b: cf.presets.paper(element_damping_ratio=1.0), "element_damping_ratio"),
-    (lambda b: cf.presets.paper_damped(damping_ratio=1.0), "element_damping_ratio"),
-])
+@pytest.mark.parametrize(
+    "change, message",
+    [
+        (lambda b: b.add_clearance("g", [("x", 1.0)], clearance=0.0, stiffness=1e8), "clearance 'g' clearance"),
+        (lambda b: b.add_clearance("g", [("x", 1.0)], clearance=-1e-5, stiffness=1e8), "clearance 'g' clearance"),
+        (
+            lambda b: b.add_clearance("g", [("x", 1.0)], clearance=float("nan"), stiffness=1e8),
+            "clearance 'g' clearance",
+        ),
+        (
+            lambda b: b.add_clearance("g", [("x", 1.0)], clearance=1e-5, stiffness=1e8, friction=-0.1, sliding_dof="w"),
+            "friction coefficient",
+        ),
+        (lambda b: b.add_clearance("g", [("x", 1.0)], clearance=1e-5, stiffness=1e8, friction=0.1), "sliding DOF"),
+        (
+            lambda b: b.add_clearance(
+                "g", [("x", 1.0)], clearance=1e-5, stiffness=1e8, friction=0.1, sliding_dof="w", slip_velocity=0.0
+            ),
+            "slip velocity",
+        ),
+        (lambda b: b.add_clearance("g", [("x", 1.0), ("x", 2.0)], clearance=1e-5, stiffness=1e8), "appears twice"),
+        (
+            lambda b: (
+                b.add_clearance("g", [("x", 1.0)], clearance=1e-5, stiffness=1e8, friction=0.1, sliding_dof="v"),
+                b.build(),
+            ),
+            "sliding_dof refers to DOF 'v'",
+        ),
+        (
+            lambda b: b.add_guide("guide", "x", clearance=1e-5, length=0.1, bushings=[0.12], stiffness=1e8),
+            r"bushing position 0.12 m must lie in the guide",
+        ),
+        (
+            lambda b: b.add_guide("guide", "x", clearance=1e-5, length=0.1, bushings=[-0.01], stiffness=1e8),
+            r"bushing position -0.01 m",
+        ),
+        (
+            lambda b: b.add_guide("guide", "x", clearance=1e-5, length=0.1, bushings=[0.0, 0.1], stiffness=1e8),
+            "tilt_dof",
+        ),
+        (lambda b: cf.CamEccentricity(1e-5, formulation="paper"), "eccentricity formulation"),
+        (lambda b: cf.CamEccentricity(-1e-5), "eccentricity radius"),
+        (lambda b: cf.presets.paper(element_damping_ratio=1.0), "element_damping_ratio"),
+        (lambda b: cf.presets.paper_damped(damping_ratio=1.0), "element_damping_ratio"),
+    ],
+)
 def test_bad_defect_input_names_the_parameter(change, message):
     with pytest.raises(ValueError, match=message):
         change(_builder())

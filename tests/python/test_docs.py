@@ -15,8 +15,12 @@ DOCS = Path(__file__).resolve().parents[2] / "docs"
 
 
 def test_sphinx_site_builds_without_warnings(tmp_path):
-    r = subprocess.run([sys.executable, "-m", "sphinx", "-W", "--keep-going", "-E", "-q", "-b", "html", str(DOCS),
-                        str(tmp_path)], capture_output=True, text=True, timeout=600)
+    r = subprocess.run(
+        [sys.executable, "-m", "sphinx", "-W", "--keep-going", "-E", "-q", "-b", "html", str(DOCS), str(tmp_path)],
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
     assert r.returncode == 0, r.stderr[-5000:]
     api = (tmp_path / "api.html").read_text()
     for name in ("periodic_steady_state", "monte_carlo", "jump_speed", "MechanismBuilder", "run_cases"):

@@ -15,24 +15,37 @@ ECCENTRICITY, PHASE = 1e-4, math.radians(30.0)
 
 
 def case(rpm, eccentricity=ECCENTRICITY):
-    contact = {"name": "cam", "program": "feed", "follower_dof": "carrier", "stiffness": 1e9,
-               "follower": {"type": "translating_roller", "base_radius": BASE, "roller_radius": ROLLER,
-                            "offset": OFFSET}}
+    contact = {
+        "name": "cam",
+        "program": "feed",
+        "follower_dof": "carrier",
+        "stiffness": 1e9,
+        "follower": {"type": "translating_roller", "base_radius": BASE, "roller_radius": ROLLER, "offset": OFFSET},
+    }
     if eccentricity:
         contact["eccentricity"] = {"radius": eccentricity, "phase": PHASE}
-    return config_from_dict({
-        "camshaft": {"speed": rpm},
-        "program": {"feed": {"segments": [
-            {"law": "modified_sine", "end": "120 deg", "h": "12 mm"},
-            {"law": "dwell", "end": "180 deg"},
-            {"law": "modified_sine", "end": "300 deg", "h": 0},
-            {"law": "dwell", "end": "360 deg"}]}},
-        # A slide driven through a rod (a 40 Hz mode that rings in the dwells at speed).
-        "dof": [{"name": "carrier", "mass": "250 g"}, {"name": "slide", "mass": "2 kg"}],
-        "spring": [{"name": "return_spring", "a": "carrier", "stiffness": "20 N/mm", "preload": "300 N"},
-                   {"name": "rod", "a": "slide", "b": "carrier", "stiffness": "120 N/mm", "damping": 2.0}],
-        "contact": [contact],
-    }).mechanism
+    return config_from_dict(
+        {
+            "camshaft": {"speed": rpm},
+            "program": {
+                "feed": {
+                    "segments": [
+                        {"law": "modified_sine", "end": "120 deg", "h": "12 mm"},
+                        {"law": "dwell", "end": "180 deg"},
+                        {"law": "modified_sine", "end": "300 deg", "h": 0},
+                        {"law": "dwell", "end": "360 deg"},
+                    ]
+                }
+            },
+            # A slide driven through a rod (a 40 Hz mode that rings in the dwells at speed).
+            "dof": [{"name": "carrier", "mass": "250 g"}, {"name": "slide", "mass": "2 kg"}],
+            "spring": [
+                {"name": "return_spring", "a": "carrier", "stiffness": "20 N/mm", "preload": "300 N"},
+                {"name": "rod", "a": "slide", "b": "carrier", "stiffness": "120 N/mm", "damping": 2.0},
+            ],
+            "contact": [contact],
+        }
+    ).mechanism
 
 
 def on_displaced_base_circle(theta, lift=0.0):
@@ -41,7 +54,7 @@ def on_displaced_base_circle(theta, lift=0.0):
     eps (cos(theta + zeta), sin(theta + zeta)) (docs/mechanisms.md, "Eccentric cam")."""
     ux, uy = ECCENTRICITY * np.cos(theta + PHASE), ECCENTRICITY * np.sin(theta + PHASE)
     r = BASE + lift + ROLLER
-    return uy + np.sqrt(r ** 2 - (OFFSET - ux) ** 2) - math.sqrt((BASE + ROLLER) ** 2 - OFFSET ** 2)
+    return uy + np.sqrt(r**2 - (OFFSET - ux) ** 2) - math.sqrt((BASE + ROLLER) ** 2 - OFFSET**2)
 
 
 def base_dwell(row):

@@ -9,7 +9,7 @@ import camfollower as cf
 import numpy as np
 import pytest
 
-GRIDS = tuple(2 ** k for k in range(9, 17))  # output intervals T/512 ... T/65536
+GRIDS = tuple(2**k for k in range(9, 17))  # output intervals T/512 ... T/65536
 _P = cf.Parameters()
 MODELS = {
     "preset": lambda: cf.presets.paper(_P),
@@ -42,8 +42,10 @@ def errors(name, n, method, tolerance, references, **kw):
     if method == "auto":
         assert r.stats["method"] == AUTO_TAKES[name]
     F, A = references[name, n]
-    return (np.max(np.abs(r["cam.force"] - F)) / np.max(np.abs(F)) / tolerance,
-            np.max(np.abs(r["a.y4"] - A)) / np.max(np.abs(A)) / tolerance)
+    return (
+        np.max(np.abs(r["cam.force"] - F)) / np.max(np.abs(F)) / tolerance,
+        np.max(np.abs(r["a.y4"] - A)) / np.max(np.abs(A)) / tolerance,
+    )
 
 
 @pytest.mark.parametrize("method, model", CASES)
@@ -56,8 +58,10 @@ def test_the_error_stays_within_the_band_at_every_output_interval(method, model,
     worst.sort(reverse=True)
     print(method, model, worst[:3])
     ratio, tolerance, n, f, a = worst[0]
-    assert ratio <= BAND, f"{method} on {model} at tolerance {tolerance}, output T/{n}: force {f:.3g}x, " \
-                                  f"acceleration {a:.3g}x the tolerance"
+    assert ratio <= BAND, (
+        f"{method} on {model} at tolerance {tolerance}, output T/{n}: force {f:.3g}x, "
+        f"acceleration {a:.3g}x the tolerance"
+    )
 
 
 def test_fox_goodwin_under_a_tolerance_is_outside_the_band_which_is_why_auto_does_not_take_it(references):
@@ -69,5 +73,7 @@ def test_fox_goodwin_under_a_tolerance_is_outside_the_band_which_is_why_auto_doe
     print(coarse, fine)
     assert max(coarse) < 30.0 and max(fine) > BAND
     m = MODELS["preset"]()
-    assert cf.simulate(m, revolutions=0.05, time_step=m.period / 16384, method="auto",
-                       tolerance=1e-7).stats["method"] == "dop853"
+    assert (
+        cf.simulate(m, revolutions=0.05, time_step=m.period / 16384, method="auto", tolerance=1e-7).stats["method"]
+        == "dop853"
+    )

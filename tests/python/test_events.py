@@ -2,6 +2,7 @@
 """Events (docs/solvers.md): contact losses and re-contacts above the jump speed located by every method,
 against scipy's event location on the 7-DOF equations written again in NumPy; the contact-loss intervals
 they bound; the events' round trip through files and pickles."""
+
 import pickle
 
 import camfollower as cf
@@ -25,8 +26,7 @@ def scipy_events(fast_model):
     def gap(t, z):
         return ref.contact(t, z[:7])[1]
 
-    sol = solve_ivp(ref.rhs, (0, fast_model.period), ref.initial(), method="DOP853", rtol=1e-12, atol=1e-15,
-                    events=gap)
+    sol = solve_ivp(ref.rhs, (0, fast_model.period), ref.initial(), method="DOP853", rtol=1e-12, atol=1e-15, events=gap)
     assert sol.status == 0
     times = sol.t_events[0]
     # The run starts in contact: losses and re-contacts alternate from a loss.
@@ -78,8 +78,9 @@ def test_events_survive_files_and_pickles(fast_model, tmp_path):
 def test_mechanism_events_are_named_by_contact():
     p = cf.Parameters().replace(camshaft_speed_rpm=2000.0)
     m = cf.presets.paper(p)
-    many = cf.simulate_many([m, m], revolutions=1, method="dormand_prince", tolerance=1e-8,
-                            time_step=m.period / 2048, threads=2)
+    many = cf.simulate_many(
+        [m, m], revolutions=1, method="dormand_prince", tolerance=1e-8, time_step=m.period / 2048, threads=2
+    )
     one = cf.simulate(m, revolutions=1, method="dormand_prince", tolerance=1e-8, time_step=m.period / 2048)
     assert one.events and {e[1] for e in one.events} == {"cam.contact"}
     assert many[0].events == one.events and many[1].events == one.events

@@ -24,6 +24,7 @@ def arm():
 
 # --- flat-faced tappet with a massive valve spring ---
 
+
 @pytest.mark.parametrize("theta_deg", [0.0, 120.0, 190.0])
 def test_train_natural_frequencies_are_those_of_the_two_mass_chain(train, theta_deg):
     # Tappet m_f on the contact k_c (to the rigid cam) and on the upper half 2 k_s; the middle m_m on
@@ -33,8 +34,10 @@ def test_train_natural_frequencies_are_those_of_the_two_mass_chain(train, theta_
     K = np.array([[k_c + 2 * k_s, -2 * k_s], [-2 * k_s, 4 * k_s]])
     exact = np.sqrt(scipy.linalg.eigh(K, M, eigvals_only=True)) / (2 * np.pi)
     code = train["mechanism"]().modal_analysis(np.radians(theta_deg))["frequencies_hz"]
-    print(f"theta {theta_deg} deg: code {code} Hz, two-mass chain {exact} Hz, "
-          f"relative difference {np.abs(code / exact - 1).max():.1e}")
+    print(
+        f"theta {theta_deg} deg: code {code} Hz, two-mass chain {exact} Hz, "
+        f"relative difference {np.abs(code / exact - 1).max():.1e}"
+    )
     np.testing.assert_allclose(code, exact, rtol=1e-10, atol=0)
 
 
@@ -56,9 +59,11 @@ def test_train_contact_force_is_the_static_closed_form_at_low_speed(train):
     # What the comparison resolves: the inertia term, and where the spring's weight goes.
     without_inertia = np.abs(force / closed_form(m_f + m_m / 2, 0.0) - 1).max()
     whole_spring_weight = np.abs(force / closed_form(m_f + m_m, m_f + m_m / 4) - 1).max()
-    print(f"{rpm} rpm, {r.rows} samples, F {force.min():.4f} .. {force.max():.4f} N: largest relative "
-          f"difference {error:.2e} (without the inertia term {without_inertia:.2e}, with all of the middle's "
-          f"weight on the tappet {whole_spring_weight:.2e})")
+    print(
+        f"{rpm} rpm, {r.rows} samples, F {force.min():.4f} .. {force.max():.4f} N: largest relative "
+        f"difference {error:.2e} (without the inertia term {without_inertia:.2e}, with all of the middle's "
+        f"weight on the tappet {whole_spring_weight:.2e})"
+    )
     assert not r.contact_loss["cam"]
     assert error < 1e-6
     assert without_inertia > 1e-6 and whole_spring_weight > 1e-6
@@ -68,8 +73,10 @@ def test_train_holds_at_its_speed_and_separates_between_the_closed_form_bounds(t
     m_f, m_m, k_s, P = train["TAPPET_MASS"], train["MID_MASS"], train["SPRING"], train["PRELOAD"]
     weight = (m_f + m_m / 2) * train["GRAVITY"]
     r = train["run"](train["RPM"], revolutions=3)  # undamped: later revolutions carry the first's vibration
-    print(f"{train['RPM']:.0f} rpm, 3 revolutions: smallest contact force {r['cam.force'].min():.3f} N, "
-          f"losses {r.contact_loss['cam']}")
+    print(
+        f"{train['RPM']:.0f} rpm, 3 revolutions: smallest contact force {r['cam.force'].min():.3f} N, "
+        f"losses {r.contact_loss['cam']}"
+    )
     assert not r.contact_loss["cam"] and r["cam.force"].min() > 0.5 * P
 
     # F_spring_min = m |h''|max omega^2. Lower: the least holding force (P + weight, at h = 0) and the
@@ -84,14 +91,17 @@ def test_train_holds_at_its_speed_and_separates_between_the_closed_form_bounds(t
     braking = m["d2h"] < 0
     quasi_static = np.sqrt(np.min((P + k_s * m["h"][braking] + weight) / ((m_f + m_m / 4) * -m["d2h"][braking])))
     holds, loses, runs = train["separation_speed"](holds=train["RPM"], loses=2 * upper, resolution=10.0)
-    print(f"first loss of contact (first revolution from rest) between {holds:.1f} and {loses:.1f} rpm "
-          f"({runs} runs); bounds {lower:.1f} .. {upper:.1f} rpm; quasi-static closed form "
-          f"{quasi_static * to_rpm:.1f} rpm")
+    print(
+        f"first loss of contact (first revolution from rest) between {holds:.1f} and {loses:.1f} rpm "
+        f"({runs} runs); bounds {lower:.1f} .. {upper:.1f} rpm; quasi-static closed form "
+        f"{quasi_static * to_rpm:.1f} rpm"
+    )
     assert lower < holds < loses < upper
     assert loses - holds <= 10.0
 
 
 # --- swing-arm roller follower ---
+
 
 def J(v):
     """+90 deg turn of 2-vectors (last axis)."""
@@ -135,9 +145,11 @@ def test_swing_arm_static_balance_on_a_dwell(arm, name, theta_deg):
     q_code = arm["mechanism"]().static_equilibrium(theta)[0]
     lever, alpha = arm_geometry(arm, s, 0.0)
     torque = arm["PRELOAD_TORQUE"] + arm["TORSION"] * q
-    print(f"{name} dwell, theta {theta_deg} deg: s {s:.6f} rad, q {q:.9f} rad, alpha {np.degrees(alpha):.4f} deg, "
-          f"L cos(alpha) {lever:.9f} m; F {force:.6f} N, F L cos(alpha) {force * lever:.12f} N m, "
-          f"T0 + k_t q {torque:.12f} N m, relative difference {abs(force * lever / torque - 1):.1e}")
+    print(
+        f"{name} dwell, theta {theta_deg} deg: s {s:.6f} rad, q {q:.9f} rad, alpha {np.degrees(alpha):.4f} deg, "
+        f"L cos(alpha) {lever:.9f} m; F {force:.6f} N, F L cos(alpha) {force * lever:.12f} N m, "
+        f"T0 + k_t q {torque:.12f} N m, relative difference {abs(force * lever / torque - 1):.1e}"
+    )
     assert q == pytest.approx(q_code, rel=1e-15, abs=0)
     assert force * lever == pytest.approx(torque, rel=1e-9, abs=0)
 
@@ -152,9 +164,11 @@ def test_swing_arm_tracks_the_lift_quasi_statically(arm):
     lag = m["h"] - r.q[:, 0]
     error = np.abs(lag - predicted)
     tolerance = 1e-9 + 1e-3 * predicted
-    print(f"1 rpm, {r.rows} samples: s - q from {lag.min():.6e} to {lag.max():.6e} rad; largest |difference| "
-          f"{error.max():.2e} rad, relative {np.max(error / predicted):.2e}, "
-          f"of the tolerance {np.max(error / tolerance):.2e}")
+    print(
+        f"1 rpm, {r.rows} samples: s - q from {lag.min():.6e} to {lag.max():.6e} rad; largest |difference| "
+        f"{error.max():.2e} rad, relative {np.max(error / predicted):.2e}, "
+        f"of the tolerance {np.max(error / tolerance):.2e}"
+    )
     assert not r.contact_loss["cam"]
     assert np.all(error <= tolerance)
 
@@ -165,12 +179,15 @@ def test_swing_arm_natural_frequency_on_a_dwell(arm, name, theta_deg):
     lever, _ = arm_geometry(arm, arm["program"]().evaluate(theta)["h"], 0.0)
     exact = np.sqrt((arm["TORSION"] + arm["CONTACT"] * lever**2) / arm["INERTIA"]) / (2 * np.pi)
     code = arm["mechanism"]().modal_analysis(theta)["frequencies_hz"][0]
-    print(f"{name} dwell, theta {theta_deg} deg: code {code:.9f} Hz, closed form {exact:.9f} Hz, "
-          f"relative difference {abs(code / exact - 1):.1e}")
+    print(
+        f"{name} dwell, theta {theta_deg} deg: code {code:.9f} Hz, closed form {exact:.9f} Hz, "
+        f"relative difference {abs(code / exact - 1):.1e}"
+    )
     assert code == pytest.approx(exact, rel=1e-9, abs=0)
 
 
 # --- the rod in its guide clearance ---
+
 
 @pytest.fixture(scope="module")
 def guide():

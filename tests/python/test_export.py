@@ -21,7 +21,7 @@ def roller():
 
 def pitch_curve_mm(theta):
     """Roller centre in the cam frame from its definition: Rot(-theta) (e, s0 + h(theta)), in mm."""
-    R = math.sqrt((RB + RR) ** 2 - E ** 2) + PAPER.evaluate(theta)["h"]
+    R = math.sqrt((RB + RR) ** 2 - E**2) + PAPER.evaluate(theta)["h"]
     c, s = np.cos(theta), np.sin(theta)
     return 1e3 * (c * E + s * R), 1e3 * (-s * E + c * R)
 
@@ -147,12 +147,14 @@ def test_refused_targets_leave_nothing_behind(tmp_path, writer):
 
 # A fast cycloidal rise on a small cam: its surface is concave where the rise starts.
 deg = math.pi / 180
-FAST = cf.MotionProgram([
-    cf.Segment(cf.MotionLaw.dwell(), 0, 60 * deg, 0, 0),
-    cf.Segment(cf.MotionLaw.cycloidal(), 60 * deg, 120 * deg, 0, 0.01),
-    cf.Segment(cf.MotionLaw.dwell(), 120 * deg, 200 * deg, 0.01, 0.01),
-    cf.Segment(cf.MotionLaw.cycloidal(), 200 * deg, 2 * math.pi, 0.01, 0),
-])
+FAST = cf.MotionProgram(
+    [
+        cf.Segment(cf.MotionLaw.dwell(), 0, 60 * deg, 0, 0),
+        cf.Segment(cf.MotionLaw.cycloidal(), 60 * deg, 120 * deg, 0, 0.01),
+        cf.Segment(cf.MotionLaw.dwell(), 120 * deg, 200 * deg, 0.01, 0.01),
+        cf.Segment(cf.MotionLaw.cycloidal(), 200 * deg, 2 * math.pi, 0.01, 0),
+    ]
+)
 
 
 def test_too_large_cutter_is_refused_at_the_tightest_concave_spot():
@@ -177,17 +179,22 @@ def test_too_large_cutter_is_refused_at_the_tightest_concave_spot():
     assert float(message.split("theta = ")[1].split(" deg")[0]) == pytest.approx(at, abs=0.05)
 
 
-@pytest.mark.parametrize("kwargs,message", [
-    (dict(points=2), r"points must be an integer in \[3, 10000000\]"),
-    (dict(points=-5), r"points must be an integer in \[3, 10000000\]"),
-    (dict(points=10.5), r"points must be an integer in \[3, 10000000\]"),
-    (dict(cutter_radius=-0.001), "cutter_radius must be None or a finite number >= 0"),
-    (dict(cutter_radius=float("nan")), "cutter_radius"),
-    (dict(unit="cm"), "unit must be one of m, mm, um, inch"),
-])
+@pytest.mark.parametrize(
+    "kwargs,message",
+    [
+        (dict(points=2), r"points must be an integer in \[3, 10000000\]"),
+        (dict(points=-5), r"points must be an integer in \[3, 10000000\]"),
+        (dict(points=10.5), r"points must be an integer in \[3, 10000000\]"),
+        (dict(cutter_radius=-0.001), "cutter_radius must be None or a finite number >= 0"),
+        (dict(cutter_radius=float("nan")), "cutter_radius"),
+        (dict(unit="cm"), "unit must be one of m, mm, um, inch"),
+    ],
+)
 def test_bad_input_names_the_parameter(tmp_path, kwargs, message):
-    for call in (lambda: export.profile_points(roller(), PAPER, **kwargs),
-                 lambda: export.write_csv(tmp_path / "x.csv", roller(), PAPER, **kwargs)):
+    for call in (
+        lambda: export.profile_points(roller(), PAPER, **kwargs),
+        lambda: export.write_csv(tmp_path / "x.csv", roller(), PAPER, **kwargs),
+    ):
         with pytest.raises(ValueError, match=message):
             call()
     assert os.listdir(tmp_path) == []

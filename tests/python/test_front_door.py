@@ -20,8 +20,14 @@ from camfollower.config import load_config
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
 COMMAND = Path(sys.executable).parent / "camfollower"
-CPP = next((p for p in (ROOT / "build-sanitize" / "src" / "camfollower", ROOT / "build" / "src" / "camfollower")
-            if p.exists()), None)
+CPP = next(
+    (
+        p
+        for p in (ROOT / "build-sanitize" / "src" / "camfollower", ROOT / "build" / "src" / "camfollower")
+        if p.exists()
+    ),
+    None,
+)
 VERBS = ["kinematics", "modes", "run", "export", "study", "figures", "camshaft", "sweep", "montecarlo"]
 
 
@@ -69,8 +75,15 @@ def test_kinematics_prints_the_library_figures(config, capsys):
 
 
 @pytest.mark.skipif(CPP is None, reason="the C++ program is built by scripts/test.sh")
-@pytest.mark.parametrize("args", [["kinematics"], ["kinematics", EXAMPLES / "swing_arm.toml", "--rpm", "300"],
-                                  ["modes"], ["modes", EXAMPLES / "translating_roller.toml", "--theta", "90"]])
+@pytest.mark.parametrize(
+    "args",
+    [
+        ["kinematics"],
+        ["kinematics", EXAMPLES / "swing_arm.toml", "--rpm", "300"],
+        ["modes"],
+        ["modes", EXAMPLES / "translating_roller.toml", "--theta", "90"],
+    ],
+)
 def test_the_python_and_the_cpp_command_print_the_same(args):
     """Same verbs, same lines, numbers within 1e-4 (the rigid peaks are found by two methods)."""
     py = command(*args)
@@ -109,17 +122,26 @@ def test_run_writes_every_channel_of_the_configs_run(tmp_path):
     np.testing.assert_allclose(data[:, header.index("cam.force")], result["cam.force"], rtol=1e-11)
 
 
-@pytest.mark.parametrize("args, message", [
-    (["run", EXAMPLES / "swing_arm.toml", "-o", ""], "-o/--output: must name a file"),
-    (["run", EXAMPLES / "swing_arm.toml", "-o", EXAMPLES / "swing_arm.toml"], "is the input file"),
-    (["modes", "--theta", "nan"], "--theta: nan is not a cam angle"),
-    (["modes", "--count", "0"], "--count"),
-    (["kinematics", "--rpm", "-5"], "--rpm"),
-    (["export", EXAMPLES / "swing_arm.toml", "-o", "x.csv", "--unit", "furlong"], "--unit: 'furlong' is not one of"),
-    (["export", EXAMPLES / "swing_arm.toml", "-o", "x.csv", "--cutter-radius", "2e6"], "--cutter-radius"),
-    (["export", EXAMPLES / "swing_arm.toml", "-o", "x.csv", "--points", "3"], "--points"),
-    (["export", EXAMPLES / "swing_arm.toml", "-o", "x.csv", "--contact", "nope"], "--contact: no contact named 'nope'"),
-])
+@pytest.mark.parametrize(
+    "args, message",
+    [
+        (["run", EXAMPLES / "swing_arm.toml", "-o", ""], "-o/--output: must name a file"),
+        (["run", EXAMPLES / "swing_arm.toml", "-o", EXAMPLES / "swing_arm.toml"], "is the input file"),
+        (["modes", "--theta", "nan"], "--theta: nan is not a cam angle"),
+        (["modes", "--count", "0"], "--count"),
+        (["kinematics", "--rpm", "-5"], "--rpm"),
+        (
+            ["export", EXAMPLES / "swing_arm.toml", "-o", "x.csv", "--unit", "furlong"],
+            "--unit: 'furlong' is not one of",
+        ),
+        (["export", EXAMPLES / "swing_arm.toml", "-o", "x.csv", "--cutter-radius", "2e6"], "--cutter-radius"),
+        (["export", EXAMPLES / "swing_arm.toml", "-o", "x.csv", "--points", "3"], "--points"),
+        (
+            ["export", EXAMPLES / "swing_arm.toml", "-o", "x.csv", "--contact", "nope"],
+            "--contact: no contact named 'nope'",
+        ),
+    ],
+)
 def test_bad_arguments_are_one_line_naming_the_option(tmp_path, args, message):
     r = command(*args, cwd=tmp_path)
     assert r.returncode == 1, (r.stdout, r.stderr)
@@ -134,8 +156,18 @@ def test_export_writes_the_libraries_csv_and_a_dxf_with_the_cutter_in_the_unit(t
     assert r.returncode == 0, r.stderr
     ex.write_csv(tmp_path / "direct.csv", c["follower"], c["program"], cutter_radius=0.005)
     assert (tmp_path / "cam.csv").read_bytes() == (tmp_path / "direct.csv").read_bytes()
-    r = command("export", EXAMPLES / "swing_arm.toml", "-o", tmp_path / "cam.dxf", "--unit", "inch",
-                "--cutter-radius", "0.2", "--points", "720")
+    r = command(
+        "export",
+        EXAMPLES / "swing_arm.toml",
+        "-o",
+        tmp_path / "cam.dxf",
+        "--unit",
+        "inch",
+        "--cutter-radius",
+        "0.2",
+        "--points",
+        "720",
+    )
     assert r.returncode == 0, r.stderr
     ezdxf = pytest.importorskip("ezdxf")
     doc = ezdxf.readfile(tmp_path / "cam.dxf")

@@ -11,12 +11,14 @@ DEG = np.pi / 180
 
 def test_program_from_segments_and_paper_default_agree():
     mt, dw = cf.MotionLaw.modified_trapezoid(), cf.MotionLaw.dwell()
-    prog = cf.MotionProgram([
-        cf.Segment(dw, 0, 30 * DEG, 0, 0),
-        cf.Segment(mt, 30 * DEG, 180 * DEG, 0, 0.01),
-        cf.Segment(dw, 180 * DEG, 210 * DEG, 0.01, 0.01),
-        cf.Segment(mt, 210 * DEG, 360 * DEG, 0.01, 0),
-    ])
+    prog = cf.MotionProgram(
+        [
+            cf.Segment(dw, 0, 30 * DEG, 0, 0),
+            cf.Segment(mt, 30 * DEG, 180 * DEG, 0, 0.01),
+            cf.Segment(dw, 180 * DEG, 210 * DEG, 0.01, 0.01),
+            cf.Segment(mt, 210 * DEG, 360 * DEG, 0.01, 0),
+        ]
+    )
     theta = np.linspace(-1, 8, 1001)
     a, b = prog.evaluate(theta), cf.MotionProgram.paper_default().evaluate(theta)
     for key in ("h", "dh", "d2h", "d3h"):

@@ -66,7 +66,9 @@ def test_writers_refuse_a_fifo_a_symlink_and_a_read_only_file(tmp_path, writer):
 
 
 def test_writer_refuses_a_device_and_names_the_parameter():
-    with pytest.raises(ValueError, match=r"path: '/dev/null' exists and is not a regular file \(a FIFO, socket or device\)"):
+    with pytest.raises(
+        ValueError, match=r"path: '/dev/null' exists and is not a regular file \(a FIFO, socket or device\)"
+    ):
         _files.write_bytes("/dev/null", b"x")
 
 
@@ -112,7 +114,9 @@ def test_a_failed_write_leaves_no_temporary_and_names_it(tmp_path):
             print(e)
     """)
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
-    assert "writing the temporary" in out.stdout and "big.bin.tmp." in out.stdout and "'" + str(target) + "'" in out.stdout
+    assert (
+        "writing the temporary" in out.stdout and "big.bin.tmp." in out.stdout and "'" + str(target) + "'" in out.stdout
+    )
     assert target.read_bytes() == b"old"
     assert [p.name for p in tmp_path.iterdir()] == ["big.bin"]
 
@@ -132,8 +136,11 @@ def test_a_killed_study_leaves_no_summary_and_no_hidden_folders(tmp_path):
     out = tmp_path / "out"
     out.mkdir()
     (out / "summary.json").write_text('{"from": "an earlier run"}')
-    proc = subprocess.Popen([sys.executable, "-m", "camfollower.study", "--out", str(out), "--no-figures"],
-                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "camfollower.study", "--out", str(out), "--no-figures"],
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+    )
     try:
         deadline = time.monotonic() + 60
         while (out / "summary.json").exists() and time.monotonic() < deadline:
@@ -163,11 +170,14 @@ def test_every_listed_parameter_round_trips_through_get_and_replace():
     assert model.parameters.contact_damping == "lankarani_nikravesh"
 
 
-@pytest.mark.parametrize("make", [
-    lambda v: cf.Parameters(contact_stiffness=v),
-    lambda v: cf.Parameters().replace(contact_stiffness=v),
-    lambda v: cf.CamFollowerModel().with_parameters(contact_stiffness=v),
-])
+@pytest.mark.parametrize(
+    "make",
+    [
+        lambda v: cf.Parameters(contact_stiffness=v),
+        lambda v: cf.Parameters().replace(contact_stiffness=v),
+        lambda v: cf.CamFollowerModel().with_parameters(contact_stiffness=v),
+    ],
+)
 @pytest.mark.parametrize("value", ["1e8", b"1e8", True, None, [1e8]])
 def test_a_non_number_is_a_type_error_naming_the_parameter(make, value):
     with pytest.raises(TypeError, match=r"contact_stiffness must be a number, got \w+"):
@@ -180,14 +190,18 @@ def test_numpy_scalars_are_numbers():
 
 
 def test_contact_damping_names_its_choices():
-    with pytest.raises(ValueError, match="contact_damping must be 'none', 'hunt_crossley' or 'lankarani_nikravesh', got 'xnonex'"):
+    with pytest.raises(
+        ValueError, match="contact_damping must be 'none', 'hunt_crossley' or 'lankarani_nikravesh', got 'xnonex'"
+    ):
         cf.Parameters(contact_damping="xnonex")
     with pytest.raises(TypeError, match="contact_damping must be"):
         cf.Parameters(contact_damping=0.5)
 
 
 def test_an_overflowing_speed_names_the_speed_and_its_range():
-    with pytest.raises(ValueError, match=r"camshaft_speed_rpm must be in \[9.5\d*e-06, 954\d+\.?\d*\] rpm, got 1e\+308"):
+    with pytest.raises(
+        ValueError, match=r"camshaft_speed_rpm must be in \[9.5\d*e-06, 954\d+\.?\d*\] rpm, got 1e\+308"
+    ):
         cf.CamFollowerModel(cf.Parameters(camshaft_speed_rpm=1e308))
     with pytest.raises(ValueError, match="camshaft_speed_rpm must be in"):
         cf.presets.paper().with_camshaft_speed_rpm(1e308)
@@ -231,10 +245,17 @@ def test_runs_beyond_ten_billion_steps_are_refused_at_once():
     assert time.monotonic() - start < 10.0
 
 
-@pytest.mark.parametrize("name,value,error", [
-    ("decimation", 1.5, TypeError), ("decimation", True, TypeError), ("max_iterations", "25", TypeError),
-    ("time_step", "3e-6", TypeError), ("settle_max_revolutions", 10**30, ValueError), ("linear_solver", 1, TypeError),
-])
+@pytest.mark.parametrize(
+    "name,value,error",
+    [
+        ("decimation", 1.5, TypeError),
+        ("decimation", True, TypeError),
+        ("max_iterations", "25", TypeError),
+        ("time_step", "3e-6", TypeError),
+        ("settle_max_revolutions", 10**30, ValueError),
+        ("linear_solver", 1, TypeError),
+    ],
+)
 def test_simulate_names_a_bad_argument(name, value, error):
     with pytest.raises(error, match=name):
         cf.simulate(cf.CamFollowerModel(), duration=1e-3, **{name: value})
@@ -258,9 +279,14 @@ def test_segments_spanning_less_than_a_microradian_are_refused():
     dw, cyc = cf.MotionLaw.dwell(), cf.MotionLaw.cycloidal()
     r0, r1 = math.pi - 9e-10, math.pi - 5e-10
     with pytest.raises(ValueError, match=r"segment spans .* at least 1e-06 rad"):
-        cf.MotionProgram([cf.Segment(dw, 0, math.pi, 0, 0), cf.Segment(cyc, r0, r1, 0, 1e-3),
-                          cf.Segment(dw, r1, 2 * math.pi - 0.5, 1e-3, 1e-3),
-                          cf.Segment(cyc, 2 * math.pi - 0.5, 2 * math.pi, 1e-3, 0)])
+        cf.MotionProgram(
+            [
+                cf.Segment(dw, 0, math.pi, 0, 0),
+                cf.Segment(cyc, r0, r1, 0, 1e-3),
+                cf.Segment(dw, r1, 2 * math.pi - 0.5, 1e-3, 1e-3),
+                cf.Segment(cyc, 2 * math.pi - 0.5, 2 * math.pi, 1e-3, 0),
+            ]
+        )
     with pytest.raises(ValueError, match=r"h_start/h_end must be in \[-1000, 1000\] m"):
         cf.MotionProgram([cf.Segment(cyc, 0, math.pi, 0, 1e154), cf.Segment(cyc, math.pi, 2 * math.pi, 1e154, 0)])
 
@@ -270,6 +296,7 @@ def test_segments_spanning_less_than_a_microradian_are_refused():
 
 def test_analysis_helpers_name_bad_arguments():
     from camfollower import analysis as an
+
     model = cf.CamFollowerModel()
     cases = [
         (lambda: an.Spectrum(np.array([1.0]), np.array([1.0])), "frequency must be a 1-D array of at least 2"),
@@ -300,6 +327,7 @@ def test_analysis_helpers_name_bad_arguments():
 
 def test_speed_helpers_name_bad_arguments():
     from camfollower import speed as sp
+
     m = cf.presets.paper()
     with pytest.raises(ValueError, match="speeds must be a sequence of camshaft speeds"):
         sp.margin_curve(m, 5)
@@ -313,6 +341,7 @@ def test_speed_helpers_name_bad_arguments():
 
 def test_study_tables_echo_short_printable_values_with_file_and_line(tmp_path):
     from camfollower.studies import montecarlo_settings, sweep_settings
+
     config = tmp_path / "case.toml"
     huge = "x" * 10_000_000
     config.write_text(f'[camshaft]\nspeed = "750 rpm"\n\n[sweep]\nrpm = ["{huge}"]\n')
@@ -325,12 +354,22 @@ def test_study_tables_echo_short_printable_values_with_file_and_line(tmp_path):
     assert "\x1b" not in str(e.value) and len(str(e.value)) < 600
     with pytest.raises(ValueError, match="not both"):
         sweep_settings({"rpm": [500.0], "count": 3})
-    config.write_text("[montecarlo]\ncases = 10\n\n[[montecarlo.tolerance]]\nparameter = \"a\"\n"
-                      "distribution = \"normal\"\nstd = 0.1\n\n[[montecarlo.tolerance]]\nparameter = \"b\"\n"
-                      "distribution = \"gamma\"\n")
+    config.write_text(
+        "[montecarlo]\ncases = 10\n\n[[montecarlo.tolerance]]\nparameter = \"a\"\n"
+        "distribution = \"normal\"\nstd = 0.1\n\n[[montecarlo.tolerance]]\nparameter = \"b\"\n"
+        "distribution = \"gamma\"\n"
+    )
     with pytest.raises(ValueError, match=rf"^{config}:11: montecarlo.tolerance\[1\].distribution: must be one of"):
-        montecarlo_settings({"cases": 10, "tolerance": [{"parameter": "a", "distribution": "normal", "std": 0.1},
-                                                         {"parameter": "b", "distribution": "gamma"}]}, path=config)
+        montecarlo_settings(
+            {
+                "cases": 10,
+                "tolerance": [
+                    {"parameter": "a", "distribution": "normal", "std": 0.1},
+                    {"parameter": "b", "distribution": "gamma"},
+                ],
+            },
+            path=config,
+        )
 
 
 def test_a_run_reports_its_step_against_the_shortest_natural_period():
@@ -359,9 +398,11 @@ def test_no_error_message_carries_control_characters_or_megabytes():
     name = "\x07\x1b[2J" + "x" * 5_000_000
     builder = cf.MechanismBuilder()
     builder.add_dof("tappet", 0.1, [0, 1, 0])
-    for call in (lambda: cf.Parameters().get(name),
-                 lambda: (builder.add_spring("spring", "tappet", name, stiffness=1e5), builder.build()),
-                 lambda: cf.simulate(cf.CamFollowerModel(), duration=1e-4, linear_solver=name)):
+    for call in (
+        lambda: cf.Parameters().get(name),
+        lambda: (builder.add_spring("spring", "tappet", name, stiffness=1e5), builder.build()),
+        lambda: cf.simulate(cf.CamFollowerModel(), duration=1e-4, linear_solver=name),
+    ):
         with pytest.raises(ValueError) as e:
             call()
         text = str(e.value)
@@ -374,6 +415,7 @@ def test_geometry_beyond_a_kilometre_is_refused():
         cf.DiskCam(cf.MotionProgram.paper_default(), 5.6e102, 0.125, 0.0)
     with pytest.raises(ValueError, match="sample_rate = .* gives no usable frequency axis"):
         from camfollower import analysis
+
         analysis.spectrum(np.zeros(8), 2.2250738585072014e-308)
 
 
@@ -390,12 +432,15 @@ def test_a_config_speed_outside_the_models_range_names_the_file_and_line(tmp_pat
     lines[k] = 'speed = "1e-320 rpm"'
     path = tmp_path / "slow.toml"
     path.write_text("\n".join(lines) + "\n")
-    with pytest.raises(ValueError, match=rf"slow.toml:{k + 1}: camshaft.speed: must be in \[9.5\d*e-06, 954\d*\.?\d*\] rpm"):
+    with pytest.raises(
+        ValueError, match=rf"slow.toml:{k + 1}: camshaft.speed: must be in \[9.5\d*e-06, 954\d*\.?\d*\] rpm"
+    ):
         cf.load_config(path)
 
 
 def test_a_spectrum_that_would_overflow_is_refused():
     from camfollower import analysis
+
     with pytest.raises(ValueError, match=r"signal: values up to 1.\d*e\+308 overflow the spectrum"):
         analysis.spectrum([0.0] * 6 + [1.6079056208947341e308, 0.0], 1.0)
 
@@ -422,8 +467,11 @@ def test_a_preset_whose_calibration_cannot_converge_names_the_file_and_table(tmp
     path = tmp_path / "denormal.toml"
     path.write_text("\n".join(lines) + "\n")
     # Located at the parameter's own line since the model's messages are matched to their keys.
-    with pytest.raises(ValueError, match=rf"denormal.toml:{k + 1}: preset.parameters.spring_preload_deflection: must be "
-                                         r"finite and > 0 \(m\), in \[1e-06, 1000\] m, got (1e-320|9.99\d*e-321)"):
+    with pytest.raises(
+        ValueError,
+        match=rf"denormal.toml:{k + 1}: preset.parameters.spring_preload_deflection: must be "
+        r"finite and > 0 \(m\), in \[1e-06, 1000\] m, got (1e-320|9.99\d*e-321)",
+    ):
         cf.load_config(path)
     # A contact no double can balance (1e25 N/m): whichever check stops it, the message is located.
     lines[k] = "spring_preload_deflection = 0.013"
@@ -439,8 +487,10 @@ def test_a_preset_whose_calibration_cannot_converge_names_the_file_and_table(tmp
 
 def _strict_json(path):
     """A summary parsed as RFC 8259 JSON: NaN, Infinity and -Infinity are not JSON."""
+
     def refuse(constant):
         raise ValueError(f"{path.name}: {constant} is not JSON")
+
     return json.loads(path.read_text(), parse_constant=refuse)
 
 
@@ -468,8 +518,11 @@ def test_the_output_folder_never_removes_the_runs_config(tmp_path, link):
         (out / "summary.json").symlink_to(config)
     else:
         (out / "summary.json").write_text(text)
-        config = {"itself": out / "summary.json", "symlink": tmp_path / "case.toml",
-                  "hardlink": tmp_path / "case.toml"}[link]
+        config = {
+            "itself": out / "summary.json",
+            "symlink": tmp_path / "case.toml",
+            "hardlink": tmp_path / "case.toml",
+        }[link]
         if link == "symlink":
             config.symlink_to(out / "summary.json")
         elif link == "hardlink":
@@ -490,8 +543,12 @@ def test_no_command_deletes_its_config_as_an_old_summary(tmp_path, capsys, comma
     out.mkdir()
     config = _small_studies_config(out, "summary.json")
     text = config.read_text()
-    assert cli.main([command, str(config), "-o", str(out)] + (["--no-progress"] if command in ("sweep", "montecarlo")
-                                                              else [])) == 1
+    assert (
+        cli.main(
+            [command, str(config), "-o", str(out)] + (["--no-progress"] if command in ("sweep", "montecarlo") else [])
+        )
+        == 1
+    )
     err = capsys.readouterr().err
     assert err.startswith("camfollower: error: --out: ") and "is the input file" in err and str(config) in err
     assert config.read_text() == text
@@ -504,8 +561,9 @@ def test_an_output_folder_whose_name_is_not_utf8_is_refused_before_the_run(tmp_p
     out = os.fsencode(tmp_path) + b"/out\xff"
     config = ROOT / "examples" / "translating_roller.toml"
     t0 = time.perf_counter()
-    run = subprocess.run([sys.executable, "-m", "camfollower", "figures", str(config), "-o", out],
-                         capture_output=True, timeout=120)
+    run = subprocess.run(
+        [sys.executable, "-m", "camfollower", "figures", str(config), "-o", out], capture_output=True, timeout=120
+    )
     err = run.stderr.decode("utf-8", "replace")
     assert run.returncode == 1, err
     assert err.startswith("camfollower: error: --out: ") and "not valid UTF-8" in err and "out\\xff" in err
@@ -559,10 +617,24 @@ def test_every_summary_the_commands_write_is_strict_json(tmp_path, capsys):
 
 
 def test_the_json_writer_is_strict_and_fails_loudly_on_what_it_cannot_write():
-    text = _files.json_text({"nan": math.nan, "inf": [np.float32("inf"), -math.inf], "n": np.int64(3),
-                             "a": np.array([1.5, np.nan]), "ok": np.bool_(True), 7: (1, 2.5)})
+    text = _files.json_text(
+        {
+            "nan": math.nan,
+            "inf": [np.float32("inf"), -math.inf],
+            "n": np.int64(3),
+            "a": np.array([1.5, np.nan]),
+            "ok": np.bool_(True),
+            7: (1, 2.5),
+        }
+    )
     assert json.loads(text, parse_constant=lambda c: pytest.fail(c)) == {
-        "nan": None, "inf": [None, None], "n": 3, "a": [1.5, None], "ok": True, "7": [1, 2.5]}
+        "nan": None,
+        "inf": [None, None],
+        "n": 3,
+        "a": [1.5, None],
+        "ok": True,
+        "7": [1, 2.5],
+    }
     with pytest.raises(TypeError, match="not JSON serializable"):
         _files.json_text({"x": object()})
 
@@ -582,22 +654,31 @@ def test_a_saved_result_holds_strict_json_and_reads_back_nan(tmp_path):
 _MISSING = "no-such-config.toml"  # an argument checked first is refused before the config is read
 
 
-@pytest.mark.parametrize("argv, message", [
-    (["camshaft", _MISSING, "--engine-rpm", "-1"], r"--engine-rpm: -1 is not an engine speed in \[.*\] rpm"),
-    (["camshaft", _MISSING, "--rpm", "nan"], r"--rpm: nan is not a camshaft speed in \[.*\] rpm"),
-    (["camshaft", _MISSING, "--rpm", "1000", "--engine-rpm", "2000"], "give --rpm .* or --engine-rpm .*, not both"),
-    (["camshaft", _MISSING, "--revolutions", "0"], r"--revolutions: 0 is not a number of camshaft revolutions in \(0, "),
-    (["camshaft", _MISSING, "--revolutions", "inf"], r"--revolutions: inf is not"),
-    (["sweep", _MISSING, "--jump", "2000", "1000"], "--jump: LO 2000 must be below HI 1000 rpm"),
-    (["sweep", _MISSING, "--jump", "nan", "1000"], r"--jump: nan is not a camshaft speed in \["),
-    (["sweep", _MISSING, "--rpm", "1e308"], r"--rpm: 1e\+308 is not a camshaft speed in \["),
-    (["sweep", _MISSING, "--workers", "0"], r"--workers: 0 is not in \[1, "),
-    (["sweep", _MISSING, "--scheduler", " "], "--scheduler: give a Dask scheduler address"),
-    (["montecarlo", _MISSING, "--workers", "2", "--scheduler", "dask:2"], "give --workers .* or --scheduler .*, not both"),
-    (["montecarlo", _MISSING, "--cases", "0"], r"--cases: 0 is not in \[1, 10000000\]"),
-    (["montecarlo", _MISSING, "--seed", "-1"], r"--seed: -1 is not in \[0, "),
-    (["figures", _MISSING, "-o", "a\0b"], "--out: the path contains a NUL character"),
-])
+@pytest.mark.parametrize(
+    "argv, message",
+    [
+        (["camshaft", _MISSING, "--engine-rpm", "-1"], r"--engine-rpm: -1 is not an engine speed in \[.*\] rpm"),
+        (["camshaft", _MISSING, "--rpm", "nan"], r"--rpm: nan is not a camshaft speed in \[.*\] rpm"),
+        (["camshaft", _MISSING, "--rpm", "1000", "--engine-rpm", "2000"], "give --rpm .* or --engine-rpm .*, not both"),
+        (
+            ["camshaft", _MISSING, "--revolutions", "0"],
+            r"--revolutions: 0 is not a number of camshaft revolutions in \(0, ",
+        ),
+        (["camshaft", _MISSING, "--revolutions", "inf"], r"--revolutions: inf is not"),
+        (["sweep", _MISSING, "--jump", "2000", "1000"], "--jump: LO 2000 must be below HI 1000 rpm"),
+        (["sweep", _MISSING, "--jump", "nan", "1000"], r"--jump: nan is not a camshaft speed in \["),
+        (["sweep", _MISSING, "--rpm", "1e308"], r"--rpm: 1e\+308 is not a camshaft speed in \["),
+        (["sweep", _MISSING, "--workers", "0"], r"--workers: 0 is not in \[1, "),
+        (["sweep", _MISSING, "--scheduler", " "], "--scheduler: give a Dask scheduler address"),
+        (
+            ["montecarlo", _MISSING, "--workers", "2", "--scheduler", "dask:2"],
+            "give --workers .* or --scheduler .*, not both",
+        ),
+        (["montecarlo", _MISSING, "--cases", "0"], r"--cases: 0 is not in \[1, 10000000\]"),
+        (["montecarlo", _MISSING, "--seed", "-1"], r"--seed: -1 is not in \[0, "),
+        (["figures", _MISSING, "-o", "a\0b"], "--out: the path contains a NUL character"),
+    ],
+)
 def test_every_command_line_argument_is_checked_before_anything_runs(tmp_path, capsys, monkeypatch, argv, message):
     from camfollower import cli
 
@@ -628,8 +709,14 @@ def test_study_settings_check_a_whole_bracket_and_the_overrides_before_any_run(m
 
 # --- the C++ command line (src/main.cpp, CLI11): numeric options, usage errors, exit status -----------
 
-_CPP_CLI = next((p for p in (ROOT / "build-sanitize" / "src" / "camfollower", ROOT / "build" / "src" / "camfollower")
-                 if p.exists()), ROOT / "build-sanitize" / "src" / "camfollower")
+_CPP_CLI = next(
+    (
+        p
+        for p in (ROOT / "build-sanitize" / "src" / "camfollower", ROOT / "build" / "src" / "camfollower")
+        if p.exists()
+    ),
+    ROOT / "build-sanitize" / "src" / "camfollower",
+)
 
 
 def _cpp_cli(*args, cwd=None):
@@ -637,24 +724,38 @@ def _cpp_cli(*args, cwd=None):
 
 
 @pytest.mark.skipif(not _CPP_CLI.exists(), reason="the command line is built by scripts/test.sh (ctest)")
-@pytest.mark.parametrize("args, message", [
-    (["kinematics", "--rpm", "nan"], r"--rpm: nan is not a camshaft speed in \[9.5493e-06, 954930\] rpm"),
-    (["kinematics", "--rpm", "1e308"], r"--rpm: 1e\+308 is not a camshaft speed in \[9.5493e-06, 954930\] rpm"),
-    (["kinematics", "--rpm", "-5"], r"--rpm: -5 is not a camshaft speed in \["),
-    (["modes", "--theta", "inf"], r"--theta: inf is not a cam angle in \[-1000000, 1000000\] deg"),
-    (["modes", "--count", "0"], r"--count: 0 is not a number of modes in \[1, 100000\]"),
-    (["export", "{flat}", "-o", "{tmp}/cam.csv", "--cutter-radius", "nan"], r"--cutter-radius: nan is not a radius >= 0"),
-    (["export", "{flat}", "-o", "{tmp}/cam.csv", "--cutter-radius", "-1"], r"--cutter-radius: -1 is not a radius >= 0"),
-    (["export", "{flat}", "-o", "{tmp}/cam.csv", "--cutter-radius", "2e6"],
-     r"--cutter-radius: 2000000 is not a radius in \[0, 1000000\] mm"),
-    (["export", "{flat}", "-o", "{tmp}/cam.csv", "--points", "-5"], r"--points: -5 is not a number of points in \[8, 10000000\]"),
-    (["run", "{flat}", "-o", ""], r"-o/--output: must name a file, got an empty string"),
-    (["export", "{flat}", "-o", ""], r"-o/--output: must name a file, got an empty string"),
-    (["run"], r"config is required"),
-    (["run", "{flat}", "--bogus"], r"The following argument"),
-    (["kinematics", "--rpm", "fast"], r"(Could not convert|--rpm).*fast"),
-    ([], r"A subcommand is required"),
-])
+@pytest.mark.parametrize(
+    "args, message",
+    [
+        (["kinematics", "--rpm", "nan"], r"--rpm: nan is not a camshaft speed in \[9.5493e-06, 954930\] rpm"),
+        (["kinematics", "--rpm", "1e308"], r"--rpm: 1e\+308 is not a camshaft speed in \[9.5493e-06, 954930\] rpm"),
+        (["kinematics", "--rpm", "-5"], r"--rpm: -5 is not a camshaft speed in \["),
+        (["modes", "--theta", "inf"], r"--theta: inf is not a cam angle in \[-1000000, 1000000\] deg"),
+        (["modes", "--count", "0"], r"--count: 0 is not a number of modes in \[1, 100000\]"),
+        (
+            ["export", "{flat}", "-o", "{tmp}/cam.csv", "--cutter-radius", "nan"],
+            r"--cutter-radius: nan is not a radius >= 0",
+        ),
+        (
+            ["export", "{flat}", "-o", "{tmp}/cam.csv", "--cutter-radius", "-1"],
+            r"--cutter-radius: -1 is not a radius >= 0",
+        ),
+        (
+            ["export", "{flat}", "-o", "{tmp}/cam.csv", "--cutter-radius", "2e6"],
+            r"--cutter-radius: 2000000 is not a radius in \[0, 1000000\] mm",
+        ),
+        (
+            ["export", "{flat}", "-o", "{tmp}/cam.csv", "--points", "-5"],
+            r"--points: -5 is not a number of points in \[8, 10000000\]",
+        ),
+        (["run", "{flat}", "-o", ""], r"-o/--output: must name a file, got an empty string"),
+        (["export", "{flat}", "-o", ""], r"-o/--output: must name a file, got an empty string"),
+        (["run"], r"config is required"),
+        (["run", "{flat}", "--bogus"], r"The following argument"),
+        (["kinematics", "--rpm", "fast"], r"(Could not convert|--rpm).*fast"),
+        ([], r"A subcommand is required"),
+    ],
+)
 def test_cpp_command_line_errors_are_named_usage_errors(tmp_path, args, message):
     """NaN passed CLI11's range checks (--cutter-radius nan silently wrote no cutter path), 1e308 rpm
     was taken, -o "" wrote the config's own output file, and parse errors went out without the
@@ -669,7 +770,10 @@ def test_cpp_command_line_errors_are_named_usage_errors(tmp_path, args, message)
 @pytest.mark.skipif(not _CPP_CLI.exists(), reason="the command line is built by scripts/test.sh (ctest)")
 def test_cpp_command_line_help_and_run_errors_keep_their_status(tmp_path):
     help_ = _cpp_cli("--help")
-    assert help_.returncode == 0 and "Exit status: 0 done, 1 the config or the run failed, 2 a command-line" in help_.stdout
+    assert (
+        help_.returncode == 0
+        and "Exit status: 0 done, 1 the config or the run failed, 2 a command-line" in help_.stdout
+    )
     assert _cpp_cli("run", "--help").returncode == 0
     bad = tmp_path / "bad.toml"
     bad.write_text("[camshaft]\nspeed = \"fast\"\n")

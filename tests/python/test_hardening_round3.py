@@ -49,8 +49,9 @@ def test_a_shaft_mesh_absurd_for_its_section_is_refused_at_once(element):
 
 
 def test_a_config_with_a_micrometre_mesh_is_refused_at_once(tmp_path):
-    text = (cf.__file__ and open(_example("camshaft.toml")).read()).replace('max_element_length = "12 mm"',
-                                                                          'max_element_length = "20 um"')
+    text = (cf.__file__ and open(_example("camshaft.toml")).read()).replace(
+        'max_element_length = "12 mm"', 'max_element_length = "20 um"'
+    )
     config = tmp_path / "camshaft.toml"
     config.write_text(text)
     start = time.monotonic()
@@ -83,8 +84,16 @@ def test_a_run_with_much_work_between_output_steps_is_cancelled_promptly():
 
     start = time.monotonic()
     # 5e-3 s in steps of at most 1e-10 s: 5e7 integration steps (half a minute) in 25 output steps.
-    r = cf.simulate(mech, method="dormand_prince", tolerance=1e-6, max_step=1e-10, duration=5e-3, time_step=2e-4,
-                    progress=stop, progress_interval=0.05)
+    r = cf.simulate(
+        mech,
+        method="dormand_prince",
+        tolerance=1e-6,
+        max_step=1e-10,
+        duration=5e-3,
+        time_step=2e-4,
+        progress=stop,
+        progress_interval=0.05,
+    )
     assert time.monotonic() - start < 5.0
     assert r.stats["cancelled"] and calls
     assert r.rows < 6
@@ -115,14 +124,17 @@ def test_the_dense_backend_is_bounded_in_size():
 # --- item 3 (and 18): roles and names ---
 
 
-@pytest.mark.parametrize("roles, named", [
-    (dict(lateral="f"), "lateral and follower_dof both name DOF 'f'"),
-    (dict(cam_y="f"), "follower_dof and cam_y both name DOF 'f'"),
-    (dict(cam_x="f"), "follower_dof and cam_x both name DOF 'f'"),
-    (dict(cam_x="g", cam_y="g"), "cam_y and cam_x both name DOF 'g'"),
-    (dict(cam_y="g", cam_twist="g"), "cam_twist and cam_y both name DOF 'g'"),
-    (dict(lateral="g", cam_twist="g"), "cam_twist and lateral both name DOF 'g'"),
-])
+@pytest.mark.parametrize(
+    "roles, named",
+    [
+        (dict(lateral="f"), "lateral and follower_dof both name DOF 'f'"),
+        (dict(cam_y="f"), "follower_dof and cam_y both name DOF 'f'"),
+        (dict(cam_x="f"), "follower_dof and cam_x both name DOF 'f'"),
+        (dict(cam_x="g", cam_y="g"), "cam_y and cam_x both name DOF 'g'"),
+        (dict(cam_y="g", cam_twist="g"), "cam_twist and cam_y both name DOF 'g'"),
+        (dict(lateral="g", cam_twist="g"), "cam_twist and lateral both name DOF 'g'"),
+    ],
+)
 def test_each_role_of_a_contact_needs_a_dof_of_its_own(roles, named):
     b = one_dof()
     with pytest.raises(ValueError, match=rf"contact 'cam': {named}"):
@@ -144,18 +156,24 @@ def test_a_clearance_slides_along_a_dof_of_its_own():
         b.add_clearance("guide", [("g", 1.0)], clearance=1e-4, stiffness=1e8, friction=0.1, sliding_dof="g")
 
 
-@pytest.mark.parametrize("first, second, message", [
-    ("contact", "clearance", "clearance 'cam': the name is taken by contact 'cam'"),
-    ("clearance", "contact", "contact 'cam': the name is taken by clearance 'cam'"),
-    ("contact", "spring", "element 'cam': the name is taken by contact 'cam'"),
-    ("spring", "contact", "contact 'cam': the name is taken by element 'cam'"),
-])
+@pytest.mark.parametrize(
+    "first, second, message",
+    [
+        ("contact", "clearance", "clearance 'cam': the name is taken by contact 'cam'"),
+        ("clearance", "contact", "contact 'cam': the name is taken by clearance 'cam'"),
+        ("contact", "spring", "element 'cam': the name is taken by contact 'cam'"),
+        ("spring", "contact", "contact 'cam': the name is taken by element 'cam'"),
+    ],
+)
 def test_one_name_one_element_whatever_its_kind(first, second, message):
     b = one_dof()
-    add = {"contact": lambda: b.add_contact("cam", PROGRAM, cf.TranslatingRoller(0.03, 0.008), follower_dof="f",
-                                            stiffness=1e8),
-           "clearance": lambda: b.add_clearance("cam", [("g", 1.0)], clearance=1e-4, stiffness=1e8),
-           "spring": lambda: b.add_spring("cam", "g", "f", stiffness=1e3)}
+    add = {
+        "contact": lambda: b.add_contact(
+            "cam", PROGRAM, cf.TranslatingRoller(0.03, 0.008), follower_dof="f", stiffness=1e8
+        ),
+        "clearance": lambda: b.add_clearance("cam", [("g", 1.0)], clearance=1e-4, stiffness=1e8),
+        "spring": lambda: b.add_spring("cam", "g", "f", stiffness=1e3),
+    }
     add[first]()
     with pytest.raises(ValueError, match=message):
         add[second]()
@@ -164,22 +182,40 @@ def test_one_name_one_element_whatever_its_kind(first, second, message):
 # --- item 14: a recording that would hold nothing ---
 
 
-@pytest.mark.parametrize("options, named", [
-    (dict(revolutions=1, record_last_revolutions=1e-300), "record_last_revolutions = 1e-300 .* fewer than two rows"),
-    (dict(revolutions=1, record_last_revolutions=3), "record_last_revolutions = 3 is longer than the run"),
-    (dict(duration=0.01, record_from=0.02), r"record_from = 0.02 s: the recording window starts after the run ends"),
-    (dict(duration=0.01, decimation=10**6), "decimation = 1000000 steps .* a single row"),
-])
+@pytest.mark.parametrize(
+    "options, named",
+    [
+        (
+            dict(revolutions=1, record_last_revolutions=1e-300),
+            "record_last_revolutions = 1e-300 .* fewer than two rows",
+        ),
+        (dict(revolutions=1, record_last_revolutions=3), "record_last_revolutions = 3 is longer than the run"),
+        (
+            dict(duration=0.01, record_from=0.02),
+            r"record_from = 0.02 s: the recording window starts after the run ends",
+        ),
+        (dict(duration=0.01, decimation=10**6), "decimation = 1000000 steps .* a single row"),
+    ],
+)
 def test_a_recording_window_without_rows_is_refused_by_the_option(options, named):
     with pytest.raises(ValueError, match=named):
         cf.simulate(cf.presets.paper(), time_step=1e-5, **options)
 
 
-@pytest.mark.parametrize("line, named", [
-    ("record_last_revolutions = 1e-300", r"case.toml:\d+: output.record_last_revolutions: .* fewer than two rows"),
-    ("record_last_revolutions = 3", r"case.toml:\d+: output.record_last_revolutions: .* longer than the run \(2 revolutions"),
-    ("decimation = 1000000", r"case.toml:\d+: output.decimation: decimation = 1000000 steps is longer than the run"),
-])
+@pytest.mark.parametrize(
+    "line, named",
+    [
+        ("record_last_revolutions = 1e-300", r"case.toml:\d+: output.record_last_revolutions: .* fewer than two rows"),
+        (
+            "record_last_revolutions = 3",
+            r"case.toml:\d+: output.record_last_revolutions: .* longer than the run \(2 revolutions",
+        ),
+        (
+            "decimation = 1000000",
+            r"case.toml:\d+: output.decimation: decimation = 1000000 steps is longer than the run",
+        ),
+    ],
+)
 def test_a_config_recording_without_rows_is_refused_by_its_key(tmp_path, line, named):
     text = open(_example("translating_roller.toml")).read().replace("decimation = 10", line, 1)
     config = tmp_path / "case.toml"
@@ -191,18 +227,39 @@ def test_a_config_recording_without_rows_is_refused_by_its_key(tmp_path, line, n
 # --- item 17: motion inputs that overflow ---
 
 
-@pytest.mark.parametrize("make, named", [
-    (lambda: cf.ProfileError.dent(1.0, 5e-324, 1e-5), r"dent width must be in \[1e-06 rad"),
-    (lambda: cf.MotionLaw.sine_constant_cosine(1e-310, 0.5, 0.5 - 1e-310), "b .sine fraction. must be 0 or at least"),
-    (lambda: cf.Segment(cf.MotionLaw.cycloidal(), 1.0, 1.0, 0.0, 0.01), "span theta_end - theta_start must be at least"),
-    (lambda: cf.Segment(cf.MotionLaw.cycloidal(), 1.0, 0.5, 0.0, 0.01), "span theta_end - theta_start must be at least"),
-    (lambda: cf.Segment(cf.MotionLaw.cycloidal(), math.nan, 1.0, 0.0, 0.01), "theta_start/theta_end must be finite"),
-    (lambda: cf.Segment(cf.MotionLaw.dwell(), 0.0, 1.0, 0.0, 0.01), "a dwell must have h_end == h_start"),
-    (lambda: cf.Segment(cf.MotionLaw.cycloidal(), 0.0, 1.0, 0.0, math.inf), "h_start/h_end must be in"),
-    (lambda: cf.Segment.polynomial(0.0, 1e-300, [0.0, 0.0], [0.01, 0.0]), "polynomial segment: theta_end - theta_start"),
-    (lambda: cf.Segment(cf.MotionLaw.cycloidal(), 0.0, 1.0, 0.0, 0.01).lift_at(math.nan), r"theta = nan rad is outside"),
-    (lambda: cf.Segment(cf.MotionLaw.cycloidal(), 0.0, 1.0, 0.0, 0.01).lift_at(2.0), r"theta = 2 rad is outside"),
-])
+@pytest.mark.parametrize(
+    "make, named",
+    [
+        (lambda: cf.ProfileError.dent(1.0, 5e-324, 1e-5), r"dent width must be in \[1e-06 rad"),
+        (
+            lambda: cf.MotionLaw.sine_constant_cosine(1e-310, 0.5, 0.5 - 1e-310),
+            "b .sine fraction. must be 0 or at least",
+        ),
+        (
+            lambda: cf.Segment(cf.MotionLaw.cycloidal(), 1.0, 1.0, 0.0, 0.01),
+            "span theta_end - theta_start must be at least",
+        ),
+        (
+            lambda: cf.Segment(cf.MotionLaw.cycloidal(), 1.0, 0.5, 0.0, 0.01),
+            "span theta_end - theta_start must be at least",
+        ),
+        (
+            lambda: cf.Segment(cf.MotionLaw.cycloidal(), math.nan, 1.0, 0.0, 0.01),
+            "theta_start/theta_end must be finite",
+        ),
+        (lambda: cf.Segment(cf.MotionLaw.dwell(), 0.0, 1.0, 0.0, 0.01), "a dwell must have h_end == h_start"),
+        (lambda: cf.Segment(cf.MotionLaw.cycloidal(), 0.0, 1.0, 0.0, math.inf), "h_start/h_end must be in"),
+        (
+            lambda: cf.Segment.polynomial(0.0, 1e-300, [0.0, 0.0], [0.01, 0.0]),
+            "polynomial segment: theta_end - theta_start",
+        ),
+        (
+            lambda: cf.Segment(cf.MotionLaw.cycloidal(), 0.0, 1.0, 0.0, 0.01).lift_at(math.nan),
+            r"theta = nan rad is outside",
+        ),
+        (lambda: cf.Segment(cf.MotionLaw.cycloidal(), 0.0, 1.0, 0.0, 0.01).lift_at(2.0), r"theta = 2 rad is outside"),
+    ],
+)
 def test_motion_inputs_that_would_overflow_are_refused_at_construction(make, named):
     with pytest.raises(ValueError, match=named):
         make()
@@ -233,14 +290,18 @@ def test_argument_mismatches_name_the_call_and_stay_short():
 
 @pytest.mark.parametrize("answer", ["yes", 1, [True]])
 def test_a_progress_callback_must_answer_with_a_bool(answer):
-    with pytest.raises(TypeError, match=rf"progress\(steps_done, steps_planned\) must return None, True or False, "
-                                        rf"got {type(answer).__name__}"):
+    with pytest.raises(
+        TypeError,
+        match=rf"progress\(steps_done, steps_planned\) must return None, True or False, "
+        rf"got {type(answer).__name__}",
+    ):
         cf.simulate(cf.presets.paper(), revolutions=3, progress=lambda done, planned: answer, progress_interval=1e-9)
 
 
 def test_a_progress_callback_may_answer_with_numpys_bool():
-    r = cf.simulate(cf.presets.paper(), revolutions=0.2, progress=lambda done, planned: np.bool_(True),
-                    progress_interval=1e-9)
+    r = cf.simulate(
+        cf.presets.paper(), revolutions=0.2, progress=lambda done, planned: np.bool_(True), progress_interval=1e-9
+    )
     assert not r.stats["cancelled"]
 
 

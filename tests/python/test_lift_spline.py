@@ -42,8 +42,12 @@ def test_from_callable_segment_matches_the_closed_form_law():
     a, beta, lift = 30 * DEG, 120 * DEG, 0.01
     jerk_end = lift * (2 * np.pi) ** 2 / beta**3  # the cycloid's end jerk, not zero
     seg = cf.motion.from_callable(
-        lambda t: cycloidal(t, a, beta, lift)[0], a, a + beta, points=121,
-        start_derivatives=[0, 0, jerk_end], end_derivatives=[0, 0, jerk_end],
+        lambda t: cycloidal(t, a, beta, lift)[0],
+        a,
+        a + beta,
+        points=121,
+        start_derivatives=[0, 0, jerk_end],
+        end_derivatives=[0, 0, jerk_end],
     )
     assert isinstance(seg, cf.Segment)
     assert seg.law.name == "spline(degree=5, points=121)"
@@ -53,11 +57,13 @@ def test_from_callable_segment_matches_the_closed_form_law():
     for key, w, tol in zip(("h", "dh", "d2h", "d3h"), want, (1e-9, 1e-7, 1e-5, 1e-3)):
         assert np.max(np.abs(got[key] - w)) < tol * np.max(np.abs(w)), key
     # Inside a program between dwells.
-    prog = cf.MotionProgram([
-        cf.Segment(cf.MotionLaw.dwell(), 0, a, 0, 0),
-        seg,
-        cf.Segment(cf.MotionLaw.cycloidal(), a + beta, 2 * np.pi, lift, 0),
-    ])
+    prog = cf.MotionProgram(
+        [
+            cf.Segment(cf.MotionLaw.dwell(), 0, a, 0, 0),
+            seg,
+            cf.Segment(cf.MotionLaw.cycloidal(), a + beta, 2 * np.pi, lift, 0),
+        ]
+    )
     assert prog.continuity().continuous_through == 2  # jerk jumps into the dwells, as the cycloid's does
 
 
@@ -166,7 +172,10 @@ def test_345_and_4567_from_conditions_equal_the_built_in_laws():
         (lambda: cf.Segment.from_table([0, 1, 2], [0, np.nan, 2]), r"h\[1\] must be finite"),
         (lambda: cf.Segment.from_table([0, 1, 2], [0, 1, 2], start_derivatives=[0] * 5), "start_derivatives"),
         (lambda: cf.Segment.polynomial(1.0, 2.0, [0], [0], [(2.5, 0.0)]), r"interior\[0\]"),
-        (lambda: cf.Segment.polynomial(1.0, 1.0, [0], [0]), "theta_end - theta_start must be finite and at least 1e-06"),
+        (
+            lambda: cf.Segment.polynomial(1.0, 1.0, [0], [0]),
+            "theta_end - theta_start must be finite and at least 1e-06",
+        ),
         (lambda: cf.Segment.polynomial(1.0, 2.0, [], [0]), "start must hold"),
         (lambda: cf.Segment.polynomial(1.0, 2.0, [0] * 20, [1e-3] + [0] * 19), "ill-conditioned"),
         (lambda: cf.motion.from_callable(np.sin, 0, 1, points=1), "points"),
@@ -187,12 +196,14 @@ def test_program_checks_a_custom_segment_against_its_law():
 
 
 def test_continuity_and_require_continuity():
-    prog = cf.MotionProgram([
-        cf.Segment(cf.MotionLaw.dwell(), 0, 30 * DEG, 0, 0),
-        cf.Segment(cf.MotionLaw.constant_acceleration(), 30 * DEG, 180 * DEG, 0, 0.01),
-        cf.Segment(cf.MotionLaw.dwell(), 180 * DEG, 210 * DEG, 0.01, 0.01),
-        cf.Segment(cf.MotionLaw.cycloidal(), 210 * DEG, 2 * np.pi, 0.01, 0),
-    ])
+    prog = cf.MotionProgram(
+        [
+            cf.Segment(cf.MotionLaw.dwell(), 0, 30 * DEG, 0, 0),
+            cf.Segment(cf.MotionLaw.constant_acceleration(), 30 * DEG, 180 * DEG, 0, 0.01),
+            cf.Segment(cf.MotionLaw.dwell(), 180 * DEG, 210 * DEG, 0.01, 0.01),
+            cf.Segment(cf.MotionLaw.cycloidal(), 210 * DEG, 2 * np.pi, 0.01, 0),
+        ]
+    )
     report = prog.continuity()
     assert len(report) == 4
     assert report.continuous_through == 1
@@ -239,11 +250,22 @@ def test_smoothing_reduces_noise_in_the_jerk():
 def test_pickling_round_trips_custom_laws():
     theta = 2 * np.pi * np.arange(30) / 30
     periodic = cf.MotionProgram.from_table(theta, smooth(theta)[0], smoothing=1e-6)
-    seg = cf.Segment.from_table(np.linspace(0.5, 2.0, 11), 0.004 * np.linspace(0, 1, 11) ** 2, degree=3,
-                                start_derivatives=[0.0], end_derivatives=[0.0053])
+    seg = cf.Segment.from_table(
+        np.linspace(0.5, 2.0, 11),
+        0.004 * np.linspace(0, 1, 11) ** 2,
+        degree=3,
+        start_derivatives=[0.0],
+        end_derivatives=[0.0053],
+    )
     poly = cf.Segment.polynomial(2.0, 3.0, [0.004, 0, 0], [0.0, 0, 0], [(2.5, 0.003)])
-    prog = cf.MotionProgram([cf.Segment(cf.MotionLaw.dwell(), 0, 0.5, 0, 0), seg, poly,
-                             cf.Segment(cf.MotionLaw.dwell(), 3.0, 2 * np.pi, 0, 0)])
+    prog = cf.MotionProgram(
+        [
+            cf.Segment(cf.MotionLaw.dwell(), 0, 0.5, 0, 0),
+            seg,
+            poly,
+            cf.Segment(cf.MotionLaw.dwell(), 3.0, 2 * np.pi, 0, 0),
+        ]
+    )
     t = np.linspace(0, 2 * np.pi, 333)
     for p in (periodic, prog):
         q = pickle.loads(pickle.dumps(p))

@@ -38,7 +38,9 @@ def test_straight_roller_on_flat_matches_johnson():
     # Two cylinders, convex and concave cam.
     for rc in (0.03, -0.03):
         Re = 1 / (1 / R + 1 / rc)
-        assert c.stress(F, R, rc)["max_pressure"] == pytest.approx(math.sqrt(F * E_STAR / (math.pi * L * Re)), rel=1e-12)
+        assert c.stress(F, R, rc)["max_pressure"] == pytest.approx(
+            math.sqrt(F * E_STAR / (math.pi * L * Re)), rel=1e-12
+        )
 
 
 def test_crowned_circular_case_is_the_hertz_sphere():
@@ -51,7 +53,9 @@ def test_crowned_circular_case_is_the_hertz_sphere():
     assert s["max_pressure"] == pytest.approx(3 * F / (2 * math.pi * a * a), rel=0.03)
     # The fits' k, E(e), F(e) are 3.4 %, 1.7 %, 2.7 % off at alpha = 1; the approach compounds them (5.4 % low).
     assert s["approach"] == pytest.approx(a * a / r, rel=0.06)
-    assert s["approach"] / (a * a / r) == pytest.approx(1.5277 / (math.pi / 2) * ((math.pi / 2) / (1.5971 * 1.0339**2)) ** (1 / 3), rel=1e-9)
+    assert s["approach"] / (a * a / r) == pytest.approx(
+        1.5277 / (math.pi / 2) * ((math.pi / 2) / (1.5971 * 1.0339**2)) ** (1 / 3), rel=1e-9
+    )
 
 
 def test_palmgren_units():
@@ -105,7 +109,10 @@ def test_profile_stress_over_the_paper_cam():
             ),
             "one value per angle",
         ),
-        (lambda: cf.LineContact(0.01).profile_stress("roller", cf.MotionProgram.paper_default(), 1.0, 0.0), "follower must be"),
+        (
+            lambda: cf.LineContact(0.01).profile_stress("roller", cf.MotionProgram.paper_default(), 1.0, 0.0),
+            "follower must be",
+        ),
     ],
 )
 def test_bad_input(make, match):
@@ -135,7 +142,12 @@ def _semi_axes(force, rx, ry, k, Ee, Fe):
     rc, ep = 1 / (1 / rx + 1 / ry), 2 * E_STAR
     a = (6 * k * k * Ee * force * rc / (math.pi * ep)) ** (1 / 3)
     b = (6 * Ee * force * rc / (math.pi * k * ep)) ** (1 / 3)
-    return a, b, 3 * force / (2 * math.pi * a * b), Fe * ((9 / (2 * Ee * rc)) * (force / (math.pi * k * ep)) ** 2) ** (1 / 3)
+    return (
+        a,
+        b,
+        3 * force / (2 * math.pi * a * b),
+        Fe * ((9 / (2 * Ee * rc)) * (force / (math.pi * k * ep)) ** 2) ** (1 / 3),
+    )
 
 
 def test_crowned_fits_hold_their_documented_accuracy_inside_their_range_and_warn_outside():

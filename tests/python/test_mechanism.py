@@ -44,10 +44,13 @@ def test_paper_preset_matches_the_original_model():
     old, preset = cf.CamFollowerModel(), cf.presets.paper()
     assert preset.dof_names == ["y1", "y2", "y3", "y4", "x1", "x2", "x3"]
     np.testing.assert_array_equal(preset.stiffness, old.stiffness_matrix)
-    np.testing.assert_allclose(preset.initial_state, old.initial_state, rtol=0, atol=1e-12 * np.abs(old.initial_state).max())
+    np.testing.assert_allclose(
+        preset.initial_state, old.initial_state, rtol=0, atol=1e-12 * np.abs(old.initial_state).max()
+    )
     for theta in (0.0, np.radians(100), np.radians(290)):
-        np.testing.assert_allclose(preset.modal_analysis(theta)["frequencies_hz"],
-                                   old.modal_analysis(theta)["frequencies_hz"], rtol=1e-12)
+        np.testing.assert_allclose(
+            preset.modal_analysis(theta)["frequencies_hz"], old.modal_analysis(theta)["frequencies_hz"], rtol=1e-12
+        )
     a = cf.simulate(old, revolutions=1, decimation=10)
     b = cf.simulate(preset, revolutions=1, decimation=10)
     assert np.abs(a.q - b.q).max() <= 1e-12 * np.abs(a.q).max()
@@ -58,8 +61,9 @@ def builder_1dof(speed_rpm=750.0):
     b = cf.MechanismBuilder()
     b.add_dof("y", 0.5, direction=(0, 1, 0))
     b.add_spring("spring", "y", "ground", stiffness=2e4, preload=300.0)
-    b.add_contact("cam", cf.MotionProgram.paper_default(), cf.TranslatingRoller(0.03, 0.008, 0.0),
-                  follower_dof="y", stiffness=1e8)
+    b.add_contact(
+        "cam", cf.MotionProgram.paper_default(), cf.TranslatingRoller(0.03, 0.008, 0.0), follower_dof="y", stiffness=1e8
+    )
     b.camshaft_speed_rpm = speed_rpm
     return b
 
@@ -109,10 +113,11 @@ def test_recording_window_and_progress_and_cancellation():
     full = cf.simulate(mech, revolutions=1, decimation=64)
     last = cf.simulate(mech, revolutions=1, decimation=64, record_last_revolutions=0.25)
     assert last.t[0] >= 0.75 * mech.period - 64 * 3e-6 and last.t[-1] == pytest.approx(full.t[-1])
-    np.testing.assert_array_equal(last.q, full.q[-last.rows:])
+    np.testing.assert_array_equal(last.q, full.q[-last.rows :])
     calls = []
-    stopped = cf.simulate(mech, revolutions=1, progress=lambda done, total: calls.append(done) or len(calls) < 2,
-                          progress_interval=1e-6)
+    stopped = cf.simulate(
+        mech, revolutions=1, progress=lambda done, total: calls.append(done) or len(calls) < 2, progress_interval=1e-6
+    )
     assert stopped.stats["cancelled"] and len(calls) == 2 and stopped.rows < full.rows * 64
 
 
@@ -124,14 +129,25 @@ def test_ctrl_c_stops_a_long_run_quickly(ctrl_c):
     assert time.monotonic() - start < 1.5
 
 
-@pytest.mark.parametrize("change, message", [
-    (lambda b: b.add_spring("s", "nope", "ground", stiffness=1.0), "not defined"),
-    (lambda b: b.add_spring("s", "y", "y", stiffness=1.0), "to itself"),
-    (lambda b: b.add_dof("z", -1.0), "mass of DOF 'z'"),
-    (lambda b: b.set_modal_damping([-0.1]), "modal damping ratio"),
-    (lambda b: b.add_contact("cam2", cf.MotionProgram.paper_default(), cf.TranslatingRoller(0.03, 0.008),
-                             follower_dof="w", stiffness=1e8), "not defined"),
-])
+@pytest.mark.parametrize(
+    "change, message",
+    [
+        (lambda b: b.add_spring("s", "nope", "ground", stiffness=1.0), "not defined"),
+        (lambda b: b.add_spring("s", "y", "y", stiffness=1.0), "to itself"),
+        (lambda b: b.add_dof("z", -1.0), "mass of DOF 'z'"),
+        (lambda b: b.set_modal_damping([-0.1]), "modal damping ratio"),
+        (
+            lambda b: b.add_contact(
+                "cam2",
+                cf.MotionProgram.paper_default(),
+                cf.TranslatingRoller(0.03, 0.008),
+                follower_dof="w",
+                stiffness=1e8,
+            ),
+            "not defined",
+        ),
+    ],
+)
 def test_bad_descriptions_name_the_element(change, message):
     b = builder_1dof()
     with pytest.raises(ValueError, match=message):
@@ -142,8 +158,14 @@ def test_bad_descriptions_name_the_element(change, message):
 def test_a_cusped_cam_is_refused_with_the_angle():
     # 20 mm in 60 deg: on a 30 mm base circle the flat face would need a surface radius r_b + h + h'' < 0.
     mt, dwell, d = cf.MotionLaw.modified_trapezoid(), cf.MotionLaw.dwell(), np.radians
-    fast = cf.MotionProgram([cf.Segment(dwell, 0, d(30), 0, 0), cf.Segment(mt, d(30), d(90), 0, 0.02),
-                             cf.Segment(dwell, d(90), d(180), 0.02, 0.02), cf.Segment(mt, d(180), 2 * np.pi, 0.02, 0)])
+    fast = cf.MotionProgram(
+        [
+            cf.Segment(dwell, 0, d(30), 0, 0),
+            cf.Segment(mt, d(30), d(90), 0, 0.02),
+            cf.Segment(dwell, d(90), d(180), 0.02, 0.02),
+            cf.Segment(mt, d(180), 2 * np.pi, 0.02, 0),
+        ]
+    )
     b = cf.MechanismBuilder()
     b.add_dof("y", 0.5)
     b.add_spring("spring", "y", "ground", stiffness=2e4, preload=300.0)
@@ -194,8 +216,9 @@ def test_a_follower_held_only_by_gravity_finds_its_equilibrium_and_edge_cases_of
     clash = cf.MechanismBuilder()
     clash.add_dof("force", 0.5)
     clash.add_spring("k", "force", "ground", stiffness=1e4, preload=100.0)
-    clash.add_contact("q", cf.MotionProgram.paper_default(), cf.TranslatingFlat(0.03), follower_dof="force",
-                      stiffness=1e8)
+    clash.add_contact(
+        "q", cf.MotionProgram.paper_default(), cf.TranslatingFlat(0.03), follower_dof="force", stiffness=1e8
+    )
     with pytest.raises(ValueError, match="both named 'q.force'"):
         cf.simulate(clash.build(), duration=1e-4)
 

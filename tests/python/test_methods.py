@@ -2,6 +2,7 @@
 """The integration methods (docs/solvers.md): Dormand-Prince 5(4) and 8(5,3) against an independent solution
 of the same equations (the NumPy model integrated by scipy), Fox-Goodwin, the settings each method
 accepts, the config's [solver] scheme."""
+
 import re
 from pathlib import Path
 
@@ -23,8 +24,9 @@ def model():
 def reference(model):
     """The 7-DOF equations written again in NumPy, integrated by scipy's DOP853 at rtol 1e-12."""
     ref = NumpyCamFollower(model)
-    sol = solve_ivp(ref.rhs, (0, model.period), ref.initial(), method="DOP853", rtol=1e-12, atol=1e-15,
-                    dense_output=True)
+    sol = solve_ivp(
+        ref.rhs, (0, model.period), ref.initial(), method="DOP853", rtol=1e-12, atol=1e-15, dense_output=True
+    )
     assert sol.status == 0
     return ref, sol
 
@@ -39,11 +41,18 @@ def force_error(model, reference, result):
 # (method, force evaluations per step, tolerance, bounds of the contact force's error relative to its peak:
 # above half the tolerance, the comparison resolves it; the reference's own floor is ~4e-9). DOP853 at
 # 1e-8 is measured at 4e-8, Dormand-Prince at 5.9e-7.
-@pytest.mark.parametrize("method, per_step, tolerance, low, high", [
-    ("dormand_prince", 6, 1e-5, 0.5e-5, 2e-3), ("dormand_prince", 6, 1e-7, 0.5e-7, 2e-5),
-    ("dop853", 12, 1e-7, 0.5e-7, 2e-5), ("dop853", 12, 1e-8, 0.5e-8, 2e-7)])
-def test_explicit_contact_force_against_scipy_on_independent_equations(model, reference, method, per_step, tolerance,
-                                                                       low, high):
+@pytest.mark.parametrize(
+    "method, per_step, tolerance, low, high",
+    [
+        ("dormand_prince", 6, 1e-5, 0.5e-5, 2e-3),
+        ("dormand_prince", 6, 1e-7, 0.5e-7, 2e-5),
+        ("dop853", 12, 1e-7, 0.5e-7, 2e-5),
+        ("dop853", 12, 1e-8, 0.5e-8, 2e-7),
+    ],
+)
+def test_explicit_contact_force_against_scipy_on_independent_equations(
+    model, reference, method, per_step, tolerance, low, high
+):
     r = cf.simulate(model, revolutions=1, time_step=model.period / 512, method=method, tolerance=tolerance)
     assert r.stats["method"] == method
     assert r.stats["newton_iterations"] == 0
@@ -75,13 +84,21 @@ def test_radau_contact_force_against_scipy_on_independent_equations(model, refer
 def test_fox_goodwin_under_a_tolerance_against_scipy_on_independent_equations(model, reference):
     runs = {}
     for tolerance in (1e-5, 1e-7):
-        r = cf.simulate(model, revolutions=1, time_step=model.period / 512, method="fox_goodwin", tolerance=tolerance,
-                        max_halvings=10)
+        r = cf.simulate(
+            model,
+            revolutions=1,
+            time_step=model.period / 512,
+            method="fox_goodwin",
+            tolerance=tolerance,
+            max_halvings=10,
+        )
         assert (r.stats["method"], r.stats["evaluations"]) == ("fox_goodwin", 0)
         assert len(r["t"]) == 513 and r["t"][-1] == pytest.approx(model.period, rel=1e-12)
         err = force_error(model, reference, r)
-        print(f"fox_goodwin tolerance {tolerance:g}: contact force error {err:.2e} of the peak, {r.stats['steps']} steps, "
-              f"{r.stats['rejected_steps']} rejected")
+        print(
+            f"fox_goodwin tolerance {tolerance:g}: contact force error {err:.2e} of the peak, {r.stats['steps']} steps, "
+            f"{r.stats['rejected_steps']} rejected"
+        )
         assert 0.5 * tolerance < err < 100 * tolerance
         runs[tolerance] = (err, r.stats["steps"])
     assert runs[1e-7][0] < runs[1e-5][0] / 10
@@ -98,16 +115,19 @@ def test_radau_takes_fewer_steps_where_damping_makes_the_model_stiff():
     r = cf.simulate(m, revolutions=1, time_step=T / 512, method="radau", tolerance=1e-7)
     peak = np.max(np.abs(ref["cam.force"]))
     err = np.max(np.abs(r["cam.force"] - ref["cam.force"])) / peak
-    print(f"radau: {r.stats['steps']} steps, force error {err:.1e}; dop853: {explicit.stats['steps']} steps, "
-          f"{explicit.stats['stiff_steps']} stiff")
+    print(
+        f"radau: {r.stats['steps']} steps, force error {err:.1e}; dop853: {explicit.stats['steps']} steps, "
+        f"{explicit.stats['stiff_steps']} stiff"
+    )
     assert explicit.stats["stiff_steps"] > 0 and r.stats["stiff_steps"] == 0
     assert 1e-10 < err < 1e-6  # measured 5e-8: two methods, and Radau within its usual 10-20x the tolerance
     assert r.stats["steps"] < 0.6 * explicit.stats["steps"]
 
 
 def test_radau_refuses_the_sparse_backend(model):
-    with pytest.raises(ValueError, match="linear_solver 'sparse' or 'klu' applies to Newmark; radau runs on the dense "
-                                         "backend only"):
+    with pytest.raises(
+        ValueError, match="linear_solver 'sparse' or 'klu' applies to Newmark; radau runs on the dense backend only"
+    ):
         cf.simulate(cf.presets.valve_train(), revolutions=0.01, method="radau", linear_solver="sparse")
 
 
@@ -130,27 +150,39 @@ def test_fox_goodwin_is_newmark_with_beta_one_twelfth(model):
         cf.simulate(model, revolutions=0.25, time_step=model.period / 1024, method="fox_goodwin")
 
 
-@pytest.mark.parametrize("kwargs, message", [
-    (dict(method="rk4"), r"method must be 'newmark', 'fox_goodwin', 'dormand_prince', 'dop853', 'radau' or 'auto', got 'rk4'"),
-    (dict(max_step=1e-5), r"max_step applies with a tolerance only \(method 'newmark' without one runs fixed steps "
-                          r"of time_step\)"),
-    (dict(max_step=1e-5, method="fox_goodwin"), r"max_step applies with a tolerance only \(method 'fox_goodwin'"),
-    (dict(max_step=1e-5, method="auto"), r"max_step applies with a tolerance only \(method 'auto'"),
-    (dict(tolerance=1e-6, hht_alpha=-0.1), r"Newmark under a tolerance needs hht_alpha = 0"),
-    (dict(method="fox_goodwin", tolerance=1e-6, max_step=1e-9), r"the largest step allowed by max_step \(1e-09 s\) is "
-                                                                r"below the smallest step time_step / 2\^max_halvings"),
-    (dict(method="auto", tolerance=0.0), r"tolerance must be in \[1e-13, 0.1\], got 0"),
-    (dict(method="dormand_prince", beta=0.3), r"gamma, beta and hht_alpha apply to method 'newmark' only"),
-    (dict(method="dormand_prince", tolerance=0.0), r"tolerance must be in \[1e-13, 0.1\], got 0"),
-    (dict(method="dormand_prince", tolerance=float("nan")), r"tolerance must be in \[1e-13, 0.1\], got nan"),
-    (dict(method="dormand_prince", max_step=-1.0), r"max_step must be 0 \(unbounded\) or finite and >= 1e-12 s"),
-    (dict(method="dormand_prince", max_step=1e-13), r"max_step must be 0 \(unbounded\) or finite and >= 1e-12 s"),
-    (dict(method="dop853", tolerance=0.0), r"tolerance must be in \[1e-13, 0.1\], got 0"),
-    (dict(method="dop853", tolerance=-1e-6), r"tolerance must be in \[1e-13, 0.1\], got -1e-06"),
-    (dict(method="dop853", tolerance=float("inf")), r"tolerance must be in \[1e-13, 0.1\], got inf"),
-    (dict(method="dop853", max_step=-1.0), r"max_step must be 0 \(unbounded\) or finite and >= 1e-12 s"),
-    (dict(method="dop853", hht_alpha=-0.05), r"gamma, beta and hht_alpha apply to method 'newmark' only"),
-])
+@pytest.mark.parametrize(
+    "kwargs, message",
+    [
+        (
+            dict(method="rk4"),
+            r"method must be 'newmark', 'fox_goodwin', 'dormand_prince', 'dop853', 'radau' or 'auto', got 'rk4'",
+        ),
+        (
+            dict(max_step=1e-5),
+            r"max_step applies with a tolerance only \(method 'newmark' without one runs fixed steps "
+            r"of time_step\)",
+        ),
+        (dict(max_step=1e-5, method="fox_goodwin"), r"max_step applies with a tolerance only \(method 'fox_goodwin'"),
+        (dict(max_step=1e-5, method="auto"), r"max_step applies with a tolerance only \(method 'auto'"),
+        (dict(tolerance=1e-6, hht_alpha=-0.1), r"Newmark under a tolerance needs hht_alpha = 0"),
+        (
+            dict(method="fox_goodwin", tolerance=1e-6, max_step=1e-9),
+            r"the largest step allowed by max_step \(1e-09 s\) is "
+            r"below the smallest step time_step / 2\^max_halvings",
+        ),
+        (dict(method="auto", tolerance=0.0), r"tolerance must be in \[1e-13, 0.1\], got 0"),
+        (dict(method="dormand_prince", beta=0.3), r"gamma, beta and hht_alpha apply to method 'newmark' only"),
+        (dict(method="dormand_prince", tolerance=0.0), r"tolerance must be in \[1e-13, 0.1\], got 0"),
+        (dict(method="dormand_prince", tolerance=float("nan")), r"tolerance must be in \[1e-13, 0.1\], got nan"),
+        (dict(method="dormand_prince", max_step=-1.0), r"max_step must be 0 \(unbounded\) or finite and >= 1e-12 s"),
+        (dict(method="dormand_prince", max_step=1e-13), r"max_step must be 0 \(unbounded\) or finite and >= 1e-12 s"),
+        (dict(method="dop853", tolerance=0.0), r"tolerance must be in \[1e-13, 0.1\], got 0"),
+        (dict(method="dop853", tolerance=-1e-6), r"tolerance must be in \[1e-13, 0.1\], got -1e-06"),
+        (dict(method="dop853", tolerance=float("inf")), r"tolerance must be in \[1e-13, 0.1\], got inf"),
+        (dict(method="dop853", max_step=-1.0), r"max_step must be 0 \(unbounded\) or finite and >= 1e-12 s"),
+        (dict(method="dop853", hht_alpha=-0.05), r"gamma, beta and hht_alpha apply to method 'newmark' only"),
+    ],
+)
 def test_method_settings_are_checked_by_name(model, kwargs, message):
     with pytest.raises(ValueError, match=message):
         cf.simulate(model, revolutions=0.1, **kwargs)
@@ -187,15 +219,21 @@ def test_config_scheme_with_a_tolerance_reaches_simulate(tmp_path, scheme):
     bad = list(lines)
     bad[k + 1] = 'max_step = 1e-5'
     path.write_text("\n".join(bad) + "\n")
-    with pytest.raises(ValueError, match=rf"dp.toml:{k + 2}: solver.max_step: applies with a tolerance only "
-                                         r"\(scheme = \"average_acceleration\" without one runs fixed steps of time_step\)"):
+    with pytest.raises(
+        ValueError,
+        match=rf"dp.toml:{k + 2}: solver.max_step: applies with a tolerance only "
+        r"\(scheme = \"average_acceleration\" without one runs fixed steps of time_step\)",
+    ):
         cf.load_config(path)
 
 
 def test_auto_takes_fox_goodwin_within_its_stability_limit_else_average_acceleration():
     m = cf.presets.paper()
-    limit = 0.9 * np.sqrt(6.0) / (2 * np.pi * cf.simulate(m, duration=m.period / 64, time_step=m.period / 4096)
-                                  .stats["highest_mode_hz"])
+    limit = (
+        0.9
+        * np.sqrt(6.0)
+        / (2 * np.pi * cf.simulate(m, duration=m.period / 64, time_step=m.period / 4096).stats["highest_mode_hz"])
+    )
     for dt, chosen in ((0.98 * limit, "fox_goodwin"), (1.02 * limit, "newmark")):
         r = cf.simulate(m, duration=200 * dt, time_step=dt, method="auto")
         assert (r.stats["method"], r.stats["requested_method"]) == (chosen, "auto")
@@ -230,9 +268,16 @@ def expected_choice(m, tolerance):
 STIFF_CONTACT = cf.Parameters().replace(contact_stiffness=100 * cf.Parameters().contact_stiffness)
 
 
-@pytest.mark.parametrize("preset, tolerance, chosen", [
-    ("paper", 1e-6, "dop853"), ("paper", 1e-8, "dop853"), ("paper_damped", 1e-6, "radau"),
-    ("stiff_contact", 1e-6, "radau"), ("stiff_contact", 1e-8, "dop853")])
+@pytest.mark.parametrize(
+    "preset, tolerance, chosen",
+    [
+        ("paper", 1e-6, "dop853"),
+        ("paper", 1e-8, "dop853"),
+        ("paper_damped", 1e-6, "radau"),
+        ("stiff_contact", 1e-6, "radau"),
+        ("stiff_contact", 1e-8, "dop853"),
+    ],
+)
 def test_auto_with_a_tolerance_takes_radau_where_damped_or_isolated_else_dop853(preset, tolerance, chosen):
     m = cf.presets.paper(STIFF_CONTACT) if preset == "stiff_contact" else getattr(cf.presets, preset)()
     T = m.period
@@ -244,8 +289,11 @@ def test_auto_with_a_tolerance_takes_radau_where_damped_or_isolated_else_dop853(
     why = r.stats["method_choice"]
     print(why)
     assert why.startswith(chosen + ": ")
-    pairs = re.findall(r"([0-9.]+(?:e[+-][0-9]+)?) (?:Hz at damping ratio |times the next ringing mode \()"
-                       r"([0-9.]+(?:e[+-][0-9]+)?)", why)
+    pairs = re.findall(
+        r"([0-9.]+(?:e[+-][0-9]+)?) (?:Hz at damping ratio |times the next ringing mode \()"
+        r"([0-9.]+(?:e[+-][0-9]+)?)",
+        why,
+    )
     shown = [float(v) for pair in pairs for v in pair]
     assert shown == pytest.approx(figures, rel=1e-3, abs=1e-6)
     named = dict(method=chosen)
@@ -308,7 +356,8 @@ def test_auto_bounds_radau_by_the_output_interval_at_loose_tolerances():
     err = {k: np.max(np.abs(x["cam.force"] - ref["cam.force"])) / peak for k, x in (("auto", r), ("radau", alone))}
     print(err, r.stats["method_choice"])
     assert r.stats["method"] == "radau" and r.stats["method_choice"].endswith(
-        "max_step = the output interval 3.906e-05 s (tolerance above 1e-05)")
+        "max_step = the output interval 3.906e-05 s (tolerance above 1e-05)"
+    )
     assert err["auto"] < 1e-5 and 1e-4 < err["radau"]
     bounded = cf.simulate(m, **grid, method="radau", tolerance=1e-4, max_step=m.period / 2048)
     np.testing.assert_array_equal(r["cam.force"], bounded["cam.force"])

@@ -22,8 +22,16 @@ def model():
 @pytest.fixture(scope="module")
 def radau_reference(model):
     ref = NumpyCamFollower(model)
-    sol = solve_ivp(ref.rhs, (0, model.period), ref.initial(), method="Radau", rtol=1e-10, atol=1e-13,
-                    jac=ref.jacobian, dense_output=True)
+    sol = solve_ivp(
+        ref.rhs,
+        (0, model.period),
+        ref.initial(),
+        method="Radau",
+        rtol=1e-10,
+        atol=1e-13,
+        jac=ref.jacobian,
+        dense_output=True,
+    )
     assert sol.status == 0
     return ref, sol
 
@@ -41,8 +49,12 @@ def test_one_revolution_matches_scipy_radau(model, radau_reference):
     r = cf.simulate(model, revolutions=1)  # default time step 3 us
     z = sol.sol(r["t"])
     y4_err = np.max(np.abs(r["q"][:, 3] - z[3])) / np.max(np.abs(z[3]))
-    forces = np.array([model.parameters.contact_stiffness * max(ref.contact(t, zi[:7])[1], 0.0)
-                       for t, zi in zip(r["t"][::50], z.T[::50])])
+    forces = np.array(
+        [
+            model.parameters.contact_stiffness * max(ref.contact(t, zi[:7])[1], 0.0)
+            for t, zi in zip(r["t"][::50], z.T[::50])
+        ]
+    )
     f_err = np.max(np.abs(r["contact_force"][::50] - forces)) / np.max(forces)
     print(f"relative error vs Radau: y4 {y4_err:.2e}, contact force {f_err:.2e}")
     assert y4_err < 1e-6

@@ -23,6 +23,7 @@ TWO_PI = 2 * math.pi
 
 # --- independent truths -------------------------------------------------------------------------------
 
+
 def _surface(follower, program, points=400_000):
     """The cam surface (cam frame) the follower cuts with the program, densely sampled."""
     p = follower.profile(program, np.linspace(0.0, TWO_PI, points, endpoint=False))
@@ -43,8 +44,8 @@ def brute_translating(surface, theta, radius, base_radius, offset):
     for a in theta:
         qx, qy = _ground(a, sx, sy)
         near = (np.abs(qx - offset) < radius) & (qy > 0.0)
-        out.append(np.max(qy[near] + np.sqrt(radius ** 2 - (qx[near] - offset) ** 2)))
-    return np.array(out) - math.sqrt((base_radius + radius) ** 2 - offset ** 2)
+        out.append(np.max(qy[near] + np.sqrt(radius**2 - (qx[near] - offset) ** 2)))
+    return np.array(out) - math.sqrt((base_radius + radius) ** 2 - offset**2)
 
 
 def brute_oscillating(surface, theta, radius, follower, program):
@@ -62,7 +63,7 @@ def brute_oscillating(surface, theta, radius, follower, program):
         qx, qy = _ground(a, sx, sy)
         dx, dy = qx - px, qy - py
         d = np.hypot(dx, dy)
-        cos_gamma = (arm ** 2 + d ** 2 - radius ** 2) / (2 * arm * d)
+        cos_gamma = (arm**2 + d**2 - radius**2) / (2 * arm * d)
         ok = np.abs(cos_gamma) < 1.0
         beta, gamma = np.arctan2(dy[ok], dx[ok]), np.arccos(cos_gamma[ok])
         rel = [((beta + g - phi_n + math.pi) % TWO_PI - math.pi) for g in (gamma, -gamma)]
@@ -86,7 +87,7 @@ def circle_cam_arm(theta, radius, disk_radius, ecc, pivot, arm, near):
     disk centre, the one nearer the angle `near`."""
     dx, dy = ecc * np.cos(theta - math.pi / 2) - pivot[0], ecc * np.sin(theta - math.pi / 2) - pivot[1]
     d = np.hypot(dx, dy)
-    gamma = np.arccos((arm ** 2 + d ** 2 - (disk_radius + radius) ** 2) / (2 * arm * d))
+    gamma = np.arccos((arm**2 + d**2 - (disk_radius + radius) ** 2) / (2 * arm * d))
     beta = np.arctan2(dy, dx)
     roots = np.stack([beta + gamma, beta - gamma])
     pick = np.argmin(np.abs((roots - near + math.pi) % TWO_PI - math.pi), axis=0)
@@ -97,8 +98,11 @@ def _derivatives(f, theta, eta=2e-3):
     """h, h', h'' of a smooth closed form by 5-point central differences (truncation ~eta^4 h^(6)/90, rounding
     ~1e-17 m / eta^2: both below 1e-11 here)."""
     v = [f(theta + k * eta) for k in (-2, -1, 0, 1, 2)]
-    return v[2], (v[0] - 8 * v[1] + 8 * v[3] - v[4]) / (12 * eta), \
-        (-v[0] + 16 * v[1] - 30 * v[2] + 16 * v[3] - v[4]) / (12 * eta ** 2)
+    return (
+        v[2],
+        (v[0] - 8 * v[1] + 8 * v[3] - v[4]) / (12 * eta),
+        (-v[0] + 16 * v[1] - 30 * v[2] + 16 * v[3] - v[4]) / (12 * eta**2),
+    )
 
 
 # --- the roller on a fixed cam --------------------------------------------------------------------------
@@ -113,8 +117,10 @@ def _on_dwell(theta_deg, margin=0.5):
 
 
 def test_the_same_roller_follows_the_design_lift():
-    for f, program in ((cf.TranslatingRoller(0.03, 0.008, 0.01), PAPER),
-                       (cf.OscillatingRoller(0.03, 0.008, [0.06, 0.05], 0.06), ARM_PROGRAM)):
+    for f, program in (
+        (cf.TranslatingRoller(0.03, 0.008, 0.01), PAPER),
+        (cf.OscillatingRoller(0.03, 0.008, [0.06, 0.05], 0.06), ARM_PROGRAM),
+    ):
         g, q = tol.roller_on_fixed_cam(f, program, f.roller_radius)
         assert g is f and q is program
         # a radius one part in 1e12 off goes through the whole construction: the lift and its
@@ -128,8 +134,9 @@ def test_the_same_roller_follows_the_design_lift():
         assert np.abs(a["dh"] - b["dh"]).max() < 1e-8 * np.abs(b["dh"]).max()
         # h'' of the B-spline pieces against the law's: apart from the law's jerk steps (x = 1/8, 3/8, ...)
         # where an interpolating quintic rounds the corner over a few table points
-        steps = np.radians([a_ + (b_ - a_) * x for a_, b_ in ((30, 180), (210, 360))
-                            for x in (1 / 8, 3 / 8, 5 / 8, 7 / 8)])
+        steps = np.radians(
+            [a_ + (b_ - a_) * x for a_, b_ in ((30, 180), (210, 360)) for x in (1 / 8, 3 / 8, 5 / 8, 7 / 8)]
+        )
         away = np.min(np.abs(theta[:, None] - steps[None, :]), axis=1) > np.radians(1.0)
         assert np.abs(a["d2h"] - b["d2h"])[away].max() < 1e-6 * np.abs(b["d2h"]).max()
 
@@ -156,8 +163,8 @@ def test_a_translating_roller_of_another_radius_against_brute_force(offset, delt
     # (radius r_b) the centre sits r_b + r' from the axis (lift 0); on the top dwell the surface is a
     # circle of radius R_s = |C_top| - r about the axis, so the centre is at R_s + r' and the lift is
     # sqrt((R_s + r')^2 - e^2) - sqrt((r_b + r')^2 - e^2): exactly h for a centred roller.
-    top_surface = math.hypot(offset, math.sqrt(0.038 ** 2 - offset ** 2) + 0.01) - 0.008
-    top = math.sqrt((top_surface + radius) ** 2 - offset ** 2) - math.sqrt((0.03 + radius) ** 2 - offset ** 2)
+    top_surface = math.hypot(offset, math.sqrt(0.038**2 - offset**2) + 0.01) - 0.008
+    top = math.sqrt((top_surface + radius) ** 2 - offset**2) - math.sqrt((0.03 + radius) ** 2 - offset**2)
     dwell = _on_dwell(np.degrees(theta))
     levels = np.where(np.degrees(theta[dwell]) < 90, 0.0, top)
     assert np.abs(lift[dwell] - levels).max() < 1e-15
@@ -198,15 +205,16 @@ def test_circular_cam_closed_form():
     disk, ecc, offset, r = 0.035, 0.004, 0.005, 0.010
     base = disk - ecc
     grid = np.linspace(0.0, TWO_PI, 2880, endpoint=False)
-    s0 = math.sqrt((base + r) ** 2 - offset ** 2)
+    s0 = math.sqrt((base + r) ** 2 - offset**2)
     program = cf.MotionProgram.from_table(grid, circle_cam_translating(grid, r, disk, ecc, offset) - s0)
     f = cf.TranslatingRoller(base, r, offset)
     theta = np.linspace(0.0, TWO_PI, 721)[:-1]
     for radius in (0.009, 0.012):
         q = tol.roller_on_fixed_cam(f, program, radius)[1]
-        s0r = math.sqrt((base + radius) ** 2 - offset ** 2)
-        h, dh, d2h = _derivatives(lambda t, r_=radius, s_=s0r: circle_cam_translating(t, r_, disk, ecc, offset) - s_,
-                                  theta)
+        s0r = math.sqrt((base + radius) ** 2 - offset**2)
+        h, dh, d2h = _derivatives(
+            lambda t, r_=radius, s_=s0r: circle_cam_translating(t, r_, disk, ecc, offset) - s_, theta
+        )
         ev = q.evaluate(theta)
         assert np.abs(ev["h"] - h).max() < 1e-12
         assert np.abs(ev["dh"] - dh).max() < 1e-10
@@ -221,7 +229,8 @@ def test_circular_cam_closed_form():
         q = tol.roller_on_fixed_cam(fo, arm_program, radius)[1]
         start_r = cf.OscillatingRoller(base, radius, pivot, arm).start_angle
         h, dh, d2h = _derivatives(
-            lambda t, r_=radius, s_=start_r: circle_cam_arm(t, r_, disk, ecc, pivot, arm, start) - s_, theta)
+            lambda t, r_=radius, s_=start_r: circle_cam_arm(t, r_, disk, ecc, pivot, arm, start) - s_, theta
+        )
         ev = q.evaluate(theta)
         assert np.abs(ev["h"] - h).max() < 1e-11
         assert np.abs(ev["dh"] - dh).max() < 1e-9
@@ -230,10 +239,14 @@ def test_circular_cam_closed_form():
 
 def test_a_roller_too_large_for_a_concave_flank_and_bad_input_are_refused():
     # a 10 mm rise over 40 deg on a 40 mm base circle: the start of the rise is concave
-    program = cf.MotionProgram([cf.Segment(cf.MotionLaw.dwell(), 0.0, math.radians(100), 0.0, 0.0),
-                                cf.Segment(cf.MotionLaw.cycloidal(), math.radians(100), math.radians(140), 0.0, 0.01),
-                                cf.Segment(cf.MotionLaw.dwell(), math.radians(140), math.radians(220), 0.01, 0.01),
-                                cf.Segment(cf.MotionLaw.cycloidal(), math.radians(220), TWO_PI, 0.01, 0.0)])
+    program = cf.MotionProgram(
+        [
+            cf.Segment(cf.MotionLaw.dwell(), 0.0, math.radians(100), 0.0, 0.0),
+            cf.Segment(cf.MotionLaw.cycloidal(), math.radians(100), math.radians(140), 0.0, 0.01),
+            cf.Segment(cf.MotionLaw.dwell(), math.radians(140), math.radians(220), 0.01, 0.01),
+            cf.Segment(cf.MotionLaw.cycloidal(), math.radians(220), TWO_PI, 0.01, 0.0),
+        ]
+    )
     f = cf.TranslatingRoller(0.04, 0.008, 0.0)
     radius = f.profile(program, np.linspace(0, TWO_PI, 100_000))["surface_radius"]
     hollow = -radius[radius < 0].max()  # the tightest concave radius of the cam's surface
@@ -277,13 +290,15 @@ def test_builders_put_the_roller_on_the_nominal_cam_unless_told_otherwise():
     expected = tol.roller_on_fixed_cam(f, program, 0.0085)[1].evaluate(theta)["h"]
     assert np.array_equal(_contact_program(build({name: 0.0085})).evaluate(theta)["h"], expected)
     regenerated = build.with_options(roller_tolerance="regenerated_cam")
-    assert np.array_equal(_contact_program(regenerated({name: 0.0085})).evaluate(theta)["h"],
-                          program.evaluate(theta)["h"])
+    assert np.array_equal(
+        _contact_program(regenerated({name: 0.0085})).evaluate(theta)["h"], program.evaluate(theta)["h"]
+    )
     # the study runs; its cases differ from the regenerated-cam study's (same draws)
     tols = {"roller_radius": tol.Uniform(-1e-4, 1e-4)}
     a = tol.monte_carlo(tol.PaperCase(), tols, cases=3, seed=2, executor="serial", progress=False)
-    b = tol.monte_carlo(tol.PaperCase(roller_tolerance="regenerated_cam"), tols, cases=3, seed=2, executor="serial",
-                        progress=False)
+    b = tol.monte_carlo(
+        tol.PaperCase(roller_tolerance="regenerated_cam"), tols, cases=3, seed=2, executor="serial", progress=False
+    )
     assert all(r["ok"] for r in a.rows + b.rows)
     assert [r["roller_radius"] for r in a.rows] == [r["roller_radius"] for r in b.rows]
     assert all(abs(x["min_force_N"] - y["min_force_N"]) > 1e-4 for x, y in zip(a.rows, b.rows))
@@ -292,6 +307,7 @@ def test_builders_put_the_roller_on_the_nominal_cam_unless_told_otherwise():
 
 # --- sensitivities in the metric's units ---------------------------------------------------------------
 
+
 def test_sensitivities_recover_the_slopes_of_a_known_linear_law():
     """y = 3e4 a - 0.5 b + 2 c (+ noise): a is a length of 10 um spread (effect 0.3 N per std), b a
     stiffness-like number of 20 spread (-10 N per std), c a 0.07 spread (0.14 N per std); d never varies."""
@@ -299,10 +315,13 @@ def test_sensitivities_recover_the_slopes_of_a_known_linear_law():
     n = 3000
     a, b, c = rng.normal(0.0, 1e-5, n), rng.normal(100.0, 20.0, n), rng.normal(0.0, 0.07, n)
     y = 150.0 + 3e4 * a - 0.5 * b + 2.0 * c + rng.normal(0.0, 1e-3, n)
-    rows = [{"case": i, "seed": 7, "a": a[i], "b": b[i], "c": c[i], "d": 1.0, "min_force_N": y[i], "ok": True,
-             "error": ""} for i in range(n)]
-    r = tol.MonteCarloResult(rows=rows, nominal={"min_force_N": 100.0}, parameters=["a", "b", "c", "d"],
-                             metrics=["min_force_N"])
+    rows = [
+        {"case": i, "seed": 7, "a": a[i], "b": b[i], "c": c[i], "d": 1.0, "min_force_N": y[i], "ok": True, "error": ""}
+        for i in range(n)
+    ]
+    r = tol.MonteCarloResult(
+        rows=rows, nominal={"min_force_N": 100.0}, parameters=["a", "b", "c", "d"], metrics=["min_force_N"]
+    )
     s = r.sensitivities("min_force_N")
     assert [d["parameter"] for d in s] == ["b", "a", "c", "d"]  # by the absolute effect of one std
     by = {d["parameter"]: d for d in s}
@@ -319,8 +338,14 @@ def test_sensitivity_of_the_margin_to_the_spring_preload_is_the_rate_over_cos_al
     """The paper's mechanism is linear while in contact: more spring deflection adds k_s per metre to the
     force along the follower axis, and the contact normal, inclined at the pressure angle alpha, carries
     it as k_s / cos(alpha) at the angle of the smallest force."""
-    r = tol.monte_carlo(tol.PaperCase(), {"spring_preload_deflection": tol.Normal(0.3e-3)}, cases=6, seed=3,
-                        executor="serial", progress=False)
+    r = tol.monte_carlo(
+        tol.PaperCase(),
+        {"spring_preload_deflection": tol.Normal(0.3e-3)},
+        cases=6,
+        seed=3,
+        executor="serial",
+        progress=False,
+    )
     theta = math.radians(r.nominal["min_force_angle_deg"])
     alpha = cf.TranslatingRoller(0.03, 0.008, 0.01).profile(PAPER, np.array([theta]))["pressure_angle"][0]
     s = r.sensitivities("min_force_N")[0]
@@ -329,21 +354,34 @@ def test_sensitivity_of_the_margin_to_the_spring_preload_is_the_rate_over_cos_al
 
 # --- montecarlo --rpm ----------------------------------------------------------------------------------
 
+
 def test_montecarlo_runs_at_the_speed_given_on_the_command_line(tmp_path, capsys):
     cfg = EXAMPLES / "paper_studies.toml"
     out = tmp_path / "mc"
-    assert cli.main(["montecarlo", str(cfg), "--cases", "6", "--workers", "1", "--no-progress", "--rpm", "900",
-                     "-o", str(out)]) == 0
+    assert (
+        cli.main(
+            ["montecarlo", str(cfg), "--cases", "6", "--workers", "1", "--no-progress", "--rpm", "900", "-o", str(out)]
+        )
+        == 0
+    )
     printed = capsys.readouterr().out
     summary = json.loads((out / "summary.json").read_text())
     assert summary["camshaft_speed_rpm"] == 900.0 and "6 cases at 900 rpm" in printed
     # the study is the one of the same config written for 900 rpm (not its own 750 rpm): same cases
     at_900 = tmp_path / "at_900.toml"
     at_900.write_text(cfg.read_text().replace('speed = "750 rpm"', 'speed = "900 rpm"'))
-    assert cli.main(["montecarlo", str(at_900), "--cases", "6", "--workers", "1", "--no-progress", "-o",
-                     str(tmp_path / "900")]) == 0
-    assert cli.main(["montecarlo", str(cfg), "--cases", "3", "--workers", "1", "--no-progress", "-o",
-                     str(tmp_path / "750")]) == 0
+    assert (
+        cli.main(
+            ["montecarlo", str(at_900), "--cases", "6", "--workers", "1", "--no-progress", "-o", str(tmp_path / "900")]
+        )
+        == 0
+    )
+    assert (
+        cli.main(
+            ["montecarlo", str(cfg), "--cases", "3", "--workers", "1", "--no-progress", "-o", str(tmp_path / "750")]
+        )
+        == 0
+    )
     capsys.readouterr()
     other = json.loads((tmp_path / "900" / "summary.json").read_text())
     own = json.loads((tmp_path / "750" / "summary.json").read_text())
@@ -354,14 +392,18 @@ def test_montecarlo_runs_at_the_speed_given_on_the_command_line(tmp_path, capsys
     # and its nominal is the steady state of the config's mechanism turned to 900 rpm
     m = load_config(cfg).mechanism.with_camshaft_speed_rpm(900.0)
     assert summary["metrics"]["min_force_N"]["nominal"] == pytest.approx(
-        steady_response(m, fallback="transient")["min_force_N"],
-        rel=1e-9)
+        steady_response(m, fallback="transient")["min_force_N"], rel=1e-9
+    )
     assert "N per std of" in printed and summary["sensitivities"]["min_force_N"][0]["effect_of_one_std"] is not None
     # the table's rpm, overridden by --rpm
     with_rpm = tmp_path / "rpm.toml"
     with_rpm.write_text(cfg.read_text().replace("cases = 200", "cases = 200\nrpm = 1000"))
-    assert cli.main(["montecarlo", str(with_rpm), "--cases", "2", "--workers", "1", "--no-progress", "-o",
-                     str(tmp_path / "t")]) == 0
+    assert (
+        cli.main(
+            ["montecarlo", str(with_rpm), "--cases", "2", "--workers", "1", "--no-progress", "-o", str(tmp_path / "t")]
+        )
+        == 0
+    )
     assert json.loads((tmp_path / "t" / "summary.json").read_text())["camshaft_speed_rpm"] == 1000.0
     capsys.readouterr()
     # bad speeds: one line naming --rpm (or the table's key, at its line) and the range

@@ -42,7 +42,9 @@ def test_response_is_periodic_at_the_cam_period_once_settled(cases):
         off_harmonic = np.abs(np.mod(s.frequency + 1e-9, 12.5)) > 1e-6
         assert np.max(s.amplitude[off_harmonic]) < 1e-3 * np.max(s.amplitude), key
     # The paper's dampers leave the response ringing ~4x longer than 3 % damping.
-    assert cases["offset/paper/healthy"].settle["revolutions"] > 3 * cases["offset/physical/healthy"].settle["revolutions"]
+    assert (
+        cases["offset/paper/healthy"].settle["revolutions"] > 3 * cases["offset/physical/healthy"].settle["revolutions"]
+    )
 
 
 def test_dynamic_acceleration_oscillates_about_the_theoretical_one(cases):
@@ -63,8 +65,13 @@ def test_rise_versus_return_depends_on_what_the_paper_does_not_give(cases):
         assert d["return_rms"] > d["rise_rms"], key
     from camfollower.study import parameters
 
-    heavy = run_case(StudyConfig(analysed_revolutions=2), "offset", "physical", "healthy",
-                     parameters(CFG, "offset", camshaft_mass=5.0))
+    heavy = run_case(
+        StudyConfig(analysed_revolutions=2),
+        "offset",
+        "physical",
+        "healthy",
+        parameters(CFG, "offset", camshaft_mass=5.0),
+    )
     d = deviation_figures(heavy)
     assert d["rise_rms"] > 1.05 * d["return_rms"]
 

@@ -82,9 +82,15 @@ def test_an_undercut_cam_is_drawn_and_flagged():
     # A 20 mm roller on a 10 mm base circle under a 20 mm rise in 60 deg undercuts near the nose: the
     # mechanism refuses it, the plot draws it with the reason in the title.
     d, mt, dw = math.radians, cf.MotionLaw.modified_trapezoid(), cf.MotionLaw.dwell()
-    steep = cf.MotionProgram([cf.Segment(dw, 0, d(90), 0, 0), cf.Segment(mt, d(90), d(150), 0, 0.02),
-                              cf.Segment(dw, d(150), d(210), 0.02, 0.02), cf.Segment(mt, d(210), d(270), 0.02, 0),
-                              cf.Segment(dw, d(270), 2 * math.pi, 0, 0)])
+    steep = cf.MotionProgram(
+        [
+            cf.Segment(dw, 0, d(90), 0, 0),
+            cf.Segment(mt, d(90), d(150), 0, 0.02),
+            cf.Segment(dw, d(150), d(210), 0.02, 0.02),
+            cf.Segment(mt, d(210), d(270), 0.02, 0),
+            cf.Segment(dw, d(270), 2 * math.pi, 0, 0),
+        ]
+    )
     f = cf.TranslatingRoller(0.01, 0.02, 0.0)
     with pytest.raises(ValueError, match="undercuts"):
         f.check(steep)
@@ -95,12 +101,19 @@ def test_an_undercut_cam_is_drawn_and_flagged():
 
 # --- figures fit for a design review (issue 32, part 6): checked on the drawn artists ---
 
+
 def _valve_cam():
     """A 9 mm rise and return over 70 deg each (4-5-6-7 polynomials) on an 18 mm base circle: the
     surface radius passes through infinity on both flanks (convex to concave and back)."""
     d, law, dw = math.radians, cf.MotionLaw.polynomial_4567(), cf.MotionLaw.dwell()
-    program = cf.MotionProgram([cf.Segment(dw, 0, d(110), 0, 0), cf.Segment(law, d(110), d(180), 0, 0.009),
-                                cf.Segment(law, d(180), d(250), 0.009, 0), cf.Segment(dw, d(250), 2 * math.pi, 0, 0)])
+    program = cf.MotionProgram(
+        [
+            cf.Segment(dw, 0, d(110), 0, 0),
+            cf.Segment(law, d(110), d(180), 0, 0.009),
+            cf.Segment(law, d(180), d(250), 0.009, 0),
+            cf.Segment(dw, d(250), 2 * math.pi, 0, 0),
+        ]
+    )
     return cf.TranslatingRoller(0.018, 0.012, 0.0), program
 
 
@@ -127,9 +140,15 @@ def test_curvature_beyond_the_display_limit_is_a_gap_with_the_limit_marked():
 
 def test_svaj_of_an_arm_rotation_is_in_degrees_and_radians_per_second():
     d, cyc, dw = math.radians, cf.MotionLaw.cycloidal(), cf.MotionLaw.dwell()
-    swing = cf.MotionProgram([cf.Segment(dw, 0, d(60), 0, 0), cf.Segment(cyc, d(60), d(150), 0, d(15)),
-                              cf.Segment(dw, d(150), d(210), d(15), d(15)), cf.Segment(cyc, d(210), d(300), d(15), 0),
-                              cf.Segment(dw, d(300), 2 * math.pi, 0, 0)])
+    swing = cf.MotionProgram(
+        [
+            cf.Segment(dw, 0, d(60), 0, 0),
+            cf.Segment(cyc, d(60), d(150), 0, d(15)),
+            cf.Segment(dw, d(150), d(210), d(15), d(15)),
+            cf.Segment(cyc, d(210), d(300), d(15), 0),
+            cf.Segment(dw, d(300), 2 * math.pi, 0, 0),
+        ]
+    )
     fig = plot.svaj(swing, rpm=600, angular=True)
     lift, vel, acc, jerk = fig.axes
     assert np.max(lift.lines[0].get_ydata()) == pytest.approx(15.0)  # deg, not 261.8 "mm"
@@ -142,8 +161,14 @@ def test_svaj_of_an_arm_rotation_is_in_degrees_and_radians_per_second():
 
 def test_spectrum_axes_name_the_quantity_and_its_unit():
     t = np.arange(8192) / 8192.0
-    fig = plot.spectrum(3.0 * np.sin(2 * np.pi * 100 * t), 8192.0, fmax=500, natural_frequencies=[250, 900],
-                        quantity="cam contact force", unit="N")
+    fig = plot.spectrum(
+        3.0 * np.sin(2 * np.pi * 100 * t),
+        8192.0,
+        fmax=500,
+        natural_frequencies=[250, 900],
+        quantity="cam contact force",
+        unit="N",
+    )
     ax = fig.axes[0]
     assert ax.get_xlabel() == "frequency (Hz)"
     assert ax.get_ylabel() == "cam contact force amplitude (N)"
@@ -177,16 +202,16 @@ def _no_line_across(x, step):
     x = np.asarray(x, dtype=float)
     cuts = np.flatnonzero(np.isnan(x))
     segments = np.split(x, cuts)
-    return all(np.all((np.diff(seg[np.isfinite(seg)]) >= 0) & (np.diff(seg[np.isfinite(seg)]) <= step))
-               for seg in segments)
+    return all(
+        np.all((np.diff(seg[np.isfinite(seg)]) >= 0) & (np.diff(seg[np.isfinite(seg)]) <= step)) for seg in segments
+    )
 
 
 def _config(tmp_path, phase_deg=90):
     """A translating roller run for 3 revolutions, the last recorded, its contact at a phase."""
     text = (ROOT / "examples" / "translating_roller.toml").read_text()
     text = text.replace('follower_dof = "carrier"', f'follower_dof = "carrier"\nphase = "{phase_deg} deg"')
-    text = text.replace("revolutions = 2\nsteps_per_revolution = 20000",
-                        "revolutions = 3\nsteps_per_revolution = 4000")
+    text = text.replace("revolutions = 2\nsteps_per_revolution = 20000", "revolutions = 3\nsteps_per_revolution = 4000")
     text = text.replace("decimation = 10", "decimation = 4\nrecord_last_revolutions = 1")
     path = tmp_path / "roller.toml"
     path.write_text(text)
@@ -255,8 +280,13 @@ def _sweep_with_many_crossings():
     natural = [868.0]
     resonances = [(k, f, 60 * f / k) for f in natural for k in orders if rpm[0] <= 60 * f / k <= rpm[-1]]
     rows = [{"rpm": r, "min_force_N": 100.0, "contact_lost": False} for r in rpm]
-    return speed, {"rows": rows, "orders": orders, "spectrum": spectrum, "natural_hz": natural,
-                   "resonances": resonances}
+    return speed, {
+        "rows": rows,
+        "orders": orders,
+        "spectrum": spectrum,
+        "natural_hz": natural,
+        "resonances": resonances,
+    }
 
 
 def test_waterfall_labels_are_readable_and_name_the_strongest_resonances():

@@ -40,11 +40,14 @@ def test_waviness_and_dent_follow_their_formulas():
     assert w.features() == []
 
 
-@pytest.mark.parametrize("error, h, scales", [
-    (cf.ProfileError.waviness(12e-6, 7, phase=0.4), 1e-5, (12e-6 * 49, 12e-6 * 343, 12e-6 * 2401)),
-    (cf.ProfileError.dent(2.0, 6 * DEG, 30e-6), 1e-6, (30e-6 * 8 * 365, 30e-6 * 48 * 7000, 30e-6 * 400 * 1.3e5)),
-    (cf.ProfileError.fourier(1e-6, [2e-6, -1e-6, 3e-7], [0.0, 1e-6, 2e-6]), 1e-5, (2e-5, 8e-5, 3e-4)),
-])
+@pytest.mark.parametrize(
+    "error, h, scales",
+    [
+        (cf.ProfileError.waviness(12e-6, 7, phase=0.4), 1e-5, (12e-6 * 49, 12e-6 * 343, 12e-6 * 2401)),
+        (cf.ProfileError.dent(2.0, 6 * DEG, 30e-6), 1e-6, (30e-6 * 8 * 365, 30e-6 * 48 * 7000, 30e-6 * 400 * 1.3e5)),
+        (cf.ProfileError.fourier(1e-6, [2e-6, -1e-6, 3e-7], [0.0, 1e-6, 2e-6]), 1e-5, (2e-5, 8e-5, 3e-4)),
+    ],
+)
 def test_derivatives_match_finite_differences(error, h, scales):
     theta = np.array([0.3, 1.96, 1.99, 2.0, 2.04, 4.1, 5.9])
     check_derivatives(error.evaluate, ("e", "de", "d2e", "d3e"), theta, h, scales)
@@ -59,8 +62,9 @@ def test_a_program_with_an_error_is_the_design_lift_plus_e():
     t = np.linspace(0, 2 * np.pi, 2001)
     for key, ekey in zip(("h", "dh", "d2h", "d3h"), ("e", "de", "d2e", "d3e")):
         np.testing.assert_array_equal(program.evaluate(t)[key], design.evaluate(t)[key] + error.evaluate(t)[ekey])
-    check_derivatives(program.evaluate, ("h", "dh", "d2h", "d3h"), np.array([0.1, 1.7, 1.745, 2.6, 5.9]), 1e-6,
-                      (0.02, 0.2, 5.0))
+    check_derivatives(
+        program.evaluate, ("h", "dh", "d2h", "d3h"), np.array([0.1, 1.7, 1.745, 2.6, 5.9]), 1e-6, (0.02, 0.2, 5.0)
+    )
     # Crests of 12 waves sit on the top dwell's ends, a trough in the bottom dwell.
     assert program.max_lift() == pytest.approx(0.010 + 20e-6, abs=1e-13)
     assert program.min_lift() == pytest.approx(-20e-6, abs=1e-13)
@@ -102,8 +106,11 @@ def test_components_combine_and_read_back():
 
 
 def test_pickling_round_trips_errors_and_programs():
-    error = (cf.ProfileError.waviness(5e-6, 3, phase=0.2) + cf.ProfileError.dent(1.0, 0.2, 2e-5)
-             + cf.ProfileError.table(np.linspace(0, 2 * np.pi, 9, endpoint=False), np.arange(9) * 1e-7))
+    error = (
+        cf.ProfileError.waviness(5e-6, 3, phase=0.2)
+        + cf.ProfileError.dent(1.0, 0.2, 2e-5)
+        + cf.ProfileError.table(np.linspace(0, 2 * np.pi, 9, endpoint=False), np.arange(9) * 1e-7)
+    )
     copy = pickle.loads(pickle.dumps(error))
     assert copy.components == error.components
     program = cf.MotionProgram.paper_default().with_profile_error(error)
@@ -120,22 +127,30 @@ def test_pickling_round_trips_errors_and_programs():
     np.testing.assert_array_equal(old.evaluate(t)["h"], design.evaluate(t)["h"])
 
 
-@pytest.mark.parametrize("make, message", [
-    (lambda: cf.ProfileError.dent(1.0, 0.0, 1e-5), r"dent width must be in \[1e-06 rad, 180 deg\], got 0"),
-    (lambda: cf.ProfileError.dent(1.0, 3.5, 1e-5), r"dent width must be in \[1e-06 rad, 180 deg\]"),
-    (lambda: cf.ProfileError.dent(float("nan"), 0.1, 1e-5), r"dent centre"),
-    (lambda: cf.ProfileError.dent(1.0, 0.1, float("inf")), r"dent depth"),
-    (lambda: cf.ProfileError.waviness(1e-6, 0), r"waviness order must be an integer >= 1"),
-    (lambda: cf.ProfileError.waviness(float("nan"), 2), r"waviness amplitude"),
-    (lambda: cf.ProfileError.table([0.0, 1.0, 1.0, 2.0], [0, 0, 0, 0]),
-     r"theta must be strictly increasing in \[0, 360\) deg; point 2"),
-    (lambda: cf.ProfileError.table([0.0, 1.0, 7.0], [0, 0, 0]), r"point 2 is at 401\.07"),
-    (lambda: cf.ProfileError.table([0.0, 1.0, 2.0], [0, float("nan"), 0]), r"point 1 must be finite"),
-    (lambda: cf.ProfileError.table([0.0, 1.0], [0, 0]), r"at least 3 points"),
-    (lambda: cf.ProfileError.table([0.0, 1.0, 2.0], [0, 0]), r"same length, got 3 and 2"),
-    (lambda: cf.ProfileError.table(np.arange(6.0), np.zeros(6), max_harmonic=3), r"max_harmonic must be in \[1, 2\]"),
-    (lambda: cf.ProfileError.fourier(0.0, [1e-6], []), r"same length"),
-])
+@pytest.mark.parametrize(
+    "make, message",
+    [
+        (lambda: cf.ProfileError.dent(1.0, 0.0, 1e-5), r"dent width must be in \[1e-06 rad, 180 deg\], got 0"),
+        (lambda: cf.ProfileError.dent(1.0, 3.5, 1e-5), r"dent width must be in \[1e-06 rad, 180 deg\]"),
+        (lambda: cf.ProfileError.dent(float("nan"), 0.1, 1e-5), r"dent centre"),
+        (lambda: cf.ProfileError.dent(1.0, 0.1, float("inf")), r"dent depth"),
+        (lambda: cf.ProfileError.waviness(1e-6, 0), r"waviness order must be an integer >= 1"),
+        (lambda: cf.ProfileError.waviness(float("nan"), 2), r"waviness amplitude"),
+        (
+            lambda: cf.ProfileError.table([0.0, 1.0, 1.0, 2.0], [0, 0, 0, 0]),
+            r"theta must be strictly increasing in \[0, 360\) deg; point 2",
+        ),
+        (lambda: cf.ProfileError.table([0.0, 1.0, 7.0], [0, 0, 0]), r"point 2 is at 401\.07"),
+        (lambda: cf.ProfileError.table([0.0, 1.0, 2.0], [0, float("nan"), 0]), r"point 1 must be finite"),
+        (lambda: cf.ProfileError.table([0.0, 1.0], [0, 0]), r"at least 3 points"),
+        (lambda: cf.ProfileError.table([0.0, 1.0, 2.0], [0, 0]), r"same length, got 3 and 2"),
+        (
+            lambda: cf.ProfileError.table(np.arange(6.0), np.zeros(6), max_harmonic=3),
+            r"max_harmonic must be in \[1, 2\]",
+        ),
+        (lambda: cf.ProfileError.fourier(0.0, [1e-6], []), r"same length"),
+    ],
+)
 def test_bad_input_names_the_parameter(make, message):
     with pytest.raises(ValueError, match=message):
         make()
@@ -175,12 +190,14 @@ def test_a_simulated_follower_traces_the_waviness():
     # quasi-statically, and the rod (ROD) in series with the spring (SPRING) passes
     # ROD / (ROD + SPRING) of any lift change to the follower.
     lift, rise = 0.001, np.radians(90)
-    design = cf.MotionProgram([
-        cf.Segment(cf.MotionLaw.dwell(), 0.0, np.radians(30), 0.0, 0.0),
-        cf.Segment(cf.MotionLaw.cycloidal(), np.radians(30), np.radians(30) + rise, 0.0, lift),
-        cf.Segment(cf.MotionLaw.dwell(), np.radians(30) + rise, np.radians(240), lift, lift),
-        cf.Segment(cf.MotionLaw.cycloidal(), np.radians(240), 2 * np.pi, lift, 0.0),
-    ])
+    design = cf.MotionProgram(
+        [
+            cf.Segment(cf.MotionLaw.dwell(), 0.0, np.radians(30), 0.0, 0.0),
+            cf.Segment(cf.MotionLaw.cycloidal(), np.radians(30), np.radians(30) + rise, 0.0, lift),
+            cf.Segment(cf.MotionLaw.dwell(), np.radians(30) + rise, np.radians(240), lift, lift),
+            cf.Segment(cf.MotionLaw.cycloidal(), np.radians(240), 2 * np.pi, lift, 0.0),
+        ]
+    )
     wavy = design.with_profile_error(cf.ProfileError.waviness(AMPLITUDE, ORDER))
     runs = [cf.simulate(one_dof(p, 60.0), revolutions=1, time_step=2e-5, decimation=10) for p in (design, wavy)]
     for r in runs:
@@ -195,5 +212,6 @@ def test_a_simulated_follower_traces_the_waviness():
     assert np.hypot(a, b) == pytest.approx(static_share * AMPLITUDE, rel=0.02)
     assert abs(b) < 0.02 * abs(a)  # in phase with e = A cos(k theta)
     # And point by point: the follower displacement minus its design-lift displacement is the waviness.
-    np.testing.assert_allclose(difference, static_share * AMPLITUDE * np.cos(ORDER * theta), rtol=0,
-                               atol=0.02 * AMPLITUDE)
+    np.testing.assert_allclose(
+        difference, static_share * AMPLITUDE * np.cos(ORDER * theta), rtol=0, atol=0.02 * AMPLITUDE
+    )

@@ -25,8 +25,15 @@ anything = st.one_of(
     st.sampled_from([0.0, -0.0, 1e-300, -1e-300, 1e300, 5e-324, 1e-9, 1e9]),
 )
 length = st.one_of(st.floats(min_value=1e-4, max_value=0.2), anything)
-LAWS = ["cycloidal", "simple_harmonic", "polynomial_345", "polynomial_4567", "modified_sine", "modified_trapezoid",
-        "constant_acceleration"]
+LAWS = [
+    "cycloidal",
+    "simple_harmonic",
+    "polynomial_345",
+    "polynomial_4567",
+    "modified_sine",
+    "modified_trapezoid",
+    "constant_acceleration",
+]
 
 
 def raises_naming(call, *names):
@@ -50,10 +57,14 @@ def test_motion_program_is_finite_or_refused(law, rise, lift, theta):
 
     def build():
         a = rise
-        return cf.MotionProgram([cf.Segment(cf.MotionLaw.dwell(), 0.0, 1.0, 0.0, 0.0),
-                                 cf.Segment(getattr(cf.MotionLaw, law)(), 1.0, 1.0 + a, 0.0, lift),
-                                 cf.Segment(cf.MotionLaw.dwell(), 1.0 + a, 4.0, lift, lift),
-                                 cf.Segment(getattr(cf.MotionLaw, law)(), 4.0, 2 * math.pi, lift, 0.0)])
+        return cf.MotionProgram(
+            [
+                cf.Segment(cf.MotionLaw.dwell(), 0.0, 1.0, 0.0, 0.0),
+                cf.Segment(getattr(cf.MotionLaw, law)(), 1.0, 1.0 + a, 0.0, lift),
+                cf.Segment(cf.MotionLaw.dwell(), 1.0 + a, 4.0, lift, lift),
+                cf.Segment(getattr(cf.MotionLaw, law)(), 4.0, 2 * math.pi, lift, 0.0),
+            ]
+        )
 
     program = raises_naming(build, "theta", "segment", "rise", "lift", "h_", "span", "angle", "finite")
     if program is None:
@@ -68,10 +79,16 @@ def test_motion_program_is_finite_or_refused(law, rise, lift, theta):
         raises_naming(lambda: program.evaluate(np.array(bad)), "theta")
 
 
-@given(base=length, roller=length, offset=st.one_of(st.floats(min_value=-0.05, max_value=0.05), anything),
-       lift=st.one_of(st.floats(min_value=1e-4, max_value=0.05), anything))
+@given(
+    base=length,
+    roller=length,
+    offset=st.one_of(st.floats(min_value=-0.05, max_value=0.05), anything),
+    lift=st.one_of(st.floats(min_value=1e-4, max_value=0.05), anything),
+)
 def test_translating_roller_geometry_is_checked_or_refused(base, roller, offset, lift):
-    follower = raises_naming(lambda: cf.TranslatingRoller(base, roller, offset), "base_radius", "roller_radius", "offset")
+    follower = raises_naming(
+        lambda: cf.TranslatingRoller(base, roller, offset), "base_radius", "roller_radius", "offset"
+    )
     program = raises_naming(lambda: cf.MotionProgram.paper_default(lift), "rise", "lift", "total_rise", "h")
     if follower is None or program is None:
         return
@@ -88,23 +105,48 @@ def test_mechanism_parts_are_validated_by_name(mass, stiffness, damping, preload
     b = cf.MechanismBuilder()
     if raises_naming(lambda: b.add_dof("tappet", mass, [0, 1, 0]) or True, "tappet") is None:
         return
-    if raises_naming(lambda: b.add_spring("spring", "tappet", stiffness=stiffness, damping=damping, preload=preload) or True,
-                     "spring") is None:
+    if (
+        raises_naming(
+            lambda: b.add_spring("spring", "tappet", stiffness=stiffness, damping=damping, preload=preload) or True,
+            "spring",
+        )
+        is None
+    ):
         return
-    b.add_contact("cam", cf.MotionProgram.paper_default(), cf.TranslatingRoller(0.03, 0.008), follower_dof="tappet",
-                  stiffness=2e8)
+    b.add_contact(
+        "cam", cf.MotionProgram.paper_default(), cf.TranslatingRoller(0.03, 0.008), follower_dof="tappet", stiffness=2e8
+    )
     m = raises_naming(b.build, "static equilibrium", "spring", "tappet", "contact")
     if m is not None:
         assert finite(m.initial_state)
 
 
-@given(length_=anything, outer=length, inner=st.one_of(st.just(0.0), length), element=anything,
-       stations=st.lists(anything, max_size=4))
+@given(
+    length_=anything,
+    outer=length,
+    inner=st.one_of(st.just(0.0), length),
+    element=anything,
+    stations=st.lists(anything, max_size=4),
+)
 def test_shaft_description_is_validated_by_name(length_, outer, inner, element, stations):
     b = cf.MechanismBuilder()
-    done = raises_naming(lambda: b.add_shaft("s", length=length_, outer_diameter=outer, inner_diameter=inner,
-                                             max_element_length=element, stations=stations) or True,
-                         "shaft 's'", "diameter", "youngs_modulus", "density")
+    done = raises_naming(
+        lambda: (
+            b.add_shaft(
+                "s",
+                length=length_,
+                outer_diameter=outer,
+                inner_diameter=inner,
+                max_element_length=element,
+                stations=stations,
+            )
+            or True
+        ),
+        "shaft 's'",
+        "diameter",
+        "youngs_modulus",
+        "density",
+    )
     if done:
         names = b.dof_names
         assert names and all(n.startswith("s.") for n in names)
@@ -118,8 +160,13 @@ PRESET = cf.presets.paper()
 def test_simulate_runs_or_refuses_its_step_and_duration(time_step, duration):
     def run():
         # Bounded work: at most 1,000 steps are accepted for the check.
-        if (math.isfinite(time_step) and math.isfinite(duration) and time_step > 0 and duration > 0
-                and duration / time_step > 1000):
+        if (
+            math.isfinite(time_step)
+            and math.isfinite(duration)
+            and time_step > 0
+            and duration > 0
+            and duration / time_step > 1000
+        ):
             return None
         return cf.simulate(PRESET, duration=duration, time_step=time_step, decimation=1)
 
@@ -128,8 +175,11 @@ def test_simulate_runs_or_refuses_its_step_and_duration(time_step, duration):
         assert finite(result.q) and finite(result["cam.force"])
 
 
-@given(tolerance=st.one_of(st.floats(min_value=1e-13, max_value=0.1), anything),
-       max_step=st.one_of(st.just(None), anything), time_step=st.one_of(st.just(1e-4), anything))
+@given(
+    tolerance=st.one_of(st.floats(min_value=1e-13, max_value=0.1), anything),
+    max_step=st.one_of(st.just(None), anything),
+    time_step=st.one_of(st.just(1e-4), anything),
+)
 def test_dormand_prince_runs_or_refuses_its_settings(tolerance, max_step, time_step):
     """The explicit method over 2 ms of the paper preset: its tolerance, step bound and output interval
     are honoured or refused by name; a run that is accepted is finite."""
@@ -141,8 +191,14 @@ def test_dormand_prince_runs_or_refuses_its_settings(tolerance, max_step, time_s
             return None
         if max_step is not None and math.isfinite(max_step) and max_step > 0 and duration / max_step > 1e5:
             return None
-        return cf.simulate(PRESET, duration=duration, time_step=time_step, method="dormand_prince",
-                           tolerance=tolerance, max_step=max_step)
+        return cf.simulate(
+            PRESET,
+            duration=duration,
+            time_step=time_step,
+            method="dormand_prince",
+            tolerance=tolerance,
+            max_step=max_step,
+        )
 
     result = raises_naming(run, "tolerance", "max_step", "time_step", "duration", "Dormand-Prince")
     if result is not None:
@@ -160,14 +216,31 @@ def _follower(kind, base, size, offset):
     return cf.DiskCam(cf.MotionProgram.paper_default(), base, size, offset)
 
 
-@given(kind=st.sampled_from(["translating_flat", "oscillating_roller", "oscillating_flat", "disk_cam"]),
-       base=length, size=length, offset=st.one_of(st.floats(min_value=-0.02, max_value=0.02), anything),
-       lift=st.one_of(st.floats(min_value=1e-4, max_value=0.05), anything))
+@given(
+    kind=st.sampled_from(["translating_flat", "oscillating_roller", "oscillating_flat", "disk_cam"]),
+    base=length,
+    size=length,
+    offset=st.one_of(st.floats(min_value=-0.02, max_value=0.02), anything),
+    lift=st.one_of(st.floats(min_value=1e-4, max_value=0.05), anything),
+)
 def test_every_follower_type_is_checked_or_refused(kind, base, size, offset, lift):
     """The other three follower types and the paper's DiskCam: built and checked against a program
     of any lift, or refused naming the part; what is accepted has finite, meaningful geometry."""
-    names = ("base_radius", "roller_radius", "offset", "face", "arm", "pivot", "undercut", "theta", "cusp",
-             "pressure angle", "radius", "lift", "h_")
+    names = (
+        "base_radius",
+        "roller_radius",
+        "offset",
+        "face",
+        "arm",
+        "pivot",
+        "undercut",
+        "theta",
+        "cusp",
+        "pressure angle",
+        "radius",
+        "lift",
+        "h_",
+    )
     follower = raises_naming(lambda: _follower(kind, base, size, offset), *names)
     program = raises_naming(lambda: cf.MotionProgram.paper_default(lift), "rise", "lift", "total_rise", "h")
     if follower is None or program is None:
@@ -186,8 +259,10 @@ def test_every_follower_type_is_checked_or_refused(kind, base, size, offset, lif
 NUMERIC = [n for n in cf.Parameters.names() if n != "contact_damping"]
 
 
-@given(values=st.dictionaries(st.sampled_from(NUMERIC), anything, min_size=1, max_size=3),
-       damping=st.sampled_from(["none", "hunt_crossley", "lankarani_nikravesh", "viscous"]))
+@given(
+    values=st.dictionaries(st.sampled_from(NUMERIC), anything, min_size=1, max_size=3),
+    damping=st.sampled_from(["none", "hunt_crossley", "lankarani_nikravesh", "viscous"]),
+)
 def test_parameters_build_a_model_or_are_refused_by_name(values, damping):
     names = tuple(values) + ("contact_damping", "static equilibrium", "calibration", "offset", "radius")
 
@@ -201,11 +276,14 @@ def test_parameters_build_a_model_or_are_refused_by_name(values, damping):
 
 @given(eccentricity=anything, phase=anything, backlash=anything, width=anything)
 def test_defects_are_validated_by_name(eccentricity, phase, backlash, width):
-    defects = raises_naming(lambda: cf.Defects(eccentricity, phase, backlash, width),
-                            "eccentricity", "backlash", "phase", "width")
+    defects = raises_naming(
+        lambda: cf.Defects(eccentricity, phase, backlash, width), "eccentricity", "backlash", "phase", "width"
+    )
     if defects is None:
         return
-    model = raises_naming(lambda: cf.CamFollowerModel(defects=defects), "eccentricity", "backlash", "static equilibrium")
+    model = raises_naming(
+        lambda: cf.CamFollowerModel(defects=defects), "eccentricity", "backlash", "static equilibrium"
+    )
     if model is not None:
         assert finite(model.initial_state)
 
@@ -249,8 +327,16 @@ def test_contact_roles_are_distinct_dofs_or_refused_naming_them(cam_x, cam_y, fo
     used = [d for d in roles.values() if d != "ground"]
     clash = len(used) != len(set(used)) or follower == "ground"
     try:
-        b.add_contact("cam", cf.MotionProgram.paper_default(), cf.TranslatingRoller(0.03, 0.008), stiffness=1e8,
-                      cam_x=cam_x, cam_y=cam_y, follower_dof=follower, lateral=lateral)
+        b.add_contact(
+            "cam",
+            cf.MotionProgram.paper_default(),
+            cf.TranslatingRoller(0.03, 0.008),
+            stiffness=1e8,
+            cam_x=cam_x,
+            cam_y=cam_y,
+            follower_dof=follower,
+            lateral=lateral,
+        )
     except ValueError as e:
         assert clash, str(e)
         assert "contact 'cam'" in str(e) and ("both name DOF" in str(e) or "follower_dof must be a DOF" in str(e))
@@ -260,8 +346,12 @@ def test_contact_roles_are_distinct_dofs_or_refused_naming_them(cam_x, cam_y, fo
     assert m is None or finite(m.initial_state)
 
 
-@given(length_=st.floats(min_value=0.01, max_value=2.0), elements=st.integers(1, 3000),
-       outer=st.floats(min_value=0.005, max_value=0.1), shafts=st.integers(1, 3))
+@given(
+    length_=st.floats(min_value=0.01, max_value=2.0),
+    elements=st.integers(1, 3000),
+    outer=st.floats(min_value=0.005, max_value=0.1),
+    shafts=st.integers(1, 3),
+)
 @settings(deadline=None, max_examples=40)
 def test_model_size_is_bounded_before_it_is_built(length_, elements, outer, shafts):
     """Shafts of any mesh: refused by name at once (too many elements, a mesh finer than the section
@@ -271,9 +361,19 @@ def test_model_size_is_bounded_before_it_is_built(length_, elements, outer, shaf
     b = cf.MechanismBuilder()
     start = time.monotonic()
     for k in range(shafts):
-        added = raises_naming(lambda: b.add_shaft(f"s{k}", length=length_, outer_diameter=outer,
-                                                  max_element_length=length_ / elements, stations=[0.0, length_]) or True,
-                              "max_element_length")
+        added = raises_naming(
+            lambda: (
+                b.add_shaft(
+                    f"s{k}",
+                    length=length_,
+                    outer_diameter=outer,
+                    max_element_length=length_ / elements,
+                    stations=[0.0, length_],
+                )
+                or True
+            ),
+            "max_element_length",
+        )
         if added is None:
             assert time.monotonic() - start < 5.0
             return

@@ -64,8 +64,16 @@ def test_progress_returning_false_cancels_the_rest():
         calls.append((done, total))
         return False
 
-    out = cf.simulate_many(systems, threads=1, revolutions=2.0, time_step=systems[0].period / 8192,
-                           method="fox_goodwin", decimation=64, progress=progress, progress_interval=1e-9)
+    out = cf.simulate_many(
+        systems,
+        threads=1,
+        revolutions=2.0,
+        time_step=systems[0].period / 8192,
+        method="fox_goodwin",
+        decimation=64,
+        progress=progress,
+        progress_interval=1e-9,
+    )
     assert calls and calls[0][1] == 6
     assert out[0] is not None and out[0].stats["cancelled"]
     assert all(r is None for r in out[1:])
@@ -90,9 +98,11 @@ def test_bad_input_is_refused_by_name():
     # The output cap is shared by the cases: two cases get half of it each.
     one = cf.simulate(m, revolutions=0.05, time_step=m.period / 4096, method="fox_goodwin")
     need = np.asarray(one._data).nbytes
-    cf.simulate_many([m], revolutions=0.05, time_step=m.period / 4096, method="fox_goodwin",
-                     max_output_bytes=1.5 * need)
+    cf.simulate_many(
+        [m], revolutions=0.05, time_step=m.period / 4096, method="fox_goodwin", max_output_bytes=1.5 * need
+    )
     with pytest.raises(ValueError, match="max_output_bytes"):
-        cf.simulate_many([m, m], revolutions=0.05, time_step=m.period / 4096, method="fox_goodwin",
-                         max_output_bytes=1.5 * need)
+        cf.simulate_many(
+            [m, m], revolutions=0.05, time_step=m.period / 4096, method="fox_goodwin", max_output_bytes=1.5 * need
+        )
     assert cf.simulate_many([], revolutions=1.0) == []

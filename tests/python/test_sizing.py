@@ -22,8 +22,9 @@ def feasible(rb, rr, e, alpha_max, rho_min):
 
 def test_smallest_base_radius_for_a_given_offset_equals_a_brute_force_scan():
     alpha, rho = math.radians(25), 0.008
-    s = sizing.smallest_base_radius(PROGRAM, max_pressure_angle=alpha, min_surface_radius=rho, roller_radius=0.0125,
-                                    offset=0.01)
+    s = sizing.smallest_base_radius(
+        PROGRAM, max_pressure_angle=alpha, min_surface_radius=rho, roller_radius=0.0125, offset=0.01
+    )
     grid = np.arange(0.001, 0.06, 0.0002)
     first = next(rb for rb in grid if feasible(rb, 0.0125, 0.01, alpha, rho))
     assert s.base_radius == pytest.approx(first, abs=0.0002)
@@ -35,8 +36,9 @@ def test_smallest_base_radius_for_a_given_offset_equals_a_brute_force_scan():
 
 def test_best_offset_beats_every_offset_on_a_grid():
     alpha, rho = math.radians(20), 0.008
-    s = sizing.smallest_base_radius(PROGRAM, max_pressure_angle=alpha, min_surface_radius=rho, roller_radius=0.0125,
-                                    offset=None, tolerance=1e-5)
+    s = sizing.smallest_base_radius(
+        PROGRAM, max_pressure_angle=alpha, min_surface_radius=rho, roller_radius=0.0125, offset=None, tolerance=1e-5
+    )
     offsets = np.arange(-0.02, 0.0201, 0.001)
     grid = np.arange(0.005, 0.05, 0.0005)
     best = min(next((rb for rb in grid if feasible(rb, 0.0125, e, alpha, rho)), math.inf) for e in offsets)
@@ -69,12 +71,15 @@ def test_roller_size_check_margin_is_the_surface_radius():
     assert r["min_pitch_radius"] == pytest.approx(r["margin"] + 0.0125)
 
 
-@pytest.mark.parametrize("kwargs,message", [
-    (dict(max_pressure_angle=2.0, roller_radius=0.01), "max_pressure_angle must be < pi/2"),
-    (dict(max_pressure_angle=0.5), "roller_radius must be finite and > 0"),
-    (dict(max_pressure_angle=0.5, roller_radius=0.01, min_surface_radius=-1), "min_surface_radius"),
-    (dict(max_pressure_angle=0.01, roller_radius=0.01, upper=0.02), "no base radius up to upper"),
-])
+@pytest.mark.parametrize(
+    "kwargs,message",
+    [
+        (dict(max_pressure_angle=2.0, roller_radius=0.01), "max_pressure_angle must be < pi/2"),
+        (dict(max_pressure_angle=0.5), "roller_radius must be finite and > 0"),
+        (dict(max_pressure_angle=0.5, roller_radius=0.01, min_surface_radius=-1), "min_surface_radius"),
+        (dict(max_pressure_angle=0.01, roller_radius=0.01, upper=0.02), "no base radius up to upper"),
+    ],
+)
 def test_bad_sizing_input(kwargs, message):
     with pytest.raises(ValueError, match=message):
         sizing.smallest_base_radius(PROGRAM, **kwargs)
@@ -103,8 +108,15 @@ def perpendicular_arm_roller(rb, rr, L, turn="counter_clockwise"):
 @pytest.mark.parametrize("turn", ["counter_clockwise", "clockwise"])
 def test_oscillating_roller_with_a_perpendicular_arm_equals_a_brute_force_scan(turn):
     alpha, rho, rr, L = math.radians(25), 0.005, 0.01, 0.1
-    s = sizing.smallest_base_radius(ANGULAR, "oscillating_roller", max_pressure_angle=alpha, min_surface_radius=rho,
-                                    roller_radius=rr, arm_length=L, turn=turn)
+    s = sizing.smallest_base_radius(
+        ANGULAR,
+        "oscillating_roller",
+        max_pressure_angle=alpha,
+        min_surface_radius=rho,
+        roller_radius=rr,
+        arm_length=L,
+        turn=turn,
+    )
     grid = np.arange(0.002, 0.08, 0.0002)
     first = next(rb for rb in grid if oscillating_ok(perpendicular_arm_roller(rb, rr, L, turn), alpha, rho))
     assert s.base_radius == pytest.approx(first, abs=0.0002)
@@ -122,17 +134,32 @@ def test_oscillating_roller_with_a_perpendicular_arm_equals_a_brute_force_scan(t
 
 def test_oscillating_roller_dwell_pressure_angle_sets_the_pivot():
     a0 = math.radians(8)
-    s = sizing.smallest_base_radius(ANGULAR, "oscillating_roller", max_pressure_angle=math.radians(30),
-                                    min_surface_radius=0.004, roller_radius=0.01, arm_length=0.08,
-                                    dwell_pressure_angle=a0, turn="clockwise")
+    s = sizing.smallest_base_radius(
+        ANGULAR,
+        "oscillating_roller",
+        max_pressure_angle=math.radians(30),
+        min_surface_radius=0.004,
+        roller_radius=0.01,
+        arm_length=0.08,
+        dwell_pressure_angle=a0,
+        turn="clockwise",
+    )
     f = cf.OscillatingRoller(s.base_radius, 0.01, (s.pivot_distance, 0.0), 0.08, "clockwise")
     assert f.profile(ANGULAR, math.radians(10))["pressure_angle"] == pytest.approx(a0, abs=1e-12)
 
 
 def test_oscillating_roller_best_pivot_beats_every_pivot_distance_on_a_grid():
     alpha, rho, rr, L = math.radians(25), 0.005, 0.01, 0.1
-    s = sizing.smallest_base_radius(ANGULAR, "oscillating_roller", max_pressure_angle=alpha, min_surface_radius=rho,
-                                    roller_radius=rr, arm_length=L, dwell_pressure_angle=None, tolerance=1e-5)
+    s = sizing.smallest_base_radius(
+        ANGULAR,
+        "oscillating_roller",
+        max_pressure_angle=alpha,
+        min_surface_radius=rho,
+        roller_radius=rr,
+        arm_length=L,
+        dwell_pressure_angle=None,
+        tolerance=1e-5,
+    )
 
     def any_pivot_works(rb):
         r = rb + rr
@@ -146,9 +173,17 @@ def test_oscillating_roller_best_pivot_beats_every_pivot_distance_on_a_grid():
     # ... and the optimizer's own design is feasible, better than the perpendicular arm.
     f = cf.OscillatingRoller(s.base_radius + 1e-5, rr, (s.pivot_distance, 0.0), L)
     assert oscillating_ok(f, alpha + 1e-4, rho)
-    assert s.base_radius < sizing.smallest_base_radius(
-        ANGULAR, "oscillating_roller", max_pressure_angle=alpha, min_surface_radius=rho, roller_radius=rr,
-        arm_length=L).base_radius
+    assert (
+        s.base_radius
+        < sizing.smallest_base_radius(
+            ANGULAR,
+            "oscillating_roller",
+            max_pressure_angle=alpha,
+            min_surface_radius=rho,
+            roller_radius=rr,
+            arm_length=L,
+        ).base_radius
+    )
 
 
 def test_oscillating_flat_face_sized_by_its_radius_of_curvature():
@@ -162,38 +197,54 @@ def test_oscillating_flat_face_sized_by_its_radius_of_curvature():
     assert s.min_surface_radius >= rho and abs(s.max_pressure_angle) < 1e-9  # face through the pivot
 
 
-@pytest.mark.parametrize("follower,kwargs,message", [
-    ("oscillating_roller", dict(roller_radius=0.01), "arm_length must be finite and > 0"),
-    ("oscillating_roller", dict(arm_length=0.1), "roller_radius must be finite and > 0"),
-    ("oscillating_roller", dict(roller_radius=0.01, arm_length=0.1, dwell_pressure_angle=2.0), "dwell_pressure_angle"),
-    ("oscillating_roller", dict(roller_radius=0.01, arm_length=0.1, turn="up"), "turn must be"),
-    ("oscillating_flat", dict(pivot_distance_ratio=1.0), "pivot_distance_ratio"),
-    ("oscillating_flat", dict(pivot_distance_ratio=None), "pivot_distance_ratio=None"),
-    ("oscillating_flat", dict(face_offset=math.nan), "face_offset"),
-    ("swinging", dict(), "follower must be one of"),
-])
+@pytest.mark.parametrize(
+    "follower,kwargs,message",
+    [
+        ("oscillating_roller", dict(roller_radius=0.01), "arm_length must be finite and > 0"),
+        ("oscillating_roller", dict(arm_length=0.1), "roller_radius must be finite and > 0"),
+        (
+            "oscillating_roller",
+            dict(roller_radius=0.01, arm_length=0.1, dwell_pressure_angle=2.0),
+            "dwell_pressure_angle",
+        ),
+        ("oscillating_roller", dict(roller_radius=0.01, arm_length=0.1, turn="up"), "turn must be"),
+        ("oscillating_flat", dict(pivot_distance_ratio=1.0), "pivot_distance_ratio"),
+        ("oscillating_flat", dict(pivot_distance_ratio=None), "pivot_distance_ratio=None"),
+        ("oscillating_flat", dict(face_offset=math.nan), "face_offset"),
+        ("swinging", dict(), "follower must be one of"),
+    ],
+)
 def test_bad_oscillating_sizing_input(follower, kwargs, message):
     with pytest.raises(ValueError, match=message):
         sizing.smallest_base_radius(ANGULAR, follower, **kwargs)
 
 
-@pytest.mark.parametrize("make", [
-    lambda turn: cf.OscillatingRoller(0.03, 0.008, [0.06, 0.05], 0.06, turn=turn),
-    lambda turn: cf.OscillatingFlat(0.03, [0.06, 0.05], 0.0, turn),
-])
+@pytest.mark.parametrize(
+    "make",
+    [
+        lambda turn: cf.OscillatingRoller(0.03, 0.008, [0.06, 0.05], 0.06, turn=turn),
+        lambda turn: cf.OscillatingFlat(0.03, [0.06, 0.05], 0.0, turn),
+    ],
+)
 def test_a_turn_is_the_arm_turn_enum_or_its_name(make):
     theta = np.linspace(0, 2 * math.pi, 73)
-    for enum, names in ((cf.ArmTurn.clockwise, ("clockwise", "cw")),
-                        (cf.ArmTurn.counter_clockwise, ("counter_clockwise", "ccw"))):
+    for enum, names in (
+        (cf.ArmTurn.clockwise, ("clockwise", "cw")),
+        (cf.ArmTurn.counter_clockwise, ("counter_clockwise", "ccw")),
+    ):
         by_enum = make(enum)
         assert by_enum.turn == enum.name
         for name in names:
             by_name = make(name)
             assert by_name.turn == enum.name
-            assert np.array_equal(by_enum.profile(ANGULAR, theta)["surface_x"], by_name.profile(ANGULAR, theta)["surface_x"])
+            assert np.array_equal(
+                by_enum.profile(ANGULAR, theta)["surface_x"], by_name.profile(ANGULAR, theta)["surface_x"]
+            )
     # The two senses are different cams.
-    assert not np.allclose(make(cf.ArmTurn.clockwise).profile(ANGULAR, theta)["surface_x"],
-                           make(cf.ArmTurn.counter_clockwise).profile(ANGULAR, theta)["surface_x"])
+    assert not np.allclose(
+        make(cf.ArmTurn.clockwise).profile(ANGULAR, theta)["surface_x"],
+        make(cf.ArmTurn.counter_clockwise).profile(ANGULAR, theta)["surface_x"],
+    )
     with pytest.raises(TypeError, match="turn must be an ArmTurn or one of 'counter_clockwise', 'clockwise', got int"):
         make(1)
     with pytest.raises(ValueError, match="turn must be 'counter_clockwise' or 'clockwise', got 'up'"):
@@ -203,7 +254,8 @@ def test_a_turn_is_the_arm_turn_enum_or_its_name(make):
 def test_sizing_takes_the_arm_turn_enum_as_the_followers_do():
     kwargs = dict(roller_radius=0.01, arm_length=0.1)
     for enum in (cf.ArmTurn.clockwise, cf.ArmTurn.counter_clockwise):
-        assert (sizing.smallest_base_radius(ANGULAR, "oscillating_roller", turn=enum, **kwargs)
-                == sizing.smallest_base_radius(ANGULAR, "oscillating_roller", turn=enum.name, **kwargs))
+        assert sizing.smallest_base_radius(
+            ANGULAR, "oscillating_roller", turn=enum, **kwargs
+        ) == sizing.smallest_base_radius(ANGULAR, "oscillating_roller", turn=enum.name, **kwargs)
     with pytest.raises(TypeError, match="turn must be an ArmTurn"):
         sizing.smallest_base_radius(ANGULAR, "oscillating_roller", turn=0, **kwargs)

@@ -21,7 +21,9 @@ def test_stubs_cover_the_compiled_module_and_nothing_else():
     stubbed = {}
     for node in tree.body:
         if isinstance(node, ast.ClassDef):
-            stubbed[node.name] = {n.name for n in node.body if isinstance(n, ast.FunctionDef) and not n.name.startswith("_")}
+            stubbed[node.name] = {
+                n.name for n in node.body if isinstance(n, ast.FunctionDef) and not n.name.startswith("_")
+            }
         elif isinstance(node, ast.FunctionDef) and not node.name.startswith("_"):
             stubbed[node.name] = set()
         elif isinstance(node, ast.AnnAssign) and not node.target.id.startswith("_"):  # module constants
@@ -30,8 +32,11 @@ def test_stubs_cover_the_compiled_module_and_nothing_else():
     assert set(stubbed) == set(public)
     for name, obj in public.items():
         if inspect.isclass(obj):
-            members = {m for m in vars(obj) if not m.startswith("_") and callable(getattr(obj, m, None))
-                       and not isinstance(vars(obj)[m], property)}
+            members = {
+                m
+                for m in vars(obj)
+                if not m.startswith("_") and callable(getattr(obj, m, None)) and not isinstance(vars(obj)[m], property)
+            }
             properties = {m for m in vars(obj) if isinstance(vars(obj)[m], property)}
             assert members <= stubbed[name] | properties, name
             assert stubbed[name] <= members | properties, name  # nothing stubbed that is not there

@@ -72,8 +72,16 @@ def test_floquet_spectral_radius_is_the_transient_decay_per_revolution():
     revolution shrinks by |mu_max| each revolution (measured over revolutions 40-120)."""
     m = cf.presets.paper()
     o = orbit_of(m)
-    r = cf.simulate(m, revolutions=1, time_step=m.period / STEPS, settle=True, settle_tolerance=1e-12,
-                    settle_max_revolutions=121, settle_dofs=["y2"], decimation=STEPS)
+    r = cf.simulate(
+        m,
+        revolutions=1,
+        time_step=m.period / STEPS,
+        settle=True,
+        settle_tolerance=1e-12,
+        settle_max_revolutions=121,
+        settle_dofs=["y2"],
+        decimation=STEPS,
+    )
     h = np.asarray(r.settle["history"])
     decay = (h[110:120].mean() / h[30:40].mean()) ** (1 / 80)
     assert o.spectral_radius == pytest.approx(decay, rel=5e-3)
@@ -100,13 +108,21 @@ def test_jump_speed_of_the_paper_mechanism_against_transients_and_the_rigid_foll
     j = speed.jump_speed(m, (1000, 2000), tolerance=2e-3)
     lo, hi = j.bracket
     assert hi - lo <= 2e-3 * hi
+
     # The transient route on both sides, 5 % away: run until settled (or 600 revolutions: the start-up
     # transient of the lightly damped mechanism loses contact below the jump speed too), then two
     # revolutions: contact kept below, lost above.
     def transient(rpm):
         mm = m.with_camshaft_speed_rpm(rpm)
-        return cf.simulate(mm, revolutions=2, time_step=mm.period / STEPS, decimation=64, settle=True,
-                           settle_tolerance=1e-5, settle_max_revolutions=600)
+        return cf.simulate(
+            mm,
+            revolutions=2,
+            time_step=mm.period / STEPS,
+            decimation=64,
+            settle=True,
+            settle_tolerance=1e-5,
+            settle_max_revolutions=600,
+        )
 
     below, above = transient(0.95 * j.rpm), transient(1.05 * j.rpm)
     assert below.settle["settled"]
@@ -198,8 +214,10 @@ def test_monte_carlo_statistics_against_closed_forms():
     rng = np.random.default_rng(5)
     x1, x2 = rng.normal(0, 1, 4000), rng.normal(0, 2, 4000)
     y = 2 * x1 - x2 + rng.normal(0, 1e-3, 4000)
-    rows = [{"case": i, "seed": 5, "a": x1[i], "b": x2[i], "min_force_N": y[i], "ok": True, "error": ""}
-            for i in range(4000)]
+    rows = [
+        {"case": i, "seed": 5, "a": x1[i], "b": x2[i], "min_force_N": y[i], "ok": True, "error": ""}
+        for i in range(4000)
+    ]
     r = tol.MonteCarloResult(rows=rows, nominal={"min_force_N": 0.0}, parameters=["a", "b"], metrics=["min_force_N"])
     sd_y = math.sqrt(4 * 1 + 4)
     s = {d["parameter"]: d for d in r.sensitivities("min_force_N")}
@@ -221,7 +239,9 @@ def test_bad_tolerances_are_refused():
         tol.TruncatedNormal(1.0, 10.0, 11.0)
     # a uniform spread that reaches a negative stiffness: refused before anything runs, naming it
     with pytest.raises(ValueError, match="contact_stiffness.*refuses"):
-        tol.monte_carlo(build, {"contact_stiffness": tol.Uniform(-2e8, 0.0)}, cases=2, executor="serial", progress=False)
+        tol.monte_carlo(
+            build, {"contact_stiffness": tol.Uniform(-2e8, 0.0)}, cases=2, executor="serial", progress=False
+        )
     with pytest.raises(ValueError, match="unknown parameter 'stifness'"):
         tol.monte_carlo(build, {"stifness": tol.Normal(1.0)}, cases=2, executor="serial")
     with pytest.raises(ValueError, match="cases"):
@@ -321,8 +341,9 @@ def test_a_peer_that_is_not_a_dask_scheduler_fails_within_the_timeout(behaviour)
     address = f"tcp://127.0.0.1:{server.port}"
     try:
         t0 = time.perf_counter()
-        value, error = _in_thread(20, lambda: executors.run_cases(abs, [1, 2], executor=address, connect_timeout=2.0,
-                                                                  progress=False))
+        value, error = _in_thread(
+            20, lambda: executors.run_cases(abs, [1, 2], executor=address, connect_timeout=2.0, progress=False)
+        )
         elapsed = time.perf_counter() - t0
     finally:
         server.close()
@@ -400,9 +421,28 @@ def test_pool_workers_die_when_the_study_process_is_killed(tmp_path):
                 os.kill(w, signal.SIGKILL)
 
 
-@pytest.mark.parametrize("spec", ["dask:abc", "dask:0", "dask:-2", "dask:1.5", "dask: 2", "dask:", "dask:١", "dask:5000",
-                                  "tcp://host", "tcp://:8786", "tcp://host:0", "tcp://host:70000", "host:8786",
-                                  "http://host:8786", "Serial", "process", ""])
+@pytest.mark.parametrize(
+    "spec",
+    [
+        "dask:abc",
+        "dask:0",
+        "dask:-2",
+        "dask:1.5",
+        "dask: 2",
+        "dask:",
+        "dask:١",
+        "dask:5000",
+        "tcp://host",
+        "tcp://:8786",
+        "tcp://host:0",
+        "tcp://host:70000",
+        "host:8786",
+        "http://host:8786",
+        "Serial",
+        "process",
+        "",
+    ],
+)
 def test_bad_executor_strings_are_refused_before_anything_runs(spec):
     for items in ([1, 2], []):  # up front: even a study with no case
         with pytest.raises(ValueError, match=r"^executor(?=.*'dask:N')(?=.*tcp://host:port)"):
@@ -446,8 +486,9 @@ class _NeverBuilt:
 def test_monte_carlo_checks_its_executor_before_building_a_model():
     for executor, workers in (("dask:abc", None), ("dask:2", 4), (object(), None)):
         with pytest.raises((ValueError, TypeError), match="executor"):
-            tol.monte_carlo(_NeverBuilt(), {"x": tol.Normal(0.1)}, cases=2, executor=executor, workers=workers,
-                            progress=False)
+            tol.monte_carlo(
+                _NeverBuilt(), {"x": tol.Normal(0.1)}, cases=2, executor=executor, workers=workers, progress=False
+            )
 
 
 def test_command_line_refuses_a_bad_scheduler_before_reading_the_config(tmp_path, capsys):
@@ -464,10 +505,15 @@ def test_command_line_refuses_a_bad_scheduler_before_reading_the_config(tmp_path
 def test_monte_carlo_on_a_dask_local_cluster_equals_serial_bit_for_bit():
     distributed = pytest.importorskip("distributed")
     build = tol.PaperCase()
-    tols = {"contact_stiffness": tol.Normal(0.05, relative=True), "spring_stiffness": tol.Uniform(-0.05, 0.05, relative=True)}
+    tols = {
+        "contact_stiffness": tol.Normal(0.05, relative=True),
+        "spring_stiffness": tol.Uniform(-0.05, 0.05, relative=True),
+    }
     serial = tol.monte_carlo(build, tols, cases=6, seed=1, executor="serial", progress=False)
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
-            distributed.Client(cluster) as client:
+    with (
+        distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster,
+        distributed.Client(cluster) as client,
+    ):
         dask = tol.monte_carlo(build, tols, cases=6, seed=1, executor=client, progress=False)
     pool = tol.monte_carlo(build, tols, cases=6, seed=1, workers=2, progress=False)
     assert dask.rows == serial.rows
@@ -477,9 +523,30 @@ def test_monte_carlo_on_a_dask_local_cluster_equals_serial_bit_for_bit():
 def test_command_line_sweep_and_montecarlo(tmp_path):
     cfg = EXAMPLES / "paper_studies.toml"
     env = {**os.environ, "PYTHONWARNINGS": "ignore"}
-    s = subprocess.run([sys.executable, "-m", "camfollower", "sweep", str(cfg), "--rpm", "700", "1250", "--jump", "1000", "2000",
-                        "--workers", "1", "--no-progress", "-o", str(tmp_path / "sweep")],
-                       capture_output=True, text=True, env=env, timeout=600)
+    s = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "camfollower",
+            "sweep",
+            str(cfg),
+            "--rpm",
+            "700",
+            "1250",
+            "--jump",
+            "1000",
+            "2000",
+            "--workers",
+            "1",
+            "--no-progress",
+            "-o",
+            str(tmp_path / "sweep"),
+        ],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=600,
+    )
     assert s.returncode == 0, s.stderr
     summary = json.loads((tmp_path / "sweep" / "summary.json").read_text())
     assert 1200 < summary["jump"]["rpm"] < 1500
@@ -489,8 +556,26 @@ def test_command_line_sweep_and_montecarlo(tmp_path):
     windows = summary["jump"]["windows"]
     assert windows and s.stdout.count("  contact lost from ") == len(windows)
     assert f"contact lost from {windows[0]['start_rpm']:.1f} rpm" in s.stdout
-    mc = subprocess.run([sys.executable, "-m", "camfollower", "montecarlo", str(cfg), "--cases", "6", "--workers", "1",
-                         "--no-progress", "-o", str(tmp_path / "mc")], capture_output=True, text=True, env=env, timeout=600)
+    mc = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "camfollower",
+            "montecarlo",
+            str(cfg),
+            "--cases",
+            "6",
+            "--workers",
+            "1",
+            "--no-progress",
+            "-o",
+            str(tmp_path / "mc"),
+        ],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=600,
+    )
     assert mc.returncode == 0, mc.stderr
     summary = json.loads((tmp_path / "mc" / "summary.json").read_text())
     assert summary["cases"] == 6 and summary["failed"] == 0
@@ -498,8 +583,13 @@ def test_command_line_sweep_and_montecarlo(tmp_path):
     assert len(lines) == 7 and "preset.parameters.contact_stiffness" in lines[0]
     bad = tmp_path / "bad.toml"
     bad.write_text(cfg.read_text().replace("cases = 200", "cases = 200\nsamples = 3"))
-    r = subprocess.run([sys.executable, "-m", "camfollower", "montecarlo", str(bad), "-o", str(tmp_path / "x")],
-                       capture_output=True, text=True, env=env, timeout=120)
+    r = subprocess.run(
+        [sys.executable, "-m", "camfollower", "montecarlo", str(bad), "-o", str(tmp_path / "x")],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=120,
+    )
     assert r.returncode == 1 and "montecarlo.samples: unknown key" in r.stderr
 
 
@@ -522,16 +612,28 @@ def test_motion_laws_side_by_side():
     """Two programs with the same rise and return angles: the rigid follower's peak accelerations
     are in the ratio of the laws' textbook coefficients (cycloidal 2 pi, modified trapezoid
     8 pi / (pi + 2) = 4.888); residual vibration is reported for both dwells."""
+
     def program(law):
         r = math.radians
-        return cf.MotionProgram([cf.Segment(cf.MotionLaw.dwell(), 0.0, r(30), 0.0, 0.0),
-                                 cf.Segment(law, r(30), r(180), 0.0, 0.010),
-                                 cf.Segment(cf.MotionLaw.dwell(), r(180), r(210), 0.010, 0.010),
-                                 cf.Segment(law, r(210), 2 * math.pi, 0.010, 0.0)])
+        return cf.MotionProgram(
+            [
+                cf.Segment(cf.MotionLaw.dwell(), 0.0, r(30), 0.0, 0.0),
+                cf.Segment(law, r(30), r(180), 0.0, 0.010),
+                cf.Segment(cf.MotionLaw.dwell(), r(180), r(210), 0.010, 0.010),
+                cf.Segment(law, r(210), 2 * math.pi, 0.010, 0.0),
+            ]
+        )
 
-    rows = speed.compare_programs(lambda p: cf.presets.paper(program=p),
-                                  {"modified trapezoid": program(cf.MotionLaw.modified_trapezoid()),
-                                   "cycloidal": program(cf.MotionLaw.cycloidal())}, 750, executor="serial", progress=False)
+    rows = speed.compare_programs(
+        lambda p: cf.presets.paper(program=p),
+        {
+            "modified trapezoid": program(cf.MotionLaw.modified_trapezoid()),
+            "cycloidal": program(cf.MotionLaw.cycloidal()),
+        },
+        750,
+        executor="serial",
+        progress=False,
+    )
     by = {r["program"]: r for r in rows}
     ratio = by["cycloidal"]["rigid_max_abs_acceleration"] / by["modified trapezoid"]["rigid_max_abs_acceleration"]
     assert ratio == pytest.approx(2 * math.pi / (8 * math.pi / (math.pi + 2)), rel=1e-3)

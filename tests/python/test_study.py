@@ -9,11 +9,28 @@ from camfollower import study
 
 def test_study_writes_figures_data_and_summary(tmp_path):
     out = tmp_path / "out"
-    assert study.main(["--out", str(out), "--max-revolutions", "4", "--analysed-revolutions", "2",
-                       "--steps-per-revolution", "4096"]) == 0
+    assert (
+        study.main(
+            [
+                "--out",
+                str(out),
+                "--max-revolutions",
+                "4",
+                "--analysed-revolutions",
+                "2",
+                "--steps-per-revolution",
+                "4096",
+            ]
+        )
+        == 0
+    )
     summary = json.loads((out / "summary.json").read_text())
-    assert set(summary["cases"]) == {f"{f}/{m}/{d}" for f in ("offset", "inline") for m in ("paper", "physical")
-                                     for d in ("healthy", "eccentricity", "clearance")}
+    assert set(summary["cases"]) == {
+        f"{f}/{m}/{d}"
+        for f in ("offset", "inline")
+        for m in ("paper", "physical")
+        for d in ("healthy", "eccentricity", "clearance")
+    }
     for case in summary["cases"].values():  # every case states whether and how it settled
         assert set(case["settle"]) == {"settled", "revolutions", "change", "change_absolute", "tolerance"}
         assert 2 <= case["settle"]["revolutions"] <= 4

@@ -25,8 +25,14 @@ def _independent_first_loss(m, speeds, steps=65536):
     accuracy ladder, no resonance grid): the first speed whose periodic state loses contact."""
     for rpm in speeds:
         mm = m.with_camshaft_speed_rpm(rpm)
-        o = periodic_steady_state(mm, time_step=mm.period / steps, multipliers=False, fallback="transient",
-                                  max_shooting_iterations=8, transient_max_revolutions=40)
+        o = periodic_steady_state(
+            mm,
+            time_step=mm.period / steps,
+            multipliers=False,
+            fallback="transient",
+            max_shooting_iterations=8,
+            transient_max_revolutions=40,
+        )
         if float(np.min(np.asarray(o.record(mm)["cam.force"]))) <= 0.0:
             return rpm
     return None
@@ -60,8 +66,11 @@ def test_jump_speed_is_the_first_loss_whatever_the_range():
 
 def test_jump_speed_refuses_ranges_without_a_first_loss():
     m = cf.presets.paper()
-    with pytest.raises(ValueError, match=r"no contact loss between 600 and 800 rpm .*smallest margin is .* N at "
-                                         r".* rpm, at .* deg of cam angle"):
+    with pytest.raises(
+        ValueError,
+        match=r"no contact loss between 600 and 800 rpm .*smallest margin is .* N at "
+        r".* rpm, at .* deg of cam angle",
+    ):
         speed.jump_speed(m, (600, 800))
     with pytest.raises(ValueError, match="already lost at the lower speed 1400 rpm"):
         speed.jump_speed(m, (1400, 1500))
@@ -100,8 +109,9 @@ def test_steady_response_reaches_the_accuracy_it_reports(rpm, accuracy):
         row = steady_response(m, accuracy=accuracy, steps_per_revolution=start, keep_orbit=True, multipliers=False)
         assert row["accuracy_reached"] and row["accuracy"] <= accuracy and row["accuracy_target"] == accuracy
         n = row["steps_per_revolution"]
-        ref = cf.simulate(m, revolutions=1, time_step=m.period / n, method="dop853", tolerance=1e-11,
-                          initial_state=(best.q, best.v))
+        ref = cf.simulate(
+            m, revolutions=1, time_step=m.period / n, method="dop853", tolerance=1e-11, initial_state=(best.q, best.v)
+        )
         got = row["orbit"].record(m)
         for channel in ("cam.force", "a.y2"):
             x, x_ref = np.asarray(got[channel]), np.asarray(ref[channel])
@@ -117,8 +127,9 @@ def test_the_old_fixed_study_step_was_off_by_more_than_the_accuracy_now_reported
     m = cf.presets.paper()
     best = periodic_steady_state(m, time_step=m.period / 131072, gamma=0.5, beta=1 / 12, multipliers=False)
     old = periodic_steady_state(m, time_step=m.period / 4096, multipliers=False)
-    ref = cf.simulate(m, revolutions=1, time_step=m.period / 4096, method="dop853", tolerance=1e-11,
-                      initial_state=(best.q, best.v))
+    ref = cf.simulate(
+        m, revolutions=1, time_step=m.period / 4096, method="dop853", tolerance=1e-11, initial_state=(best.q, best.v)
+    )
     a_old, a_ref = np.asarray(old.record(m)["a.y2"]), np.asarray(ref["a.y2"])
     assert np.max(np.abs(a_old - a_ref)) / np.max(np.abs(a_ref)) > 1e-2
     row = steady_response(m)
@@ -151,13 +162,20 @@ def test_any_channel_is_measured_like_the_contact():
 
 def _independent_min_force(m, rpm, contact="cam", steps=65536):
     mm = m.with_camshaft_speed_rpm(rpm)
-    o = periodic_steady_state(mm, time_step=mm.period / steps, multipliers=False, fallback="transient",
-                              max_shooting_iterations=8, transient_max_revolutions=40)
+    o = periodic_steady_state(
+        mm,
+        time_step=mm.period / steps,
+        multipliers=False,
+        fallback="transient",
+        max_shooting_iterations=8,
+        transient_max_revolutions=40,
+    )
     return float(np.min(np.asarray(o.record(mm)[f"{contact}.force"])))
 
 
-@pytest.mark.parametrize("example, speed_range", [("indexing_cam.toml", (340, 420)),
-                                                  ("flat_faced_table.toml", (2400, 2700))])
+@pytest.mark.parametrize(
+    "example, speed_range", [("indexing_cam.toml", (340, 420)), ("flat_faced_table.toml", (2400, 2700))]
+)
 def test_first_loss_of_examples_against_an_independent_scan(example, speed_range):
     """The indexing cam loses contact first at a resonance of its slide (~112 Hz) with a shaft order,
     in a window below the speed where it is lost for good; the flat-faced tappet at its valve spring's
