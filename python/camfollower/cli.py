@@ -28,6 +28,7 @@ from __future__ import annotations
 import argparse
 import io
 import math
+import os
 import re
 import sys
 import warnings
@@ -100,6 +101,10 @@ def check_arguments(args: argparse.Namespace) -> None:
         _files.check_name(args.config, "config")
     if getattr(args, "out", None) is not None:
         _files.check_name(args.out, "--out")
+        if not args.out:
+            raise ValueError("--out: must name a folder, got an empty string")
+    if getattr(args, "contact", None) is not None and not args.contact:
+        raise ValueError("--contact: must name a contact of the config, got an empty string")
     if getattr(args, "output", None) is not None:
         _files.check_name(args.output, "-o/--output")
         if not args.output:
@@ -401,13 +406,13 @@ def _recording_csv(result) -> bytes:
 
 def run(config: str, output=None) -> dict:
     """Simulate the case in `config` and write every recorded channel as CSV to `output` (default: the
-    config's ``[output] file``, next to the config); return what was done."""
+    config's ``[output] file``, relative to the working directory); return what was done."""
     case = _load(config)
     closure = _closure(case)
     target = output or case.output.get("file")
     if not target:
         raise ValueError(f"{config}: no output file: set [output] file or give -o FILE")
-    path = Path(target) if output or Path(target).is_absolute() else Path(config).parent / target
+    path = Path(target)  # relative to the working directory (docs/config.md), as in the C++ program
     _files.check_name(str(path), "-o/--output")
     _files.check_target(path, protect=[config])
     result = case.run()
@@ -656,19 +661,37 @@ def _add_executor_options(p) -> None:
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse with the command's one-line errors: a command line that cannot be read is a usage
+    error (exit status 2), as in the C++ program."""
+
+    def error(self, message):
+        print(f"camfollower: error: {_message(message)} (see: {self.prog} --help)", file=sys.stderr)
+        raise SystemExit(2)
+
+
 def main(argv=None) -> int:
+    try:
+        return _main(argv)
+    except BrokenPipeError:  # the reader went away (| head): no traceback and no message
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return 1
+
+
+def _main(argv=None) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
     if argv[:1] == ["study"]:  # the paper's study has its own options (camfollower study --help)
         from . import study
 
         return study.main(argv[1:], prog="camfollower study")
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="camfollower",
         description="camfollower: dynamics of flexible cam-follower "
         "mechanisms; every verb works on a config file (docs/config.md). -o is the file "
         "for run and export, the folder for the others.",
-        epilog="exit status: 0 done, 1 an error (one line 'camfollower: error: ...'), "
-        "2 a command line argparse cannot read",
+        epilog="exit status: 0 done, 1 the config or the run failed, 2 a command-line (usage) error; every "
+        "error is one line 'camfollower: error: ...'",
     )
     sub = parser.add_subparsers(dest="command", required=True)
     k = sub.add_parser(
@@ -738,6 +761,10 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     try:
         check_arguments(args)
+    except (ValueError, TypeError) as e:  # an argument out of its range: a usage error, as in the C++ program
+        print(f"camfollower: error: {_message(e)}", file=sys.stderr)
+        return 2
+    try:
         if args.command == "kinematics":
             kinematics(args.config, args.rpm)
             return 0
@@ -775,6 +802,8 @@ def main(argv=None) -> int:
             )
         else:
             summary = figures(args.config, args.out)
+    except BrokenPipeError:
+        raise  # main: the reader went away
     except (ValueError, TypeError, RuntimeError, OSError, ImportError) as e:
         print(f"camfollower: error: {_message(e)}", file=sys.stderr)
         return 1

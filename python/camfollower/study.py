@@ -677,7 +677,7 @@ def print_summary(summary: dict) -> None:
 
 
 def main(argv: list[str] | None = None, prog: str = "camfollower study") -> int:
-    parser = argparse.ArgumentParser(prog=prog, description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(prog=prog, description=__doc__.splitlines()[0].replace("``", ""))
     d = StudyConfig()
     parser.add_argument("--out", default="out", help="output folder (created if missing); default: out")
     parser.add_argument("--rpm", type=float, default=d.rpm, help=f"camshaft speed (rpm); default {d.rpm:g}")

@@ -123,30 +123,58 @@ def test_run_writes_every_channel_of_the_configs_run(tmp_path):
 
 
 @pytest.mark.parametrize(
-    "args, message",
+    "args, status, message",
     [
-        (["run", EXAMPLES / "swing_arm.toml", "-o", ""], "-o/--output: must name a file"),
-        (["run", EXAMPLES / "swing_arm.toml", "-o", EXAMPLES / "swing_arm.toml"], "is the input file"),
-        (["modes", "--theta", "nan"], "--theta: nan is not a cam angle"),
-        (["modes", "--count", "0"], "--count"),
-        (["kinematics", "--rpm", "-5"], "--rpm"),
-        (
-            ["export", EXAMPLES / "swing_arm.toml", "-o", "x.csv", "--unit", "furlong"],
-            "--unit: 'furlong' is not one of",
-        ),
-        (["export", EXAMPLES / "swing_arm.toml", "-o", "x.csv", "--cutter-radius", "2e6"], "--cutter-radius"),
-        (["export", EXAMPLES / "swing_arm.toml", "-o", "x.csv", "--points", "3"], "--points"),
-        (
-            ["export", EXAMPLES / "swing_arm.toml", "-o", "x.csv", "--contact", "nope"],
-            "--contact: no contact named 'nope'",
-        ),
+        (["run", EXAMPLES / "swing_arm.toml", "-o", ""], 2, "-o/--output: must name a file"),
+        (["figures", EXAMPLES / "swing_arm.toml", "-o", ""], 2, "--out: must name a folder"),
+        (["modes", "--theta", "nan"], 2, "--theta: nan is not a cam angle"),
+        (["modes", "--count", "0"], 2, "--count"),
+        (["modes", "--count", "2.5"], 2, "argument --count: invalid int value"),
+        (["kinematics", "--rpm", "-5"], 2, "--rpm"),
+        (["kinematics", "--rpm", "fast"], 2, "argument --rpm: invalid float value"),
+        (["kinematics", EXAMPLES / "swing_arm.toml", "--bogus"], 2, "unrecognized arguments: --bogus"),
+        (["export", EXAMPLES / "swing_arm.toml", "-o", "x.csv", "--unit", "furlong"], 2, "--unit: 'furlong' is not"),
+        (["export", EXAMPLES / "swing_arm.toml", "-o", "x.csv", "--cutter-radius", "2e6"], 2, "--cutter-radius"),
+        (["export", EXAMPLES / "swing_arm.toml", "-o", "x.csv", "--points", "3"], 2, "--points"),
+        (["export", EXAMPLES / "swing_arm.toml", "-o", "x.csv", "--contact", ""], 2, "--contact: must name a contact"),
+        # Found once the config is read: the run failed (1).
+        (["run", EXAMPLES / "swing_arm.toml", "-o", EXAMPLES / "swing_arm.toml"], 1, "is the input file"),
+        (["export", EXAMPLES / "swing_arm.toml", "-o", "x.csv", "--contact", "nope"], 1, "no contact named 'nope'"),
     ],
 )
-def test_bad_arguments_are_one_line_naming_the_option(tmp_path, args, message):
+def test_bad_arguments_are_one_line_naming_the_option(tmp_path, args, status, message):
+    """A usage error (an argument unreadable or out of its range) exits with 2, a config or run that
+    fails with 1, as the C++ program does; each is one line."""
     r = command(*args, cwd=tmp_path)
-    assert r.returncode == 1, (r.stdout, r.stderr)
+    assert r.returncode == status, (r.stdout, r.stderr)
     assert r.stderr.startswith("camfollower: error: ") and message in r.stderr and r.stderr.count("\n") == 1
-    assert not (tmp_path / "x.csv").exists()
+    assert not list(tmp_path.iterdir())
+
+
+def test_run_writes_the_configs_output_file_relative_to_the_working_directory(tmp_path):
+    """As docs/config.md says and the C++ program does (never next to the config in the sources)."""
+    config = tmp_path / "cfg" / "swing_arm.toml"
+    config.parent.mkdir()
+    config.write_text((EXAMPLES / "swing_arm.toml").read_text())
+    name = load_config(config).output["file"]
+    work = tmp_path / "work"
+    work.mkdir()
+    r = command("run", config, cwd=work)
+    assert r.returncode == 0, r.stderr
+    assert (work / name).is_file() and not (config.parent / name).exists()
+
+
+def test_a_closed_pipe_is_not_an_error_message():
+    """camfollower modes CONFIG | head -1: no traceback and no 'Broken pipe' line."""
+    p = subprocess.run(
+        f"'{COMMAND}' modes '{EXAMPLES / 'valve_train.toml'}' | head -1",
+        shell=True,
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    assert p.stdout.count("\n") == 1 and "natural frequencies" in p.stdout
+    assert p.stderr == ""
 
 
 def test_export_writes_the_libraries_csv_and_a_dxf_with_the_cutter_in_the_unit(tmp_path):

@@ -565,7 +565,7 @@ def test_an_output_folder_whose_name_is_not_utf8_is_refused_before_the_run(tmp_p
         [sys.executable, "-m", "camfollower", "figures", str(config), "-o", out], capture_output=True, timeout=120
     )
     err = run.stderr.decode("utf-8", "replace")
-    assert run.returncode == 1, err
+    assert run.returncode == 2, err  # refused with the arguments: a usage error
     assert err.startswith("camfollower: error: --out: ") and "not valid UTF-8" in err and "out\\xff" in err
     assert "Traceback" not in err and len(err) < 1000
     assert not os.path.exists(out) and time.perf_counter() - t0 < 30  # no run, no folder
@@ -683,7 +683,7 @@ def test_every_command_line_argument_is_checked_before_anything_runs(tmp_path, c
     from camfollower import cli
 
     monkeypatch.chdir(tmp_path)
-    assert cli.main(argv) == 1
+    assert cli.main(argv) == 2  # a usage error, as in the C++ program
     err = capsys.readouterr().err
     assert re.match("camfollower: error: " + message, err) and err.count("\n") == 1, err
     assert not (tmp_path / "out").exists()
