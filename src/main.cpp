@@ -8,6 +8,7 @@
 //                                                 cam surface (and cutter path) for manufacturing, CSV
 // Exit status: 0 done, 1 the config or the run failed, 2 the command line is wrong (usage); every error
 // is one line "camfollower: error: ..." on stderr.
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <exception>
@@ -262,6 +263,14 @@ int main(int argc, char** argv) {
         for (const CLI::Option* o : {run_output, export_output})
             if (o->count() > 0 && output.empty())
                 throw CLI::ValidationError("-o/--output", "must name a file, got an empty string");
+        // The compiled program writes CSV only; the Python command writes DXF (ezdxf).
+        if (*exp && output.size() >= 4) {
+            std::string ext = output.substr(output.size() - 4);
+            for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+            if (ext == ".dxf")
+                throw CLI::ValidationError("-o/--output", "this program writes the cam as CSV; for DXF use the Python "
+                                                          "command (pip install camfollower[dxf]): camfollower export");
+        }
         if (*exp && cutter_radius > 0.0) {
             const double metres = cf::length_unit_spec(cf::length_unit_from_name(unit)).metres;
             const double most = cf::detail::max_part_length / metres;

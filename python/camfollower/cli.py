@@ -313,11 +313,31 @@ def _origin(case) -> str:
 
 def _peak(program, key: str):
     """(|value|, theta) of the largest |d/dtheta| derivative `key` of the lift over a revolution: a
-    0.01 deg grid with the segment boundaries, refined by a parabola through the best sample."""
+    0.01 deg grid with the segment boundaries, then golden-section search between the best sample's
+    neighbours (as the C++ program's maximize_piecewise)."""
     theta = np.union1d(np.linspace(0.0, 2 * math.pi, 36001), [s.theta_start for s in program.segments])
     values = np.abs(np.asarray(program.evaluate(theta)[key]))
     k = int(np.argmax(values))
-    return float(values[k]), float(theta[k])
+    best = (float(values[k]), float(theta[k]))
+
+    def f(t):
+        return float(np.abs(np.asarray(program.evaluate(np.array([t]))[key]))[0])
+
+    a, b = float(theta[max(k - 1, 0)]), float(theta[min(k + 1, len(theta) - 1)])
+    ratio = (math.sqrt(5.0) - 1.0) / 2.0
+    c, d = b - ratio * (b - a), a + ratio * (b - a)
+    fc, fd = f(c), f(d)
+    for _ in range(40):
+        if fc >= fd:
+            b, d, fd = d, c, fc
+            c = b - ratio * (b - a)
+            fc = f(c)
+        else:
+            a, c, fc = c, d, fd
+            d = a + ratio * (b - a)
+            fd = f(d)
+    found = max((fc, c), (fd, d))
+    return max(best, found)
 
 
 def kinematics(config, rpm=None) -> list:
@@ -413,7 +433,7 @@ def run(config: str, output=None) -> dict:
     if not target:
         raise ValueError(f"{config}: no output file: set [output] file or give -o FILE")
     path = Path(target)  # relative to the working directory (docs/config.md), as in the C++ program
-    _files.check_name(str(path), "-o/--output")
+    _files.check_name(str(path), "-o/--output" if output else "[output] file")
     _files.check_target(path, protect=[config])
     result = case.run()
     _write(config, path, _recording_csv(result))

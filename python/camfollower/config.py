@@ -22,6 +22,8 @@ messages are also in ``case.warnings``): see :func:`force_closure` and docs/conf
 
 from __future__ import annotations
 
+import math
+import numbers
 import os
 import stat
 import warnings as _warnings
@@ -56,9 +58,10 @@ def force_closure(mechanism, rpm: Optional[float] = None) -> Dict[str, Any]:
         mechanism = mechanism.builder
     builder = mechanism.builder() if hasattr(mechanism, "with_camshaft_speed_rpm") else mechanism
     if rpm is not None:
+        lo, hi = _core.MIN_CAMSHAFT_SPEED * 30.0 / math.pi, _core.MAX_CAMSHAFT_SPEED * 30.0 / math.pi
+        if isinstance(rpm, bool) or not isinstance(rpm, numbers.Real) or not lo <= float(rpm) <= hi:
+            raise ValueError(f"rpm must be a camshaft speed in [{lo:.6g}, {hi:.6g}] rpm, got {rpm!r}")
         rpm = float(rpm)
-        if not (rpm == rpm and rpm > 0.0):
-            raise ValueError(f"rpm must be a camshaft speed > 0 rpm, got {rpm}")
     return _core._force_closure(builder, 0.0 if rpm is None else rpm)
 
 

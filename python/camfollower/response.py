@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import math
 import numbers
+import warnings
 from typing import Any, Dict, Optional, Sequence
 
 import numpy as np
@@ -90,7 +91,11 @@ def _quasi_static(system, dof: str, theta: np.ndarray) -> np.ndarray:
         return np.zeros_like(theta)
     i = names.index(dof)
     grid = np.linspace(0.0, 2 * math.pi, _QUASI_STATIC_ANGLES + 1)
-    path = np.array([system.static_equilibrium(float(t))[i] for t in grid[:-1]])
+    try:
+        path = np.array([system.static_equilibrium(float(t))[i] for t in grid[:-1]])
+    except (RuntimeError, ValueError) as e:  # no static equilibrium somewhere (a follower not held on)
+        warnings.warn(f"dwell residual of {dof!r} measured as the raw peak-to-peak: {e}", RuntimeWarning, stacklevel=3)
+        return np.zeros_like(theta)
     return np.interp(theta, grid, np.append(path, path[0]))
 
 

@@ -679,7 +679,7 @@ def print_summary(summary: dict) -> None:
 def main(argv: list[str] | None = None, prog: str = "camfollower study") -> int:
     parser = argparse.ArgumentParser(prog=prog, description=__doc__.splitlines()[0].replace("``", ""))
     d = StudyConfig()
-    parser.add_argument("--out", default="out", help="output folder (created if missing); default: out")
+    parser.add_argument("-o", "--out", default="out", help="output folder (created if missing); default: out")
     parser.add_argument("--rpm", type=float, default=d.rpm, help=f"camshaft speed (rpm); default {d.rpm:g}")
     parser.add_argument(
         "--eccentricity", type=float, default=d.eccentricity, help="cam centre offset (m); default 10e-6"

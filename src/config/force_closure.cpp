@@ -56,8 +56,9 @@ std::vector<std::pair<double, double>> runs(const std::vector<bool>& bad, double
     return out;
 }
 
-std::string intervals(const std::vector<std::pair<double, double>>& r) {
-    if (r.size() == 1 && std::abs(r[0].second - r[0].first - two_pi) < 0.1) return "the whole revolution";
+std::string intervals(const std::vector<std::pair<double, double>>& r, double step) {
+    // Every grid point: runs() gives the one interval of length 2 pi - step.
+    if (r.size() == 1 && std::abs(r[0].second - r[0].first - (two_pi - step)) < 0.5 * step) return "the whole revolution";
     std::string out;
     const std::size_t shown = std::min<std::size_t>(r.size(), 3);
     for (std::size_t i = 0; i < shown; ++i)
@@ -169,7 +170,7 @@ ForceClosure check(const Model& m, double rpm) {
             r.static_open = runs(open, step, phase);
             out.warnings.push_back(detail::concat(
                 who, " is not force-closed: at rest its contact force is <= 0 (", newtons(r.static_min_force), " at cam angle ",
-                degrees(r.static_min_angle), " deg; over ", intervals(r.static_open),
+                degrees(r.static_min_angle), " deg; over ", intervals(r.static_open, step),
                 "): nothing presses the follower onto the cam there; add a return spring with a preload, or a load, "
                 "that holds it on the cam"));
         } else if (std::find(lost.begin(), lost.end(), true) != lost.end()) {
@@ -178,7 +179,7 @@ ForceClosure check(const Model& m, double rpm) {
                 who, " is not force-closed at ", speed(rpm), ": in the rigid check (the mechanism following the cam "
                 "quasi-statically: springs, preloads and loads against its inertia and damping) the contact force falls to ",
                 newtons(r.rigid_min_force), " at cam angle ", degrees(r.rigid_min_angle), " deg, below zero over ",
-                intervals(r.rigid_loss), "; the check keeps contact up to ", speed(r.rigid_limit_rpm),
+                intervals(r.rigid_loss, step), "; the check keeps contact up to ", speed(r.rigid_limit_rpm),
                 " (raise the return spring's preload or rate, or lower the speed)"));
         }
         out.contacts.push_back(std::move(r));

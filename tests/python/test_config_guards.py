@@ -471,6 +471,10 @@ def test_the_rigid_check_at_another_speed_scales_like_the_closed_form():
         there["contacts"][0]["rigid_min_force_N"], rel=1e-9
     )
     assert len(here["warnings"]) == 1
+    # ... and that answer is the closed form's smallest force at that speed (to the check's grid).
+    omega = 1.05 * rpm_c * math.pi / 30
+    expected = np.min(closed_form(omega)[1])
+    assert here["contacts"][0]["rigid_min_force_N"] == pytest.approx(expected, rel=1e-3, abs=1e-3 * P)
 
 
 @pytest.mark.parametrize("rpm", [1.0, 60.0, 600.0, 6000.0])

@@ -14,7 +14,7 @@ BASE, ROLLER, OFFSET = 0.04, 0.01, 0.005  # m
 ECCENTRICITY, PHASE = 1e-4, math.radians(30.0)
 
 
-def case(rpm, eccentricity=ECCENTRICITY):
+def case(rpm, eccentricity=ECCENTRICITY, phase=0.0):
     contact = {
         "name": "cam",
         "program": "feed",
@@ -24,6 +24,8 @@ def case(rpm, eccentricity=ECCENTRICITY):
     }
     if eccentricity:
         contact["eccentricity"] = {"radius": eccentricity, "phase": PHASE}
+    if phase:
+        contact["phase"] = phase
     return config_from_dict(
         {
             "camshaft": {"speed": rpm},
@@ -107,3 +109,30 @@ def test_the_residual_of_a_ringing_slide_is_its_motion_less_the_displaced_circle
     assert measured["dwell_residual"] == pytest.approx(expected[worst], rel=1e-3)
     assert expected[worst] > 1e-6  # it does ring
     assert abs(raw[worst] - expected[worst]) > 0.1 * expected[worst]  # the raw measure would be wrong here
+
+
+def test_dwells_are_found_in_the_contacts_own_cam_angle():
+    """A contact at phase 90 deg reaches its dwells 90 deg of shaft rotation earlier: the residual is the
+    peak-to-peak over the dwell in the cam's angle (shaft angle + phase), on a concentric cam whose
+    quasi-static path is flat there, and not over the shaft-angle window."""
+    phase = math.radians(90.0)
+    m = case(300.0, eccentricity=0.0, phase=phase)
+    row = steady_response(m, accuracy=1e-4, keep_orbit=True, channels=["q.slide"])
+    r = row["orbit"].record(m)
+    shaft = np.mod(np.asarray(r["theta"])[1:], 2 * math.pi)
+    cam = np.mod(shaft + phase, 2 * math.pi)
+    q = np.asarray(r["q.slide"])[1:]
+    by_cam = {
+        start: np.ptp(q[(cam >= math.radians(start)) & (cam < math.radians(end))])
+        for start, end in ((120.0, 180.0), (300.0, 360.0))
+    }
+    by_shaft = {
+        start: np.ptp(q[(shaft >= math.radians(start)) & (shaft < math.radians(end))])
+        for start, end in ((120.0, 180.0), (300.0, 360.0))
+    }
+    measured = row["channels"]["q.slide"]
+    worst = max(by_cam, key=by_cam.get)
+    print(measured, by_cam, by_shaft)
+    assert measured["dwell_residual_at_deg"] == pytest.approx(worst)
+    assert measured["dwell_residual"] == pytest.approx(by_cam[worst], rel=1e-3)
+    assert abs(by_shaft[worst] - by_cam[worst]) > 0.1 * by_cam[worst]  # the shaft window would be wrong

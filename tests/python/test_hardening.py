@@ -750,6 +750,7 @@ def _cpp_cli(*args, cwd=None):
         ),
         (["run", "{flat}", "-o", ""], r"-o/--output: must name a file, got an empty string"),
         (["export", "{flat}", "-o", ""], r"-o/--output: must name a file, got an empty string"),
+        (["export", "{flat}", "-o", "{tmp}/cam.DXF"], r"-o/--output: this program writes the cam as CSV; for DXF"),
         (["run"], r"config is required"),
         (["run", "{flat}", "--bogus"], r"The following argument"),
         (["kinematics", "--rpm", "fast"], r"(Could not convert|--rpm).*fast"),
