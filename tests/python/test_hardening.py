@@ -331,7 +331,7 @@ def test_speed_helpers_name_bad_arguments():
     m = cf.presets.paper()
     with pytest.raises(ValueError, match="speeds must be a sequence of camshaft speeds"):
         sp.margin_curve(m, 5)
-    with pytest.raises(ValueError, match="bracket must be a sequence"):
+    with pytest.raises(ValueError, match="speed_range must be a sequence"):
         sp.jump_speed(m, 5)
     with pytest.raises(ValueError, match="speeds must hold numbers"):
         sp.margin_curve(m, ["fast"])

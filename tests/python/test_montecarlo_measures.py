@@ -408,7 +408,7 @@ def test_montecarlo_runs_at_the_speed_given_on_the_command_line(tmp_path, capsys
     capsys.readouterr()
     # bad speeds: one line naming --rpm (or the table's key, at its line) and the range
     for bad in ("nan", "0", "-5", "1e9", "inf"):
-        assert cli.main(["montecarlo", str(cfg), "--rpm", bad, "-o", str(tmp_path / "x")]) == 1
+        assert cli.main(["montecarlo", str(cfg), "--rpm", bad, "-o", str(tmp_path / "x")]) == 2  # usage error
         err = capsys.readouterr().err
         assert err.startswith("camfollower: error: --rpm:") and "rpm" in err.split("--rpm")[1]
     bad_table = tmp_path / "bad.toml"

@@ -496,7 +496,7 @@ def test_command_line_refuses_a_bad_scheduler_before_reading_the_config(tmp_path
 
     missing = str(tmp_path / "missing.toml")  # never read: the option is refused first
     for spec in ("dask:abc", "tcp://host", "dask:0"):
-        assert cli.main(["montecarlo", missing, "--scheduler", spec, "-o", str(tmp_path / "out")]) == 1
+        assert cli.main(["montecarlo", missing, "--scheduler", spec, "-o", str(tmp_path / "out")]) == 2  # usage
         err = capsys.readouterr().err
         assert err.startswith("camfollower: error: --scheduler") and "'dask:N'" in err, err
         assert "missing.toml" not in err and "Traceback" not in err
