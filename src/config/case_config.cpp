@@ -13,6 +13,7 @@
 
 #include "camfollower/camfollower.hpp"
 #include "case_from_table.hpp"
+#include "dof_motion.hpp"
 #include "lengths.hpp"
 #include "section.hpp"
 #include "units.hpp"
@@ -445,9 +446,11 @@ void check_lift_dimension(const Section& s, const Follower& f, LiftDimension d, 
 }
 
 void read_parts(const Section& root, const CaseConfig& c, const Dimensions& dims, const Lengths& lengths, MechanismBuilder& b) {
+    DofMotions motions;  // what the units of each [[dof]]'s mass say it does: turn or translate
     for (const Section& s : root.tables("dof")) {
         const std::string name = s.text("name");
         const double mass = s.quantity("mass", "kg");
+        motions.note(name, s);
         Eigen::Vector3d direction = Eigen::Vector3d::Zero();
         if (s.has("direction")) {
             const std::vector<double> v = s.quantities("direction", "-");
@@ -504,12 +507,16 @@ void read_parts(const Section& root, const CaseConfig& c, const Dimensions& dims
     }
     for (const Section& s : root.tables("spring")) {
         const std::string name = s.text("name"), a = dof_name(s, "a", b, false, ""), bb = dof_name(s, "b", b, true, ground_name);
-        const double k = s.quantity("stiffness", "N/m"), d = s.quantity("damping", "N s/m", 0.0), p = s.quantity("preload", "N", 0.0);
+        motions.check(s, "stiffness", Measure::stiffness, {a, bb}, "b");
+        motions.check(s, "damping", Measure::damping, {a, bb}, "b");
+        motions.check(s, "preload", Measure::force, {a, bb}, "b");
+        const double k = s.quantity("stiffness", "N/m"), d = s.quantity("damping", "N s/m", 0.0), p = force_or_moment(s, "preload", 0.0);
         s.finish({"name", "a", "b", "stiffness", "damping", "preload"});
         located(s, [&] { b.add_spring(name, a, bb, k, d, p); });
     }
     for (const Section& s : root.tables("damper")) {
         const std::string name = s.text("name"), a = dof_name(s, "a", b, false, ""), bb = dof_name(s, "b", b, true, ground_name);
+        motions.check(s, "damping", Measure::damping, {a, bb}, "b");
         const double d = s.quantity("damping", "N s/m");
         s.finish({"name", "a", "b", "damping"});
         located(s, [&] { b.add_damper(name, a, bb, d); });
@@ -530,7 +537,8 @@ void read_parts(const Section& root, const CaseConfig& c, const Dimensions& dims
     }
     for (const Section& s : root.tables("load")) {
         const std::string dof = dof_name(s, "dof", b, false, "");
-        const double f = s.quantity("force", "N");
+        motions.check(s, "force", Measure::force, {dof}, "dof");
+        const double f = force_or_moment(s, "force");
         s.finish({"dof", "force"});
         located(s, [&] { b.add_load(dof, f); });
     }
@@ -553,6 +561,13 @@ void read_parts(const Section& root, const CaseConfig& c, const Dimensions& dims
         p.cam_y = dof_name(s, "cam_y", b, true, ground_name);
         p.lateral = dof_name(s, "lateral", b, true, ground_name);
         p.cam_twist = dof_name(s, "cam_twist", b, true, ground_name);
+        const bool translating = is_translating(p.follower);
+        motions.require(s, "follower_dof", p.follower_dof, translating ? DofMotion::translation : DofMotion::rotation,
+                        translating ? "a translating follower's lift (m)" : "an oscillating follower's arm angle (rad)");
+        motions.require(s, "cam_x", p.cam_x, DofMotion::translation, "the cam centre's x displacement (m)");
+        motions.require(s, "cam_y", p.cam_y, DofMotion::translation, "the cam centre's y displacement (m)");
+        motions.require(s, "lateral", p.lateral, DofMotion::translation, "the follower's lateral displacement (m)");
+        motions.require(s, "cam_twist", p.cam_twist, DofMotion::rotation, "the cam's twist angle (rad)");
         if (const std::optional<Section> e = s.table("eccentricity")) {
             p.eccentricity = read_eccentricity(*e);
             check_small_length(written(*e, "radius", p.eccentricity.radius), "the eccentricity radius", base_radius, owner);

@@ -552,3 +552,61 @@ def test_the_figures_summary_of_a_force_closed_case_has_an_empty_list(tmp_path, 
     assert cli.main(["figures", str(path), "-o", str(tmp_path / "out")]) == 0
     assert "warning" not in capsys.readouterr().err
     assert json.loads((tmp_path / "out" / "summary.json").read_text())["warnings"] == []
+
+
+# ---- rotations and translations -----------------------------------------------------------------
+
+SWING = (EXAMPLES / "swing_arm.toml").read_text()
+
+
+@pytest.mark.parametrize(
+    "old, new, key, words",
+    [
+        # The arm of an oscillating follower turns: its "mass" is an inertia.
+        ('mass = "2e-4 kg m^2"', 'mass = "0.2 kg"', "contact[0].follower_dof", "an oscillating follower's arm angle"),
+        # A torsional spring's rate, damping and preload in a translation's units.
+        ('stiffness = "20 N m/rad"', 'stiffness = "20 N/mm"', "spring[0].stiffness", "write it in N m/rad"),
+        ("preload = 3.0", 'preload = "3 N"', "spring[0].preload", "write it in N m or N mm (a moment)"),
+        ("preload = 3.0", 'preload = 3.0\ndamping = "2 N s/m"', "spring[0].damping", "write it in N m s/rad"),
+    ],
+)
+def test_a_unit_of_the_other_motion_is_refused_at_its_key(tmp_path, old, new, key, words):
+    path = tmp_path / "arm.toml"
+    path.write_text(SWING.replace(old, new))
+    with pytest.raises(ValueError) as e:
+        load_config(path)
+    line = line_of(path.read_text(), new.splitlines()[-1] if "damping" in new else new)
+    assert f"{path}:{line}: {key}: " in str(e.value) and words in str(e.value), str(e.value)
+
+
+def test_a_torsional_preload_in_newton_metres_is_taken_as_a_moment(tmp_path):
+    """The preload of a spring on a turning DOF may be written as a moment (it could not be before)."""
+    path = tmp_path / "arm.toml"
+    path.write_text(SWING.replace("preload = 3.0", 'preload = "3000 N mm"'))
+    spring = load_config(path).builder.__getstate__()["springs"][0]
+    assert spring["preload"] == pytest.approx(3.0)
+
+
+def test_a_translating_follower_on_an_inertia_and_a_spring_joining_both_motions_are_refused(tmp_path):
+    text = ROLLER.format(**NOMINAL).replace('mass = "250 g"', 'mass = "250 kg mm^2"')
+    path = tmp_path / "c.toml"
+    path.write_text(text)
+    with pytest.raises(ValueError, match=r"contact\[0\]\.follower_dof: DOF 'carrier' is a translating follower's lift"):
+        load_config(path)
+    text = (
+        ROLLER.format(**NOMINAL)
+        + '\n[[dof]]\nname = "arm"\nmass = "1 kg m^2"\n\n[[spring]]\nname = "link"\na = "arm"\nb = "carrier"\nstiffness = 1e5\n'
+    )
+    path.write_text(text)
+    with pytest.raises(
+        ValueError, match=r"spring\[1\]\.b: joins DOF 'arm', which turns .* and DOF 'carrier', which translates"
+    ):
+        load_config(path)
+
+
+def test_bare_numbers_state_no_motion_and_load_as_before(tmp_path):
+    path = tmp_path / "arm.toml"
+    path.write_text(
+        SWING.replace('mass = "2e-4 kg m^2"', "mass = 2e-4").replace('stiffness = "20 N m/rad"', "stiffness = 20")
+    )
+    assert load_config(path).builder.__getstate__()["springs"][0]["stiffness"] == pytest.approx(20.0)
