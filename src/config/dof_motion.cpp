@@ -67,7 +67,8 @@ void DofMotions::check(const Section& s, std::string_view key, Measure measure, 
     if (written == DofMotion::unstated || written == motion) return;
     s.fail(key, detail::concat("unit '", s.unit(key), "' is for a DOF that ", name(written), ", but DOF '",
                                detail::printable(first), "' ", name(motion), " (the unit of its mass): write it in ",
-                               fitting(measure, motion)));
+                               fitting(measure, motion), " (or, if '", detail::printable(first), "' ", name(written),
+                               ", its mass in ", written == DofMotion::rotation ? "kg m^2" : "kg", ")"));
 }
 
 void DofMotions::require(const Section& s, std::string_view key, const std::string& dof, DofMotion wanted,

@@ -556,14 +556,15 @@ def test_the_figures_summary_of_a_force_closed_case_has_an_empty_list(tmp_path, 
 
 # ---- rotations and translations -----------------------------------------------------------------
 
-SWING = (EXAMPLES / "swing_arm.toml").read_text()
+SWING_ARM = (EXAMPLES / "swing_arm.toml").read_text()
 
 
 @pytest.mark.parametrize(
     "old, new, key, words",
     [
-        # The arm of an oscillating follower turns: its "mass" is an inertia.
-        ('mass = "2e-4 kg m^2"', 'mass = "0.2 kg"', "contact[0].follower_dof", "an oscillating follower's arm angle"),
+        # The arm of an oscillating follower turns: its "mass" is an inertia. Its torsional spring says
+        # so first (without units there, the contact does: below).
+        ('mass = "2e-4 kg m^2"', 'mass = "0.2 kg"', "spring[0].stiffness", "(or, if 'arm' turns, its mass in kg m^2)"),
         # A torsional spring's rate, damping and preload in a translation's units.
         ('stiffness = "20 N m/rad"', 'stiffness = "20 N/mm"', "spring[0].stiffness", "write it in N m/rad"),
         ("preload = 3.0", 'preload = "3 N"', "spring[0].preload", "write it in N m or N mm (a moment)"),
@@ -572,7 +573,7 @@ SWING = (EXAMPLES / "swing_arm.toml").read_text()
 )
 def test_a_unit_of_the_other_motion_is_refused_at_its_key(tmp_path, old, new, key, words):
     path = tmp_path / "arm.toml"
-    path.write_text(SWING.replace(old, new))
+    path.write_text(SWING_ARM.replace(old, new))
     with pytest.raises(ValueError) as e:
         load_config(path)
     line = line_of(path.read_text(), new.splitlines()[-1] if "damping" in new else new)
@@ -582,13 +583,30 @@ def test_a_unit_of_the_other_motion_is_refused_at_its_key(tmp_path, old, new, ke
 def test_a_torsional_preload_in_newton_metres_is_taken_as_a_moment(tmp_path):
     """The preload of a spring on a turning DOF may be written as a moment (it could not be before)."""
     path = tmp_path / "arm.toml"
-    path.write_text(SWING.replace("preload = 3.0", 'preload = "3000 N mm"'))
+    path.write_text(SWING_ARM.replace("preload = 3.0", 'preload = "3000 N mm"'))
     spring = load_config(path).builder.__getstate__()["springs"][0]
     assert spring["preload"] == pytest.approx(3.0)
 
 
+def test_a_follower_dof_of_the_other_motion_is_refused_at_the_contact(tmp_path):
+    path = tmp_path / "arm.toml"
+    path.write_text(SWING_ARM.replace('mass = "2e-4 kg m^2"', 'mass = "0.2 kg"').replace('"20 N m/rad"', "20"))
+    with pytest.raises(ValueError) as e:
+        load_config(path)
+    line = line_of(path.read_text(), 'follower_dof = "arm"')
+    assert str(e.value).startswith(
+        f"{path}:{line}: contact[0].follower_dof: DOF 'arm' is an oscillating follower's arm angle (rad), so it "
+        "turns, but its mass is written in units of a DOF that translates: write its moment of inertia in kg m^2"
+    )
+
+
 def test_a_translating_follower_on_an_inertia_and_a_spring_joining_both_motions_are_refused(tmp_path):
-    text = ROLLER.format(**NOMINAL).replace('mass = "250 g"', 'mass = "250 kg mm^2"')
+    text = (
+        ROLLER.format(**NOMINAL)
+        .replace('mass = "250 g"', 'mass = "250 kg mm^2"')
+        .replace('stiffness = "20 N/mm"', "stiffness = 20000")
+        .replace('preload = "300 N"', "preload = 300")
+    )
     path = tmp_path / "c.toml"
     path.write_text(text)
     with pytest.raises(ValueError, match=r"contact\[0\]\.follower_dof: DOF 'carrier' is a translating follower's lift"):
@@ -607,6 +625,6 @@ def test_a_translating_follower_on_an_inertia_and_a_spring_joining_both_motions_
 def test_bare_numbers_state_no_motion_and_load_as_before(tmp_path):
     path = tmp_path / "arm.toml"
     path.write_text(
-        SWING.replace('mass = "2e-4 kg m^2"', "mass = 2e-4").replace('stiffness = "20 N m/rad"', "stiffness = 20")
+        SWING_ARM.replace('mass = "2e-4 kg m^2"', "mass = 2e-4").replace('stiffness = "20 N m/rad"', "stiffness = 20")
     )
     assert load_config(path).builder.__getstate__()["springs"][0]["stiffness"] == pytest.approx(20.0)
