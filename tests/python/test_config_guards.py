@@ -560,24 +560,30 @@ SWING_ARM = (EXAMPLES / "swing_arm.toml").read_text()
 
 
 @pytest.mark.parametrize(
-    "old, new, key, words",
+    "old, new, key, at, words",
     [
         # The arm of an oscillating follower turns: its "mass" is an inertia. Its torsional spring says
         # so first (without units there, the contact does: below).
-        ('mass = "2e-4 kg m^2"', 'mass = "0.2 kg"', "spring[0].stiffness", "(or, if 'arm' turns, its mass in kg m^2)"),
+        (
+            'mass = "2e-4 kg m^2"',
+            'mass = "0.2 kg"',
+            "spring[0].stiffness",
+            'stiffness = "20 N m/rad"',
+            "(or, if 'arm' turns, its mass in kg m^2)",
+        ),
         # A torsional spring's rate, damping and preload in a translation's units.
-        ('stiffness = "20 N m/rad"', 'stiffness = "20 N/mm"', "spring[0].stiffness", "write it in N m/rad"),
-        ("preload = 3.0", 'preload = "3 N"', "spring[0].preload", "write it in N m or N mm (a moment)"),
-        ("preload = 3.0", 'preload = 3.0\ndamping = "2 N s/m"', "spring[0].damping", "write it in N m s/rad"),
+        ('stiffness = "20 N m/rad"', 'stiffness = "20 N/mm"', "spring[0].stiffness", "20 N/mm", "write it in N m/rad"),
+        ("preload = 3.0", 'preload = "3 N"', "spring[0].preload", '"3 N"', "write it in N m or N mm (a moment)"),
+        ("preload = 3.0", 'preload = 3.0\ndamping = "2 N s/m"', "spring[0].damping", "2 N s/m", "in N m s/rad"),
     ],
 )
-def test_a_unit_of_the_other_motion_is_refused_at_its_key(tmp_path, old, new, key, words):
+def test_a_unit_of_the_other_motion_is_refused_at_its_key(tmp_path, old, new, key, at, words):
     path = tmp_path / "arm.toml"
     path.write_text(SWING_ARM.replace(old, new))
     with pytest.raises(ValueError) as e:
         load_config(path)
-    line = line_of(path.read_text(), new.splitlines()[-1] if "damping" in new else new)
-    assert f"{path}:{line}: {key}: " in str(e.value) and words in str(e.value), str(e.value)
+    line = line_of(path.read_text(), at)
+    assert str(e.value).startswith(f"{path}:{line}: {key}: ") and words in str(e.value), str(e.value)
 
 
 def test_a_torsional_preload_in_newton_metres_is_taken_as_a_moment(tmp_path):
