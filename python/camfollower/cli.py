@@ -314,7 +314,9 @@ def _origin(case) -> str:
 def _peak(program, key: str):
     """(|value|, theta) of the largest |d/dtheta| derivative `key` of the lift over a revolution: a
     0.01 deg grid with the segment boundaries, then golden-section search between the best sample's
-    neighbours (as the C++ program's maximize_piecewise)."""
+    neighbours (sizing's, as the C++ program's maximize_piecewise)."""
+    from .sizing import _golden
+
     theta = np.union1d(np.linspace(0.0, 2 * math.pi, 36001), [s.theta_start for s in program.segments])
     values = np.abs(np.asarray(program.evaluate(theta)[key]))
     k = int(np.argmax(values))
@@ -323,21 +325,9 @@ def _peak(program, key: str):
     def f(t):
         return float(np.abs(np.asarray(program.evaluate(np.array([t]))[key]))[0])
 
-    a, b = float(theta[max(k - 1, 0)]), float(theta[min(k + 1, len(theta) - 1)])
-    ratio = (math.sqrt(5.0) - 1.0) / 2.0
-    c, d = b - ratio * (b - a), a + ratio * (b - a)
-    fc, fd = f(c), f(d)
-    for _ in range(40):
-        if fc >= fd:
-            b, d, fd = d, c, fc
-            c = b - ratio * (b - a)
-            fc = f(c)
-        else:
-            a, c, fc = c, d, fd
-            d = a + ratio * (b - a)
-            fd = f(d)
-    found = max((fc, c), (fd, d))
-    return max(best, found)
+    lo, hi = float(theta[max(k - 1, 0)]), float(theta[min(k + 1, len(theta) - 1)])
+    t = _golden(lambda x: -f(x), lo, hi, 1e-9 * (hi - lo))
+    return max(best, (f(t), t))
 
 
 def kinematics(config, rpm=None) -> list:
