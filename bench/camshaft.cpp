@@ -40,7 +40,7 @@ constexpr double time_step = 1e-5;  // s
 
 template <class Stepper>
 void steps_of(benchmark::State& state, const cf::Mechanism<>& model, std::int64_t steps) {
-    cf::NewmarkSettings settings;
+    cf::SolverSettings settings;
     settings.time_step = time_step;
     Stepper stepper(model, settings);
     cf::SolverStatistics stats;
@@ -76,7 +76,7 @@ void BM_ValveTrainRevolution(benchmark::State& state) {
     p.firing_order.clear();
     p.engine_speed_rpm = 6000.0;
     const cf::Mechanism<> model(cf::presets::valve_train(p));
-    cf::NewmarkSettings settings;
+    cf::SolverSettings settings;
     settings.time_step = double(state.range(0)) * 1e-9;  // ns
     cf::RunOptions options;
     options.duration = model.period();

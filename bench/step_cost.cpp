@@ -24,12 +24,12 @@ int main(int argc, char** argv) {
     const auto model = cf::presets::paper();
     using M = std::decay_t<decltype(model)>;
     const long steps = std::atol(argv[3]);
-    cf::NewmarkSettings settings;
-    cf::set_method(settings, argv[2]);
-    if (settings.beta != 0.25) settings.time_step = model.period() / 8192.0;
+    cf::SolverSettings settings;
+    settings.method = cf::method_from_name(argv[2]);
+    if (settings.method == cf::Method::fox_goodwin) settings.time_step = model.period() / 8192.0;
     double q_end = 0.0;
     if (!std::strcmp(argv[1], "tight")) {
-        bench::TightNewmark<M> stepper(model, settings.time_step, settings.beta);
+        bench::TightNewmark<M> stepper(model, settings.time_step, cf::newmark_parameters(settings).beta);
         stepper.start(0.0, model.initial_displacement(), M::Vector::Zero());
         for (long n = 0; n < steps; ++n)
             if (!stepper.step()) return 1;

@@ -28,7 +28,7 @@ cf::Defects defect_case(int which) {
 // Bare stepping: step() over one revolution, no output recorded.
 void BM_Steps(benchmark::State& state) {
     const Model model({}, cf::MotionProgram::paper_default(), defect_case(int(state.range(0))));
-    cf::NewmarkSettings settings;
+    cf::SolverSettings settings;
     settings.linear_solver = state.range(1) ? cf::LinearSolver::dense_lu : cf::LinearSolver::sherman_morrison;
     cf::Newmark<Model> stepper(model, settings);
     const auto steps = static_cast<std::int64_t>(model.period() / settings.time_step);
@@ -51,7 +51,7 @@ BENCHMARK(BM_Steps)->ArgsProduct({{0, 1, 2}, {0, 1}})->Unit(benchmark::kMillisec
 // ships) and the same description at dynamic size (what any other user mechanism gets).
 template <class M>
 void steps_of(benchmark::State& state, const M& model) {
-    cf::Newmark<M> stepper(model, cf::NewmarkSettings{});
+    cf::Newmark<M> stepper(model, cf::SolverSettings{});
     const auto steps = static_cast<std::int64_t>(model.period() / 3e-6);
     cf::SolverStatistics stats;
     for (auto _ : state) {
@@ -100,7 +100,7 @@ void BM_RunRecorded(benchmark::State& state) {
     options.record.decimation = std::size_t(state.range(0));
     std::uint64_t steps = 0;
     for (auto _ : state) {
-        const auto r = cf::simulate(model, cf::NewmarkSettings{}, options);
+        const auto r = cf::simulate(model, cf::SolverSettings{}, options);
         steps = r.report.stats.steps;
         benchmark::DoNotOptimize(r.recording.data.data());
     }

@@ -59,7 +59,7 @@ struct Histories {
 
 double cpu_seconds() { return double(std::clock()) / CLOCKS_PER_SEC; }
 
-Histories run_camfollower(const Model& m, const cf::NewmarkSettings& s) {
+Histories run_camfollower(const Model& m, const cf::SolverSettings& s) {
     cf::RunOptions o;
     o.duration = m.period();
     const double dt = m.period() / grid;
@@ -388,9 +388,9 @@ int main(int argc, char** argv) {
             if (steps > (1L << 18)) continue;
             const std::string per = steps == (1L << k) ? "T/2^" + std::to_string(k) : "T/" + std::to_string(steps);
             for (const char* method : {"newmark", "fox_goodwin"}) {
-                cf::NewmarkSettings s;
+                cf::SolverSettings s;
                 s.time_step = T / double(steps);
-                cf::set_method(s, method);
+                s.method = cf::method_from_name(method);
                 try {
                     cf::Newmark<Model> probe(m, s);
                     (void)probe.start(0.0, m.initial_displacement(), Model::Vector::Zero());
@@ -400,15 +400,15 @@ int main(int argc, char** argv) {
                 settings.push_back({std::string(method) + " " + per, [&m, s] { return run_camfollower(m, s); }, {}, {}});
                 // (not on the stiff variant: without camfollower's rounding floor of the residual its
                 // Newton iteration stalls there at the tolerance)
-                if (s.beta == 1.0 / 12.0 && !stiff)
+                if (s.method == cf::Method::fox_goodwin && !stiff)
                     settings.push_back({"hand tight_newmark fox_goodwin " + per, [&m, steps] { return run_tight(m, steps, 1.0 / 12.0); }, {}, {}});
             }
         }
     }
     for (const char* method : {"dormand_prince", "dop853", "radau"})
         for (double tol : {1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12}) {
-            cf::NewmarkSettings s;
-            cf::set_method(s, method);
+            cf::SolverSettings s;
+            s.method = cf::method_from_name(method);
             s.tolerance = tol;
             s.time_step = T / grid;
             char label[64];
@@ -418,10 +418,10 @@ int main(int argc, char** argv) {
     // Newmark under a tolerance: steps of T / 2048 / 2^level, the level by the error estimate.
     for (const char* method : {"newmark", "fox_goodwin"})
         for (double tol : {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8}) {
-            cf::NewmarkSettings s;
-            cf::set_method(s, method);
+            cf::SolverSettings s;
+            s.method = cf::method_from_name(method);
             s.time_step = T / grid;
-            cf::set_tolerance(s, tol);
+            s.tolerance = tol;
             s.max_halvings = 12;
             char label[64];
             std::snprintf(label, sizeof label, "%s tol %.0e", method, tol);
@@ -429,13 +429,13 @@ int main(int argc, char** argv) {
         }
     // Method "auto" under a tolerance, labelled with the method it takes on this model.
     for (double tol : {1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11}) {
-        cf::NewmarkSettings s;
-        cf::set_method(s, "auto");
+        cf::SolverSettings s;
+        s.method = cf::method_from_name("auto");
         s.time_step = T / grid;
-        cf::set_auto_tolerance(s, tol);
-        const cf::NewmarkSettings chosen = cf::concrete_settings(m, s, std::nullopt, std::nullopt).settings;
+        s.tolerance = tol;
+        const cf::SolverSettings chosen = cf::concrete_settings(m, s, std::nullopt, std::nullopt).settings;
         char label[64];
-        std::snprintf(label, sizeof label, "auto tol %.0e (%s)", tol, cf::method_name(chosen));
+        std::snprintf(label, sizeof label, "auto tol %.0e (%s)", tol, cf::method_name(chosen.method));
         settings.push_back({label, [&m, s] { return run_camfollower(m, s); }, {}, {}});
     }
     // The peers: (library, method, its runner) at four tolerances each.
@@ -472,8 +472,8 @@ int main(int argc, char** argv) {
     // Where the contact opens and closes, the reference restarts at each event (run_odeint_piecewise).
     std::vector<double> breaks;
     {
-        cf::NewmarkSettings es;
-        cf::set_method(es, "dormand_prince");
+        cf::SolverSettings es;
+        es.method = cf::method_from_name("dormand_prince");
         es.tolerance = 1e-12;
         es.time_step = T / grid;
         cf::RunOptions eo;
@@ -488,8 +488,8 @@ int main(int argc, char** argv) {
     const char* ref_name = breaks.empty() ? "odeint fehlberg78 in long double at rtol 1e-13"
                                           : "odeint fehlberg78 in long double at rtol 1e-13, restarted at each contact event";
 #else
-    cf::NewmarkSettings rs;
-    cf::set_method(rs, "dormand_prince");
+    cf::SolverSettings rs;
+    rs.method = cf::method_from_name("dormand_prince");
     rs.tolerance = 1e-12;
     rs.time_step = T / grid;
     const Histories ref = run_camfollower(m, rs);

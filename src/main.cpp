@@ -134,7 +134,7 @@ int run(const std::string& config, std::string output) {
         std::fprintf(stderr, "camfollower: warning: %s\n", cf::detail::message_text(w).c_str());
     with_mechanism(c.mechanism, [&](const auto& m) {
         const double period = m.period();
-        cf::NewmarkSettings settings = c.solver.newmark;
+        cf::SolverSettings settings = c.solver.settings;
         settings.time_step = c.solver.time_step_for(period);
         cf::RunOptions options;
         options.duration = c.solver.duration_for(period);
@@ -161,13 +161,13 @@ int run(const std::string& config, std::string output) {
         const cf::SolverStatistics& stats = result.report.stats;
         // Newmark under a tolerance (named: auto does not take it).
         const std::string ran = result.method;
-        if (cf::uses_tolerance(settings.method) && (ran == "newmark" || ran == "fox_goodwin"))
+        if (settings.tolerance && (ran == "newmark" || ran == "fox_goodwin"))
             std::printf("%zu rows, %zu channels (%s under tolerance %.3g: %llu steps, %llu rejected, %.3f Newton "
                         "iterations/step, output every %.4g s)",
-                        result.recording.rows, result.recording.names.size(), result.method, settings.tolerance,
+                        result.recording.rows, result.recording.names.size(), result.method, *settings.tolerance,
                         static_cast<unsigned long long>(stats.steps), static_cast<unsigned long long>(stats.rejected_steps),
                         stats.mean_iterations(), settings.time_step);
-        else if (cf::uses_tolerance(settings.method))
+        else if (settings.tolerance)
             std::printf("%zu rows, %zu channels (%s%s: %llu steps, %llu rejected, %llu force evaluations, output every %.4g s)",
                         result.recording.rows, result.recording.names.size(), result.method,
                         cf::is_automatic(settings.method) ? ", chosen by auto" : "", static_cast<unsigned long long>(stats.steps),

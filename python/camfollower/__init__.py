@@ -42,9 +42,14 @@ from ._core import (  # noqa: E402
 from .config import Config, config_from_dict, load_config
 from .periodic import PeriodicOrbit, periodic_steady_state
 from .results import Result
-from .simulation import simulate, simulate_many
+from .simulation import RunOptions, SolverSettings, settings_and_options, simulate, simulate_many
+
+#: The integration methods by name (the ``method`` of simulate and the config's ``scheme``), in the
+#: order they are listed, each with its global order (0: "auto", the chosen method's) and a summary.
+METHODS = {name: {"order": order, "summary": summary} for name, (order, summary) in _core.METHODS.items()}
 
 __all__ = [
+    "METHODS",
     "ArmTurn",
     "BoundaryContinuity",
     "CamEccentricity",
@@ -66,7 +71,9 @@ __all__ = [
     "PeriodicOrbit",
     "ProfileError",
     "Result",
+    "RunOptions",
     "Segment",
+    "SolverSettings",
     "TranslatingFlat",
     "TranslatingRoller",
     "config_from_dict",
@@ -76,6 +83,7 @@ __all__ = [
     "periodic_steady_state",
     "presets",
     "simulate",
+    "settings_and_options",
     "simulate_many",
 ]
 __version__ = _core.__version__  # stated once, in pyproject.toml

@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['ArmTurn', 'BoundaryContinuity', 'CamEccentricity', 'CamFollowerModel', 'ContinuityReport', 'Defects', 'DiskCam', 'Elastic', 'LineContact', 'MAX_CAMSHAFT_SPEED', 'MAX_PART_LENGTH', 'MAX_POINTS', 'MIN_CAMSHAFT_SPEED', 'Mechanism', 'MechanismBuilder', 'MotionLaw', 'MotionProgram', 'OscillatingFlat', 'OscillatingRoller', 'Parameters', 'PeakCoefficients', 'ProfileError', 'Segment', 'TranslatingFlat', 'TranslatingRoller', 'cam_outline', 'check_output_target', 'length_units', 'paper_preset', 'realistic_damping_ratio', 'valve_train_parameter_units', 'valve_train_preset', 'write_cam_csv', 'write_file_atomically']
+__all__: list[str] = ['ArmTurn', 'BoundaryContinuity', 'CamEccentricity', 'CamFollowerModel', 'ContinuityReport', 'Defects', 'DiskCam', 'Elastic', 'LineContact', 'MAX_CAMSHAFT_SPEED', 'MAX_PART_LENGTH', 'MAX_POINTS', 'METHODS', 'MIN_CAMSHAFT_SPEED', 'Mechanism', 'MechanismBuilder', 'MotionLaw', 'MotionProgram', 'OscillatingFlat', 'OscillatingRoller', 'Parameters', 'PeakCoefficients', 'ProfileError', 'RUNGE_KUTTA_DEFAULT_TOLERANCE', 'Segment', 'SolverSettings', 'TranslatingFlat', 'TranslatingRoller', 'cam_outline', 'check_output_target', 'length_units', 'paper_preset', 'realistic_damping_ratio', 'valve_train_parameter_units', 'valve_train_preset', 'write_cam_csv', 'write_file_atomically']
 class PeakCoefficients:
     """
     Peaks of |V|, |A|, |J| of a normalized law.
@@ -722,6 +722,72 @@ class TranslatingRoller:
     @property
     def roller_radius(self) -> float:
         ...
+class SolverSettings:
+    """
+    The integration settings of simulate(), simulate_many() and periodic_steady_state(), immutable
+    (the C++ SolverSettings with its field names and defaults; docs/solvers.md).
+    """
+    FIELDS: typing.ClassVar[tuple]
+    def __eq__(self, arg0: SolverSettings) -> bool:
+        ...
+    def __getstate__(self) -> dict:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __init__(self, method: typing.Any = 'newmark', **kwargs) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    def fields(self) -> dict:
+        """
+        The fields that say what these settings are (method, time step, and the others that apply and
+        differ from their defaults), as keywords of SolverSettings.
+        """
+    def replace(self, **kwargs) -> SolverSettings:
+        ...
+    @property
+    def adaptive(self) -> bool:
+        """
+        True when a tolerance is set
+        """
+    @property
+    def beta(self) -> float:
+        ...
+    @property
+    def gamma(self) -> float:
+        ...
+    @property
+    def hht_alpha(self) -> float:
+        ...
+    @property
+    def increment_tolerance(self) -> float:
+        ...
+    @property
+    def linear_solver(self) -> str:
+        ...
+    @property
+    def max_halvings(self) -> int:
+        ...
+    @property
+    def max_iterations(self) -> int:
+        ...
+    @property
+    def max_step(self) -> float:
+        ...
+    @property
+    def method(self) -> str:
+        ...
+    @property
+    def residual_tolerance(self) -> float:
+        ...
+    @property
+    def time_step(self) -> float:
+        ...
+    @property
+    def tolerance(self) -> float | None:
+        ...
 class TranslatingFlat:
     """
     Translating flat-faced follower: face angle (rad) from the normal to the axis, offset (m).
@@ -1199,27 +1265,27 @@ def _read_config(text: bytes, origin: str, base_dir: str) -> tuple:
 def _toml_line(text: bytes, path: list) -> int | None:
     ...
 @typing.overload
-def _run(system: CamFollowerModel, duration: typing.SupportsFloat | typing.SupportsIndex, time_step: typing.SupportsFloat | typing.SupportsIndex, decimation: typing.SupportsInt | typing.SupportsIndex, gamma: typing.SupportsFloat | typing.SupportsIndex | None, beta: typing.SupportsFloat | typing.SupportsIndex | None, hht_alpha: typing.SupportsFloat | typing.SupportsIndex, linear_solver: str, residual_tolerance: typing.SupportsFloat | typing.SupportsIndex, increment_tolerance: typing.SupportsFloat | typing.SupportsIndex, max_iterations: typing.SupportsInt | typing.SupportsIndex, max_halvings: typing.SupportsInt | typing.SupportsIndex, record_from: typing.SupportsFloat | typing.SupportsIndex, max_output_bytes: typing.SupportsFloat | typing.SupportsIndex, progress: typing.Any, progress_interval: typing.SupportsFloat | typing.SupportsIndex, settle_period: typing.SupportsFloat | typing.SupportsIndex | None = None, settle_dofs: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex] = [], settle_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, settle_min_revolutions: typing.SupportsInt | typing.SupportsIndex = 2, settle_max_revolutions: typing.SupportsInt | typing.SupportsIndex = 200, q0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"] | None = None, v0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"] | None = None, method: str = 'newmark', tolerance: typing.SupportsFloat | typing.SupportsIndex | None = None, max_step: typing.SupportsFloat | typing.SupportsIndex | None = None) -> dict:
+def _run(system: CamFollowerModel, duration: typing.SupportsFloat | typing.SupportsIndex, time_step: typing.SupportsFloat | typing.SupportsIndex, decimation: typing.SupportsInt | typing.SupportsIndex, gamma: typing.SupportsFloat | typing.SupportsIndex | None, beta: typing.SupportsFloat | typing.SupportsIndex | None, hht_alpha: typing.SupportsFloat | typing.SupportsIndex | None, linear_solver: str, residual_tolerance: typing.SupportsFloat | typing.SupportsIndex, increment_tolerance: typing.SupportsFloat | typing.SupportsIndex, max_iterations: typing.SupportsInt | typing.SupportsIndex, max_halvings: typing.SupportsInt | typing.SupportsIndex, record_from: typing.SupportsFloat | typing.SupportsIndex, max_output_bytes: typing.SupportsFloat | typing.SupportsIndex, progress: typing.Any, progress_interval: typing.SupportsFloat | typing.SupportsIndex, settle_period: typing.SupportsFloat | typing.SupportsIndex | None = None, settle_dofs: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex] = [], settle_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, settle_min_revolutions: typing.SupportsInt | typing.SupportsIndex = 2, settle_max_revolutions: typing.SupportsInt | typing.SupportsIndex = 200, q0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"] | None = None, v0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"] | None = None, method: str = 'newmark', tolerance: typing.SupportsFloat | typing.SupportsIndex | None = None, max_step: typing.SupportsFloat | typing.SupportsIndex | None = None) -> dict:
     """
     Internal: camfollower.simulate() calls this and wraps the output in a Result.
     """
 @typing.overload
-def _run(system: Mechanism, duration: typing.SupportsFloat | typing.SupportsIndex, time_step: typing.SupportsFloat | typing.SupportsIndex, decimation: typing.SupportsInt | typing.SupportsIndex, gamma: typing.SupportsFloat | typing.SupportsIndex | None, beta: typing.SupportsFloat | typing.SupportsIndex | None, hht_alpha: typing.SupportsFloat | typing.SupportsIndex, linear_solver: str, residual_tolerance: typing.SupportsFloat | typing.SupportsIndex, increment_tolerance: typing.SupportsFloat | typing.SupportsIndex, max_iterations: typing.SupportsInt | typing.SupportsIndex, max_halvings: typing.SupportsInt | typing.SupportsIndex, record_from: typing.SupportsFloat | typing.SupportsIndex, max_output_bytes: typing.SupportsFloat | typing.SupportsIndex, progress: typing.Any, progress_interval: typing.SupportsFloat | typing.SupportsIndex, settle_period: typing.SupportsFloat | typing.SupportsIndex | None = None, settle_dofs: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex] = [], settle_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, settle_min_revolutions: typing.SupportsInt | typing.SupportsIndex = 2, settle_max_revolutions: typing.SupportsInt | typing.SupportsIndex = 200, q0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"] | None = None, v0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"] | None = None, method: str = 'newmark', tolerance: typing.SupportsFloat | typing.SupportsIndex | None = None, max_step: typing.SupportsFloat | typing.SupportsIndex | None = None) -> dict:
+def _run(system: Mechanism, duration: typing.SupportsFloat | typing.SupportsIndex, time_step: typing.SupportsFloat | typing.SupportsIndex, decimation: typing.SupportsInt | typing.SupportsIndex, gamma: typing.SupportsFloat | typing.SupportsIndex | None, beta: typing.SupportsFloat | typing.SupportsIndex | None, hht_alpha: typing.SupportsFloat | typing.SupportsIndex | None, linear_solver: str, residual_tolerance: typing.SupportsFloat | typing.SupportsIndex, increment_tolerance: typing.SupportsFloat | typing.SupportsIndex, max_iterations: typing.SupportsInt | typing.SupportsIndex, max_halvings: typing.SupportsInt | typing.SupportsIndex, record_from: typing.SupportsFloat | typing.SupportsIndex, max_output_bytes: typing.SupportsFloat | typing.SupportsIndex, progress: typing.Any, progress_interval: typing.SupportsFloat | typing.SupportsIndex, settle_period: typing.SupportsFloat | typing.SupportsIndex | None = None, settle_dofs: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex] = [], settle_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, settle_min_revolutions: typing.SupportsInt | typing.SupportsIndex = 2, settle_max_revolutions: typing.SupportsInt | typing.SupportsIndex = 200, q0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"] | None = None, v0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"] | None = None, method: str = 'newmark', tolerance: typing.SupportsFloat | typing.SupportsIndex | None = None, max_step: typing.SupportsFloat | typing.SupportsIndex | None = None) -> dict:
     """
     Internal: camfollower.simulate() calls this and wraps the output in a Result.
     """
-def _run_many(cases: list, time_step: typing.SupportsFloat | typing.SupportsIndex, decimation: typing.SupportsInt | typing.SupportsIndex, gamma: typing.SupportsFloat | typing.SupportsIndex | None, beta: typing.SupportsFloat | typing.SupportsIndex | None, hht_alpha: typing.SupportsFloat | typing.SupportsIndex, linear_solver: str, residual_tolerance: typing.SupportsFloat | typing.SupportsIndex, increment_tolerance: typing.SupportsFloat | typing.SupportsIndex, max_iterations: typing.SupportsInt | typing.SupportsIndex, max_halvings: typing.SupportsInt | typing.SupportsIndex, max_output_bytes: typing.SupportsFloat | typing.SupportsIndex, threads: typing.SupportsInt | typing.SupportsIndex, progress: typing.Any, progress_interval: typing.SupportsFloat | typing.SupportsIndex, settle_tolerance: typing.SupportsFloat | typing.SupportsIndex, settle_min_revolutions: typing.SupportsInt | typing.SupportsIndex, settle_max_revolutions: typing.SupportsInt | typing.SupportsIndex, method: str, tolerance: typing.SupportsFloat | typing.SupportsIndex | None, max_step: typing.SupportsFloat | typing.SupportsIndex | None) -> list:
+def _run_many(cases: list, time_step: typing.SupportsFloat | typing.SupportsIndex, decimation: typing.SupportsInt | typing.SupportsIndex, gamma: typing.SupportsFloat | typing.SupportsIndex | None, beta: typing.SupportsFloat | typing.SupportsIndex | None, hht_alpha: typing.SupportsFloat | typing.SupportsIndex | None, linear_solver: str, residual_tolerance: typing.SupportsFloat | typing.SupportsIndex, increment_tolerance: typing.SupportsFloat | typing.SupportsIndex, max_iterations: typing.SupportsInt | typing.SupportsIndex, max_halvings: typing.SupportsInt | typing.SupportsIndex, max_output_bytes: typing.SupportsFloat | typing.SupportsIndex, threads: typing.SupportsInt | typing.SupportsIndex, progress: typing.Any, progress_interval: typing.SupportsFloat | typing.SupportsIndex, settle_tolerance: typing.SupportsFloat | typing.SupportsIndex, settle_min_revolutions: typing.SupportsInt | typing.SupportsIndex, settle_max_revolutions: typing.SupportsInt | typing.SupportsIndex, method: str, tolerance: typing.SupportsFloat | typing.SupportsIndex | None, max_step: typing.SupportsFloat | typing.SupportsIndex | None) -> list:
     """
     Internal: camfollower.simulate_many() calls this with (system, duration, record_from, settle_period,
     settle_dofs) per case and wraps each output in a Result.
     """
 @typing.overload
-def _shoot(system: CamFollowerModel, time_step: typing.SupportsFloat | typing.SupportsIndex, gamma: typing.SupportsFloat | typing.SupportsIndex | None, beta: typing.SupportsFloat | typing.SupportsIndex | None, hht_alpha: typing.SupportsFloat | typing.SupportsIndex, linear_solver: str, residual_tolerance: typing.SupportsFloat | typing.SupportsIndex, increment_tolerance: typing.SupportsFloat | typing.SupportsIndex, max_iterations: typing.SupportsInt | typing.SupportsIndex, max_halvings: typing.SupportsInt | typing.SupportsIndex, period: typing.SupportsFloat | typing.SupportsIndex | None, start_time: typing.SupportsFloat | typing.SupportsIndex, tolerance: typing.SupportsFloat | typing.SupportsIndex, shooting_max_iterations: typing.SupportsInt | typing.SupportsIndex, warmup_revolutions: typing.SupportsInt | typing.SupportsIndex, perturbation: typing.SupportsFloat | typing.SupportsIndex, multipliers: bool, monodromy: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"] | None, q0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"] | None, v0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"] | None) -> dict:
+def _shoot(system: CamFollowerModel, time_step: typing.SupportsFloat | typing.SupportsIndex, gamma: typing.SupportsFloat | typing.SupportsIndex | None, beta: typing.SupportsFloat | typing.SupportsIndex | None, hht_alpha: typing.SupportsFloat | typing.SupportsIndex | None, linear_solver: str, residual_tolerance: typing.SupportsFloat | typing.SupportsIndex, increment_tolerance: typing.SupportsFloat | typing.SupportsIndex, max_iterations: typing.SupportsInt | typing.SupportsIndex, max_halvings: typing.SupportsInt | typing.SupportsIndex, period: typing.SupportsFloat | typing.SupportsIndex | None, start_time: typing.SupportsFloat | typing.SupportsIndex, tolerance: typing.SupportsFloat | typing.SupportsIndex, shooting_max_iterations: typing.SupportsInt | typing.SupportsIndex, warmup_revolutions: typing.SupportsInt | typing.SupportsIndex, perturbation: typing.SupportsFloat | typing.SupportsIndex, multipliers: bool, monodromy: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"] | None, q0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"] | None, v0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"] | None, method: str = 'newmark') -> dict:
     """
     Internal: camfollower.periodic_steady_state() calls this and wraps the output in a PeriodicOrbit.
     """
 @typing.overload
-def _shoot(system: Mechanism, time_step: typing.SupportsFloat | typing.SupportsIndex, gamma: typing.SupportsFloat | typing.SupportsIndex | None, beta: typing.SupportsFloat | typing.SupportsIndex | None, hht_alpha: typing.SupportsFloat | typing.SupportsIndex, linear_solver: str, residual_tolerance: typing.SupportsFloat | typing.SupportsIndex, increment_tolerance: typing.SupportsFloat | typing.SupportsIndex, max_iterations: typing.SupportsInt | typing.SupportsIndex, max_halvings: typing.SupportsInt | typing.SupportsIndex, period: typing.SupportsFloat | typing.SupportsIndex | None, start_time: typing.SupportsFloat | typing.SupportsIndex, tolerance: typing.SupportsFloat | typing.SupportsIndex, shooting_max_iterations: typing.SupportsInt | typing.SupportsIndex, warmup_revolutions: typing.SupportsInt | typing.SupportsIndex, perturbation: typing.SupportsFloat | typing.SupportsIndex, multipliers: bool, monodromy: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"] | None, q0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"] | None, v0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"] | None) -> dict:
+def _shoot(system: Mechanism, time_step: typing.SupportsFloat | typing.SupportsIndex, gamma: typing.SupportsFloat | typing.SupportsIndex | None, beta: typing.SupportsFloat | typing.SupportsIndex | None, hht_alpha: typing.SupportsFloat | typing.SupportsIndex | None, linear_solver: str, residual_tolerance: typing.SupportsFloat | typing.SupportsIndex, increment_tolerance: typing.SupportsFloat | typing.SupportsIndex, max_iterations: typing.SupportsInt | typing.SupportsIndex, max_halvings: typing.SupportsInt | typing.SupportsIndex, period: typing.SupportsFloat | typing.SupportsIndex | None, start_time: typing.SupportsFloat | typing.SupportsIndex, tolerance: typing.SupportsFloat | typing.SupportsIndex, shooting_max_iterations: typing.SupportsInt | typing.SupportsIndex, warmup_revolutions: typing.SupportsInt | typing.SupportsIndex, perturbation: typing.SupportsFloat | typing.SupportsIndex, multipliers: bool, monodromy: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"] | None, q0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"] | None, v0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"] | None, method: str = 'newmark') -> dict:
     """
     Internal: camfollower.periodic_steady_state() calls this and wraps the output in a PeriodicOrbit.
     """
@@ -1270,6 +1336,8 @@ def write_file_atomically(path: str, content: bytes, protect: collections.abc.Se
 MAX_CAMSHAFT_SPEED: float = 100000.0
 MAX_PART_LENGTH: float = 1000.0
 MAX_POINTS: int = 10000000
+METHODS: dict  # name -> (order, summary), from the C++ method table
 MIN_CAMSHAFT_SPEED: float = 1e-06
+RUNGE_KUTTA_DEFAULT_TOLERANCE: float = 1e-06
 __version__: str = '0.1.0'
 realistic_damping_ratio: float = 0.03

@@ -71,7 +71,9 @@ class Config:
 
     ``programs``: the motion programs by name; ``builder``: the mechanism's description
     (``MechanismBuilder``); ``mechanism``: the built, immutable ``Mechanism``; ``solver``: keyword
-    arguments of :func:`camfollower.simulate` (``time_step`` resolved from ``steps_per_revolution``);
+    arguments of :func:`camfollower.simulate` (``time_step`` resolved from ``steps_per_revolution``;
+    as objects: ``settings``, a :class:`camfollower.SolverSettings`, and ``options``, a
+    :class:`camfollower.RunOptions`);
     ``output``: the ``[output]`` table (``file``, ``decimation``, ``record_last_revolutions``);
     ``data``: the parsed TOML as a dict; ``path``: the file (None for a dict); ``warnings``: the
     force-closure warnings at the config's speed (computed on first use; ``load_config`` issues them
@@ -98,11 +100,25 @@ class Config:
             kw["record_last_revolutions"] = self.output["record_last_revolutions"]
         return kw
 
+    @property
+    def settings(self):
+        """The config's :class:`camfollower.SolverSettings` (``[solver]``)."""
+        from .simulation import settings_and_options
+
+        return settings_and_options(**self.simulate_kwargs())[0]
+
+    @property
+    def options(self):
+        """The config's :class:`camfollower.RunOptions` (``[solver]`` and ``[output]``)."""
+        from .simulation import settings_and_options
+
+        return settings_and_options(**self.simulate_kwargs())[1]
+
     def run(self, **overrides):
         """Simulate the case (``overrides`` replace the config's ``simulate`` keyword arguments)."""
         from .simulation import simulate
 
-        return simulate(self.mechanism, **{**self.simulate_kwargs(), **overrides})
+        return simulate(self.mechanism, self.settings, self.options, **overrides)
 
     def force_closure(self, rpm: Optional[float] = None) -> Dict[str, Any]:
         """:func:`force_closure` of this case's mechanism (at `rpm`, default the config's speed)."""

@@ -20,20 +20,7 @@ import numpy as np
 
 from . import _core, _text
 from .results import Result
-from .simulation import simulate
-
-# Newmark keyword arguments that define the discrete scheme (the orbit belongs to them).
-_SCHEME_KEYS = (
-    "time_step",
-    "gamma",
-    "beta",
-    "hht_alpha",
-    "linear_solver",
-    "residual_tolerance",
-    "increment_tolerance",
-    "max_iterations",
-    "max_halvings",
-)
+from .simulation import SolverSettings, settings_and_options, simulate
 
 
 @dataclass(frozen=True)
@@ -121,8 +108,9 @@ class PeriodicOrbit:
 
 def periodic_steady_state(
     system,
+    settings: Optional[SolverSettings] = None,
     *,
-    time_step: float = 3e-6,
+    time_step: Optional[float] = None,
     tolerance: float = 1e-9,
     max_shooting_iterations: int = 30,
     warmup_revolutions: int = 1,
@@ -138,8 +126,10 @@ def periodic_steady_state(
     ``period``) by shooting on one revolution.
 
     ``time_step`` must divide the period (e.g. ``system.period / 4096``); the orbit is the fixed point
-    of the Newmark scheme with these settings (``scheme``: ``gamma``, ``beta``, ``hht_alpha``,
-    ``linear_solver``, ``residual_tolerance``, ... as for :func:`camfollower.simulate`), i.e. the state
+    of the scheme with these settings (``settings``: a :class:`SolverSettings`, or its fields as
+    keywords in ``scheme``: ``method``, ``gamma``, ``beta``, ... as for :func:`camfollower.simulate`;
+    ``time_step`` overrides the settings'; the solver's ``tolerance`` is the settings' field, this
+    function's ``tolerance`` the shooting's), i.e. the state
     a long transient run converges to. ``tolerance``: the relative mismatch after one revolution.
     ``warmup_revolutions`` of transient first, from the system's initial state (static equilibrium)
     or from ``guess`` (a nearby orbit, e.g. the nominal case of a tolerance study: its state and
@@ -159,24 +149,15 @@ def periodic_steady_state(
         )
     if fallback not in (None, "transient"):
         raise ValueError(f"fallback must be None or 'transient', got {fallback!r}")
-    unknown = set(scheme) - set(_SCHEME_KEYS)
+    if time_step is not None:
+        scheme["time_step"] = time_step
+    unknown = sorted(set(scheme) - set(SolverSettings.FIELDS))
     if unknown:
         raise TypeError(
-            f"periodic_steady_state() got unexpected keyword argument(s) {sorted(unknown)}; "
-            f"solver settings: {list(_SCHEME_KEYS)}"
+            f"periodic_steady_state() got unexpected keyword argument(s) {unknown}; solver settings: "
+            f"{list(SolverSettings.FIELDS)}"
         )
-    settings = {
-        "time_step": float(time_step),
-        "gamma": None,
-        "beta": None,
-        "hht_alpha": 0.0,
-        "linear_solver": "auto",
-        "residual_tolerance": 1e-10,
-        "increment_tolerance": 1e-10,
-        "max_iterations": 25,
-        "max_halvings": 6,
-    }
-    settings.update(scheme)
+    settings, _ = settings_and_options(settings, None, **scheme)
     q0 = v0 = monodromy = None
     if guess is not None:
         if not isinstance(guess, PeriodicOrbit):
@@ -188,15 +169,7 @@ def periodic_steady_state(
         monodromy = guess.monodromy if guess.monodromy.size else None
     raw = _core._shoot(
         system,
-        settings["time_step"],
-        settings["gamma"],
-        settings["beta"],
-        settings["hht_alpha"],
-        settings["linear_solver"],
-        settings["residual_tolerance"],
-        settings["increment_tolerance"],
-        settings["max_iterations"],
-        settings["max_halvings"],
+        settings,
         None,
         0.0,
         tolerance,
@@ -209,7 +182,7 @@ def periodic_steady_state(
         v0,
     )
     names = tuple(system.dof_names)
-    kept = {k: v for k, v in settings.items() if v is not None}
+    kept = settings.fields()
     orbit = PeriodicOrbit(
         q=np.asarray(raw["q"]),
         v=np.asarray(raw["v"]),

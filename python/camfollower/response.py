@@ -217,8 +217,7 @@ def steady_response(
             fallback=fallback,
             tolerance=tolerance,
             warmup_revolutions=0 if seed else 1,
-            gamma=scheme["gamma"],
-            beta=scheme["beta"],
+            method=scheme["name"],
             **search,
         )
         cost["revolutions"] += o.revolutions + 1.0  # + the recorded revolution

@@ -4,63 +4,113 @@
 
 from __future__ import annotations
 
-import inspect
+import dataclasses
 import math
 import numbers
-from typing import Callable, List, Optional, Sequence
+from dataclasses import dataclass
+from typing import Callable, List, Optional, Sequence, Tuple
 
 from . import _core
+from ._core import SolverSettings
 from .results import Result
+
+
+@dataclass(frozen=True)
+class RunOptions:
+    """What a run records and how long it runs (the solver's settings: :class:`SolverSettings`),
+    immutable; ``replace(**changes)`` returns a copy with fields changed.
+
+    Give ``duration`` (s) or ``revolutions`` (of the camshaft, for systems with a ``period``). One row
+    is recorded every ``decimation`` steps, from ``record_from`` (s) or over the
+    ``record_last_revolutions`` on; ``max_output_bytes`` bounds the recording. ``progress_interval``:
+    seconds between progress calls. ``settle`` and ``settle_*``: settle on the periodic response first
+    (:func:`simulate`).
+    """
+
+    duration: Optional[float] = None
+    revolutions: Optional[float] = None
+    decimation: int = 1
+    record_from: Optional[float] = None
+    record_last_revolutions: Optional[float] = None
+    max_output_bytes: float = 4.0 * 1024**3
+    progress_interval: float = 0.2
+    settle: bool = False
+    settle_tolerance: float = 1e-4
+    settle_dofs: Optional[Tuple[str, ...]] = None
+    settle_min_revolutions: int = 2
+    settle_max_revolutions: int = 200
+
+    def replace(self, **changes) -> "RunOptions":
+        unknown = sorted(set(changes) - _OPTION_FIELDS)
+        if unknown:
+            raise TypeError(f"RunOptions has no field(s) {unknown}; its fields: {sorted(_OPTION_FIELDS)}")
+        return dataclasses.replace(self, **changes)
+
+
+_OPTION_FIELDS = frozenset(f.name for f in dataclasses.fields(RunOptions))
+_SETTINGS_FIELDS = frozenset(_core.SolverSettings.FIELDS)
+
+
+def settings_and_options(settings=None, options=None, **overrides) -> Tuple[SolverSettings, RunOptions]:
+    """The :class:`SolverSettings` and :class:`RunOptions` of a run: ``settings`` and ``options``
+    (None: the defaults) with ``overrides`` (fields of either) applied. Raises TypeError for a keyword
+    that is a field of neither."""
+    unknown = sorted(set(overrides) - _SETTINGS_FIELDS - _OPTION_FIELDS)
+    if unknown:
+        raise TypeError(
+            f"unexpected keyword argument(s) {unknown}; the solver settings are {sorted(_SETTINGS_FIELDS)}, "
+            f"the run options {sorted(_OPTION_FIELDS)}"
+        )
+    solver = {k: v for k, v in overrides.items() if k in _SETTINGS_FIELDS}
+    run = {k: v for k, v in overrides.items() if k in _OPTION_FIELDS}
+    if settings is None:
+        settings = SolverSettings(**solver)
+    elif not isinstance(settings, SolverSettings):
+        raise TypeError(f"settings must be a camfollower.SolverSettings or None, got {type(settings).__name__}")
+    elif solver:
+        settings = settings.replace(**solver)
+    if options is None:
+        options = RunOptions(**run)
+    elif not isinstance(options, RunOptions):
+        raise TypeError(f"options must be a camfollower.RunOptions or None, got {type(options).__name__}")
+    elif run:
+        options = options.replace(**run)
+    return settings, options
 
 
 def simulate(
     system,
+    settings: Optional[SolverSettings] = None,
+    options: Optional[RunOptions] = None,
     *,
-    duration: Optional[float] = None,
-    revolutions: Optional[float] = None,
-    time_step: float = 3e-6,
-    decimation: int = 1,
-    record_from: Optional[float] = None,
-    record_last_revolutions: Optional[float] = None,
-    gamma: Optional[float] = None,
-    beta: Optional[float] = None,
-    hht_alpha: float = 0.0,
-    linear_solver: str = "auto",
-    residual_tolerance: float = 1e-10,
-    increment_tolerance: float = 1e-10,
-    max_iterations: int = 25,
-    max_halvings: int = 6,
-    max_output_bytes: float = 4.0 * 1024**3,
-    progress: Optional[Callable[[int, int], Optional[bool]]] = None,
-    progress_interval: float = 0.2,
-    settle: bool = False,
-    settle_tolerance: float = 1e-4,
-    settle_dofs: Optional[Sequence[str]] = None,
-    settle_min_revolutions: int = 2,
-    settle_max_revolutions: int = 200,
     initial_state=None,
-    method: str = "newmark",
-    tolerance: Optional[float] = None,
-    max_step: Optional[float] = None,
+    progress: Optional[Callable[[int, int], Optional[bool]]] = None,
+    **overrides,
 ) -> Result:
     """Integrate ``system`` from its initial state (static equilibrium, at rest) and return a Result.
 
+    ``settings`` (:class:`SolverSettings`: the method and its step, tolerance, ...) and ``options``
+    (:class:`RunOptions`: duration, recording, settling), each None for the defaults; ``overrides``:
+    any of their fields by name, e.g. ``simulate(m, revolutions=1, method="dop853",
+    tolerance=1e-8)`` (the config's ``Config.settings`` and ``Config.options`` are the same objects).
+
     Give ``duration`` (s) or ``revolutions`` (of the camshaft, for systems with a ``period``). One row
     is recorded every ``decimation`` steps, from ``record_from`` (s) or over the
-    ``record_last_revolutions`` on. ``gamma``/``beta`` default to 1/2, 1/4 (average acceleration) or,
-    with ``hht_alpha`` < 0, to HHT's 1/2 - alpha and (1 - alpha)^2 / 4; beta < 1/4 is only
-    conditionally stable and a step beyond its limit is refused. ``linear_solver``: "auto" (dense
+    ``record_last_revolutions`` on. ``gamma``/``beta`` (method "newmark" only) default to 1/2, 1/4
+    (average acceleration); beta < 1/4 is only conditionally stable and a step beyond its limit is
+    refused. ``hht_alpha`` (method "hht" only, in [-1/3, 0], default -0.05). ``linear_solver``: "auto" (dense
     below 100 DOFs, sparse above), "low_rank" (dense: Sherman-Morrison / Woodbury on the contact
     rank), "dense_lu", "sparse" (SuiteSparse: CHOLMOD when symmetric positive definite, else KLU) or
     "klu"; ``stats["backend"]`` says which ran.
 
-    ``method``: "newmark" (the default: Newmark/HHT with ``gamma``, ``beta``, ``hht_alpha``, fixed step
-    ``time_step``), "fox_goodwin" (Newmark with gamma = 1/2, beta = 1/12: fourth-order phase on
+    ``method`` (the names: ``camfollower.METHODS``): "newmark" (the default: Newmark with ``gamma``,
+    ``beta``, fixed step ``time_step``), "hht" (HHT-alpha with ``hht_alpha``: Newmark that damps the
+    highest modes; no ``tolerance``), "fox_goodwin" (Newmark with gamma = 1/2, beta = 1/12: fourth-order phase on
     undamped linear modes, stable below dt = sqrt(6) / omega_max, refused beyond it); both given a
     ``tolerance`` adapt their steps: ``time_step`` becomes the output interval, integrated in steps of
     time_step / 2^k (k <= ``max_halvings``, within fox_goodwin's stability limit and ``max_step``)
     chosen by each step's local error estimate (Zienkiewicz & Xie), measured like the Runge-Kutta
-    methods' below; hht_alpha must then be 0. The error is controlled per step only: over a
+    methods' below. The error is controlled per step only: over a
     revolution of the paper preset fox_goodwin's error is 0.01 to 600 times the tolerance depending on
     the output interval, newmark's average acceleration's hundreds to thousands of times
     (docs/solvers.md, "Error control across output intervals"); "auto" does not take them,
@@ -107,54 +157,31 @@ def simulate(
 
     Raises ValueError for bad input and RuntimeError when Newton fails after ``max_halvings``.
     """
-    args, settle_dofs = _run_arguments(
-        system,
-        duration=duration,
-        revolutions=revolutions,
-        time_step=time_step,
-        decimation=decimation,
-        record_from=record_from,
-        record_last_revolutions=record_last_revolutions,
-        gamma=gamma,
-        beta=beta,
-        hht_alpha=hht_alpha,
-        linear_solver=linear_solver,
-        residual_tolerance=residual_tolerance,
-        increment_tolerance=increment_tolerance,
-        max_iterations=max_iterations,
-        max_halvings=max_halvings,
-        max_output_bytes=max_output_bytes,
-        progress_interval=progress_interval,
-        settle=settle,
-        settle_tolerance=settle_tolerance,
-        settle_dofs=settle_dofs,
-        settle_min_revolutions=settle_min_revolutions,
-        settle_max_revolutions=settle_max_revolutions,
-        initial_state=initial_state,
-        method=method,
-        tolerance=tolerance,
-        max_step=max_step,
-        progress=progress,
+    settings, options = settings_and_options(settings, options, **overrides)
+    args, settle_dofs = _run_arguments(system, settings, options, initial_state=initial_state, progress=progress)
+    return _result(
+        _capped(lambda: _core._run(system, settings, progress=progress, **args), args, options.max_output_bytes),
+        settle_dofs,
     )
-    return _result(_capped(lambda: _core._run(system, progress=progress, **args), args, max_output_bytes), settle_dofs)
 
 
 def simulate_many(
     systems: Sequence,
+    settings: Optional[SolverSettings] = None,
+    options: Optional[RunOptions] = None,
     *,
     threads: Optional[int] = None,
     errors: str = "raise",
     progress: Optional[Callable[[int, int], Optional[bool]]] = None,
-    progress_interval: float = 0.2,
-    **options,
+    **overrides,
 ) -> List[Optional[Result]]:
     """Run :func:`simulate` on every system of ``systems`` at once, on ``threads`` C++ threads (default:
     one per CPU core) with the GIL released, and return their Results in the systems' order.
 
-    ``options``: any keyword of :func:`simulate` but ``initial_state`` and ``progress``, the same for
-    every case (``revolutions`` count each system's own period). ``max_output_bytes`` bounds the
-    recordings of all cases together (each case gets an equal share): record what a study needs
-    (``decimation``, ``record_last_revolutions``).
+    ``settings``, ``options`` and ``overrides`` as for :func:`simulate` (but no ``initial_state``),
+    the same for every case (``revolutions`` count each system's own period). ``max_output_bytes``
+    bounds the recordings of all cases together (each case gets an equal share): record what a study
+    needs (``decimation``, ``record_last_revolutions``).
 
     ``errors``: "raise" (default) raises the first failed case's error (ValueError, RuntimeError, ...),
     prefixed with ``systems[i]``, once every case has run; "return" puts each failed case's exception
@@ -164,14 +191,12 @@ def simulate_many(
     raises KeyboardInterrupt. Systems are immutable, so one system may appear many times.
     """
     systems = list(systems)
-    for name in ("initial_state", "progress"):
-        if name in options:
-            raise TypeError(f"simulate_many() takes no {name}: every case starts from its own static equilibrium")
-    unknown = sorted(set(options) - set(_SIMULATE_OPTIONS))
-    if unknown:
+    if "initial_state" in overrides:
+        raise TypeError("simulate_many() takes no initial_state: every case starts from its own static equilibrium")
+    settings, options = settings_and_options(settings, options, **overrides)
+    if progress is not None and not callable(progress):
         raise TypeError(
-            f"simulate_many() got unexpected keyword argument(s) {unknown}; simulate() takes "
-            f"{sorted(_SIMULATE_OPTIONS)}"
+            f"progress must be a callable progress(cases_done, cases) or None, got {type(progress).__name__}"
         )
     if threads is not None and (
         isinstance(threads, bool) or not isinstance(threads, numbers.Integral) or not 1 <= threads <= 1024
@@ -181,12 +206,10 @@ def simulate_many(
         raise ValueError(f"errors must be 'raise' or 'return', got {errors!r}")
     if not systems:
         return []
-    kw = {**_SIMULATE_OPTIONS, **options, "progress_interval": progress_interval}
-    del kw["progress"]
     cases, shared, dofs = [], None, []
     for i, system in enumerate(systems):
         try:
-            args, settle_dofs = _run_arguments(system, **kw)
+            args, settle_dofs = _run_arguments(system, settings, options)
         except (TypeError, ValueError) as e:
             raise type(e)(f"systems[{i}]: {e}") from None
         cases.append(
@@ -205,11 +228,12 @@ def simulate_many(
     shared["max_output_bytes"] /= len(systems)
     raw = _core._run_many(
         cases,
+        settings,
         threads=threads or 0,
         progress=progress,
-        settle_tolerance=kw["settle_tolerance"],
-        settle_min_revolutions=kw["settle_min_revolutions"],
-        settle_max_revolutions=kw["settle_max_revolutions"],
+        settle_tolerance=options.settle_tolerance,
+        settle_min_revolutions=options.settle_min_revolutions,
+        settle_max_revolutions=options.settle_max_revolutions,
         **shared,
     )
     out: List[Optional[Result]] = []
@@ -235,36 +259,7 @@ def _result(raw, settle_dofs) -> Result:
     return Result(raw["names"], raw["dofs"], raw["data"], stats, raw["contact_loss"], report, raw["events"])
 
 
-def _run_arguments(
-    system,
-    *,
-    duration,
-    revolutions,
-    time_step,
-    decimation,
-    record_from,
-    record_last_revolutions,
-    gamma,
-    beta,
-    hht_alpha,
-    linear_solver,
-    residual_tolerance,
-    increment_tolerance,
-    max_iterations,
-    max_halvings,
-    max_output_bytes,
-    progress_interval,
-    settle,
-    settle_tolerance,
-    settle_dofs,
-    settle_min_revolutions,
-    settle_max_revolutions,
-    initial_state,
-    method,
-    tolerance,
-    max_step,
-    progress=None,
-):
+def _run_arguments(system, settings: SolverSettings, o: RunOptions, *, initial_state=None, progress=None):
     """simulate()'s arguments checked and turned into _core._run's (but for system and progress), and the
     watched DOFs' names (None without settle)."""
     if not isinstance(system, (_core.Mechanism, _core.CamFollowerModel)):
@@ -276,12 +271,15 @@ def _run_arguments(
         raise TypeError(
             f"progress must be a callable progress(steps_done, steps_planned) or None, got {type(progress).__name__}"
         )
-    # Numbers and counts checked here by name (pybind11 would say "incompatible function arguments").
+    duration, revolutions, decimation = o.duration, o.revolutions, o.decimation
+    record_from, record_last_revolutions = o.record_from, o.record_last_revolutions
+    max_output_bytes, progress_interval = o.max_output_bytes, o.progress_interval
+    settle, settle_tolerance, settle_dofs = o.settle, o.settle_tolerance, o.settle_dofs
+    settle_min_revolutions, settle_max_revolutions = o.settle_min_revolutions, o.settle_max_revolutions
+    time_step = settings.time_step
+    # Numbers and counts checked here by name (pybind11 would say "incompatible function arguments");
+    # the solver's settings were checked by SolverSettings.
     for name, value in (
-        ("time_step", time_step),
-        ("hht_alpha", hht_alpha),
-        ("residual_tolerance", residual_tolerance),
-        ("increment_tolerance", increment_tolerance),
         ("max_output_bytes", max_output_bytes),
         ("progress_interval", progress_interval),
         ("settle_tolerance", settle_tolerance),
@@ -289,17 +287,11 @@ def _run_arguments(
         ("revolutions", revolutions),
         ("record_from", record_from),
         ("record_last_revolutions", record_last_revolutions),
-        ("gamma", gamma),
-        ("beta", beta),
-        ("tolerance", tolerance),
-        ("max_step", max_step),
     ):
         if value is not None and (isinstance(value, bool) or not isinstance(value, numbers.Real)):
             raise TypeError(f"{name} must be a number, got {type(value).__name__}")
     for name, value in (
         ("decimation", decimation),
-        ("max_iterations", max_iterations),
-        ("max_halvings", max_halvings),
         ("settle_min_revolutions", settle_min_revolutions),
         ("settle_max_revolutions", settle_max_revolutions),
     ):
@@ -307,9 +299,8 @@ def _run_arguments(
             raise TypeError(f"{name} must be an integer, got {type(value).__name__} {value!r}")
         if not 0 <= value <= 2**53:
             raise ValueError(f"{name} must be in [0, 2^53], got {value}")
-    for name, value in (("linear_solver", linear_solver), ("method", method)):
-        if not isinstance(value, str):
-            raise TypeError(f"{name} must be a str, got {type(value).__name__}")
+    if not isinstance(settle, bool):
+        raise TypeError(f"settle must be a bool, got {type(settle).__name__}")
     if (duration is None) == (revolutions is None):
         raise ValueError("give exactly one of duration (s) or revolutions")
     if revolutions is not None or record_last_revolutions is not None:
@@ -373,25 +364,13 @@ def _run_arguments(
     cap = min(float(max_output_bytes), memory) if memory else float(max_output_bytes)
     args = dict(
         duration=float(duration),
-        time_step=time_step,
         decimation=decimation,
-        gamma=gamma,
-        beta=beta,
-        hht_alpha=hht_alpha,
-        linear_solver=linear_solver,
-        residual_tolerance=residual_tolerance,
-        increment_tolerance=increment_tolerance,
-        max_iterations=max_iterations,
-        max_halvings=max_halvings,
         record_from=start,
         max_output_bytes=cap,
         progress_interval=progress_interval,
         **settle_args,
         q0=q0,
         v0=v0,
-        method=method,
-        tolerance=tolerance,
-        max_step=max_step,
     )
     return args, (list(settle_dofs) if settle else None)
 
@@ -408,14 +387,6 @@ def _capped(call, args, max_output_bytes):
                 f"{_physical_memory() / 2**30:.3g} GiB)"
             ) from None
         raise
-
-
-#: simulate()'s keyword options and their defaults (simulate_many takes the same).
-_SIMULATE_OPTIONS = {
-    name: p.default
-    for name, p in inspect.signature(simulate).parameters.items()
-    if p.kind is inspect.Parameter.KEYWORD_ONLY
-}
 
 
 def _physical_memory() -> float:

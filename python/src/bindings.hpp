@@ -63,6 +63,7 @@ Follower follower_from(const py::handle& f);
 void bind_motion(py::module_& m);
 void bind_geometry(py::module_& m);
 void bind_model(py::module_& m);
+void bind_settings(py::module_& m);
 void bind_solver(py::module_& m);
 void bind_mechanism(py::module_& m);
 void bind_line_contact(py::module_& m);

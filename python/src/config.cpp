@@ -236,23 +236,22 @@ py::dict to_python(const config::CaseConfig& c) {
     else solver["revolutions"] = s.revolutions;
     if (s.time_step > 0.0) solver["time_step"] = s.time_step;
     else solver["steps_per_revolution"] = s.steps_per_revolution;
-    const std::string method = method_name(s.newmark);
-    if (method == "newmark") {
-        solver["gamma"] = s.newmark.gamma;
-        solver["beta"] = s.newmark.beta;
-        solver["hht_alpha"] = s.newmark.hht_alpha;
-    } else {
-        solver["method"] = method;
+    const SolverSettings& n = s.settings;
+    solver["method"] = method_name(n.method);
+    if (n.method == Method::newmark && (n.gamma != SolverSettings{}.gamma || n.beta != SolverSettings{}.beta)) {
+        solver["gamma"] = n.gamma;
+        solver["beta"] = n.beta;
     }
-    if (uses_tolerance(s.newmark.method)) {
-        solver["tolerance"] = s.newmark.tolerance;
-        solver["max_step"] = s.newmark.max_step;
+    if (n.method == Method::hht) solver["hht_alpha"] = n.hht_alpha;
+    if (n.tolerance) {
+        solver["tolerance"] = *n.tolerance;
+        solver["max_step"] = n.max_step;
     }
-    solver["linear_solver"] = linear_solver_name(s.newmark);
-    solver["residual_tolerance"] = s.newmark.residual_tolerance;
-    solver["increment_tolerance"] = s.newmark.increment_tolerance;
-    solver["max_iterations"] = s.newmark.max_iterations;
-    solver["max_halvings"] = s.newmark.max_halvings;
+    solver["linear_solver"] = linear_solver_name(n);
+    solver["residual_tolerance"] = n.residual_tolerance;
+    solver["increment_tolerance"] = n.increment_tolerance;
+    solver["max_iterations"] = n.max_iterations;
+    solver["max_halvings"] = n.max_halvings;
     if (s.settle) {
         solver["settle"] = true;
         solver["settle_tolerance"] = s.settle_tolerance;

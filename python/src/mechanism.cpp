@@ -651,15 +651,10 @@ void bind_mechanism(py::module_& m) {
 
     m.def(
         "_run_many",
-        [](const py::list& cases, double time_step, std::size_t decimation, std::optional<double> gamma,
-           std::optional<double> beta, double hht_alpha, const std::string& linear_solver, double residual_tolerance,
-           double increment_tolerance, int max_iterations, int max_halvings, double max_output_bytes, unsigned threads,
-           const py::object& progress, double progress_interval, double settle_tolerance, int settle_min_revolutions,
-           int settle_max_revolutions, const std::string& method, std::optional<double> tolerance,
-           std::optional<double> max_step) {
-            const NewmarkSettings s = settings_from(time_step, gamma, beta, hht_alpha, linear_solver, residual_tolerance,
-                                                    increment_tolerance, max_iterations, max_halvings, method, tolerance,
-                                                    max_step);
+        [](const py::list& cases, const SolverSettings& settings, std::size_t decimation, double max_output_bytes,
+           unsigned threads, const py::object& progress, double progress_interval, double settle_tolerance,
+           int settle_min_revolutions, int settle_max_revolutions) {
+            const SolverSettings s = as_run(settings);
             std::vector<ManyCase> jobs;
             jobs.reserve(cases.size());
             for (std::size_t i = 0; i < cases.size(); ++i) {
@@ -692,11 +687,9 @@ void bind_mechanism(py::module_& m) {
             }
             return run_many(jobs, threads, progress, progress_interval);
         },
-        py::arg("cases"), py::arg("time_step"), py::arg("decimation"), py::arg("gamma"), py::arg("beta"),
-        py::arg("hht_alpha"), py::arg("linear_solver"), py::arg("residual_tolerance"), py::arg("increment_tolerance"),
-        py::arg("max_iterations"), py::arg("max_halvings"), py::arg("max_output_bytes"), py::arg("threads"),
+        py::arg("cases"), py::arg("settings"), py::arg("decimation"), py::arg("max_output_bytes"), py::arg("threads"),
         py::arg("progress"), py::arg("progress_interval"), py::arg("settle_tolerance"), py::arg("settle_min_revolutions"),
-        py::arg("settle_max_revolutions"), py::arg("method"), py::arg("tolerance"), py::arg("max_step"),
+        py::arg("settle_max_revolutions"),
         "Internal: camfollower.simulate_many() calls this with (system, duration, record_from, settle_period,\n"
         "settle_dofs) per case and wraps each output in a Result.");
 }

@@ -12,6 +12,7 @@ PYBIND11_MODULE(_core, m) {
     camfollower::python::bind_motion(m);
     camfollower::python::bind_geometry(m);
     camfollower::python::bind_model(m);
+    camfollower::python::bind_settings(m);
     camfollower::python::bind_solver(m);
     camfollower::python::bind_mechanism(m);
     camfollower::python::bind_line_contact(m);

@@ -27,27 +27,10 @@
 
 namespace camfollower::python {
 
-inline NewmarkSettings settings_from(double time_step, std::optional<double> gamma, std::optional<double> beta, double hht_alpha,
-                              const std::string& linear_solver, double residual_tolerance, double increment_tolerance,
-                              int max_iterations, int max_halvings, const std::string& method = "newmark",
-                              std::optional<double> tolerance = std::nullopt, std::optional<double> max_step = std::nullopt) {
-    // gamma and beta default to the average-acceleration rule, or to HHT's own values.
-    NewmarkSettings s = NewmarkSettings::hht(hht_alpha, time_step);
-    if (method != "newmark" && (gamma || beta || hht_alpha != 0.0))
-        detail::fail("gamma, beta and hht_alpha apply to method 'newmark' only (method '", method, "' sets its own)");
-    set_method(s, method);
-    // With a tolerance, newmark and fox_goodwin adapt their steps and auto chooses among the adaptive methods.
-    if (tolerance) set_tolerance(s, *tolerance);
-    if (!uses_tolerance(s.method) && max_step)
-        detail::fail("max_step applies with a tolerance only (method '", method, "' without one runs fixed steps of time_step)");
-    if (max_step) s.max_step = *max_step;
-    if (gamma) s.gamma = *gamma;
-    if (beta) s.beta = *beta;
-    s.residual_tolerance = residual_tolerance;
-    s.increment_tolerance = increment_tolerance;
-    s.max_iterations = max_iterations;
-    s.max_halvings = max_halvings;
-    set_linear_solver(s, linear_solver);
+// The settings as a run uses them: a Runge-Kutta method without a tolerance runs under
+// runge_kutta_default_tolerance (the front ends' rule; SolverSettings keeps what was asked).
+inline SolverSettings as_run(SolverSettings s) {
+    give_default_tolerance(s);
     s.validate();
     return s;
 }
@@ -217,7 +200,7 @@ inline RunOptions run_options(double duration, std::size_t decimation, double re
 
 // One run with the GIL released (Ctrl-C and the progress callback honoured), as dict_of.
 template <class System>
-py::dict run_system(const System& system, double duration, const NewmarkSettings& settings, std::size_t decimation,
+py::dict run_system(const System& system, double duration, const SolverSettings& settings, std::size_t decimation,
                     double record_from, double max_output_bytes, const py::object& progress,
                     double progress_interval, const SettleOptions& settle,
                     const std::optional<Eigen::VectorXd>& q0 = std::nullopt,
@@ -328,17 +311,12 @@ template <class System, class Run>
 void bind_run(py::module_& m, Run run) {
     m.def(
         "_run",
-        [run](const System& system, double duration, double time_step, std::size_t decimation,
-              std::optional<double> gamma, std::optional<double> beta, double hht_alpha,
-              const std::string& linear_solver, double residual_tolerance, double increment_tolerance,
-              int max_iterations, int max_halvings, double record_from, double max_output_bytes,
-              const py::object& progress, double progress_interval, std::optional<double> settle_period,
-              const std::vector<int>& settle_dofs, double settle_tolerance, int settle_min_revolutions,
-              int settle_max_revolutions, const std::optional<Eigen::VectorXd>& q0,
-              const std::optional<Eigen::VectorXd>& v0, const std::string& method, std::optional<double> tolerance, std::optional<double> max_step) {
-            const NewmarkSettings s = settings_from(time_step, gamma, beta, hht_alpha, linear_solver, residual_tolerance,
-                                                    increment_tolerance, max_iterations, max_halvings, method, tolerance,
-                                                    max_step);
+        [run](const System& system, const SolverSettings& settings, double duration, std::size_t decimation,
+              double record_from, double max_output_bytes, const py::object& progress, double progress_interval,
+              std::optional<double> settle_period, const std::vector<int>& settle_dofs, double settle_tolerance,
+              int settle_min_revolutions, int settle_max_revolutions, const std::optional<Eigen::VectorXd>& q0,
+              const std::optional<Eigen::VectorXd>& v0) {
+            const SolverSettings s = as_run(settings);
             SettleOptions settle;
             if (settle_period) {
                 settle.enabled = true;
@@ -350,20 +328,18 @@ void bind_run(py::module_& m, Run run) {
             }
             return run(system, duration, s, decimation, record_from, max_output_bytes, progress, progress_interval, settle, q0, v0);
         },
-        py::arg("system"), py::arg("duration"), py::arg("time_step"), py::arg("decimation"), py::arg("gamma"),
-        py::arg("beta"), py::arg("hht_alpha"), py::arg("linear_solver"), py::arg("residual_tolerance"),
-        py::arg("increment_tolerance"), py::arg("max_iterations"), py::arg("max_halvings"), py::arg("record_from"),
+        py::arg("system"), py::arg("settings"), py::arg("duration"), py::arg("decimation"), py::arg("record_from"),
         py::arg("max_output_bytes"), py::arg("progress"), py::arg("progress_interval"), py::arg("settle_period") = py::none(),
         py::arg("settle_dofs") = std::vector<int>{}, py::arg("settle_tolerance") = 1e-4,
         py::arg("settle_min_revolutions") = 2, py::arg("settle_max_revolutions") = 200, py::arg("q0") = py::none(),
-        py::arg("v0") = py::none(), py::arg("method") = "newmark", py::arg("tolerance") = py::none(), py::arg("max_step") = py::none(),
+        py::arg("v0") = py::none(),
         "Internal: camfollower.simulate() calls this and wraps the output in a Result.");
 }
 
 // Shooting for the periodic steady state (solver/shooting.hpp), GIL released; Ctrl-C cancels (checked
 // every revolution). Returns the orbit as a dict for camfollower.periodic.
 template <class System>
-py::dict shoot_system(const System& system, const NewmarkSettings& settings, const ShootingOptions& options,
+py::dict shoot_system(const System& system, const SolverSettings& settings, const ShootingOptions& options,
                       const std::optional<Eigen::VectorXd>& q0, const std::optional<Eigen::VectorXd>& v0) {
     using Vector = typename System::Vector;
     const std::optional<Vector> q_start = initial_vector<System>(system, q0, "initial q");
@@ -409,14 +385,11 @@ template <class System, class Shoot>
 void bind_shoot(py::module_& m, Shoot shoot_fn) {
     m.def(
         "_shoot",
-        [shoot_fn](const System& system, double time_step, std::optional<double> gamma, std::optional<double> beta,
-                   double hht_alpha, const std::string& linear_solver, double residual_tolerance,
-                   double increment_tolerance, int max_iterations, int max_halvings, std::optional<double> period,
+        [shoot_fn](const System& system, const SolverSettings& settings, std::optional<double> period,
                    double start_time, double tolerance, int shooting_max_iterations, int warmup_revolutions,
                    double perturbation, bool multipliers, const std::optional<Eigen::MatrixXd>& monodromy,
                    const std::optional<Eigen::VectorXd>& q0, const std::optional<Eigen::VectorXd>& v0) {
-            const NewmarkSettings s = settings_from(time_step, gamma, beta, hht_alpha, linear_solver, residual_tolerance,
-                                                    increment_tolerance, max_iterations, max_halvings);
+            const SolverSettings s = as_run(settings);
             ShootingOptions o;
             if (period) o.period = *period;
             o.start_time = start_time;
@@ -428,9 +401,7 @@ void bind_shoot(py::module_& m, Shoot shoot_fn) {
             if (monodromy) o.monodromy = *monodromy;
             return shoot_fn(system, s, o, q0, v0);
         },
-        py::arg("system"), py::arg("time_step"), py::arg("gamma"), py::arg("beta"), py::arg("hht_alpha"),
-        py::arg("linear_solver"), py::arg("residual_tolerance"), py::arg("increment_tolerance"), py::arg("max_iterations"),
-        py::arg("max_halvings"), py::arg("period"), py::arg("start_time"), py::arg("tolerance"),
+        py::arg("system"), py::arg("settings"), py::arg("period"), py::arg("start_time"), py::arg("tolerance"),
         py::arg("shooting_max_iterations"), py::arg("warmup_revolutions"), py::arg("perturbation"), py::arg("multipliers"),
         py::arg("monodromy"), py::arg("q0"), py::arg("v0"),
         "Internal: camfollower.periodic_steady_state() calls this and wraps the output in a PeriodicOrbit.");

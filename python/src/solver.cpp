@@ -6,6 +6,11 @@
 namespace camfollower::python {
 
 void bind_solver(py::module_& m) {
+    // The integration methods from the one table (solver/settings.hpp): name -> (order, summary).
+    py::dict methods;
+    for (const MethodTraits& t : method_table) methods[py::str(t.name)] = py::make_tuple(t.order, t.summary);
+    m.attr("METHODS") = methods;
+    m.attr("RUNGE_KUTTA_DEFAULT_TOLERANCE") = runge_kutta_default_tolerance;
     bind_run<CamFollowerModel>(m, [](const CamFollowerModel& system, auto&&... args) {
         return run_system(system, args...);
     });

@@ -767,20 +767,22 @@ SolverConfig read_solver(const Section& s) {
     v.time_step = s.quantity("time_step", "s", 0.0);
     if (s.has("time_step") && !(v.time_step > 0.0)) s.fail("time_step", "must be > 0 s");
     v.steps_per_revolution = s.integer("steps_per_revolution", v.steps_per_revolution, 16, 1LL << 26);
-    const std::string scheme = s.choice("scheme", "average_acceleration",
-                                        {"average_acceleration", "hht", "newmark", "fox_goodwin", "dormand_prince", "dop853", "radau", "auto"});
-    NewmarkSettings& n = v.newmark;
-    if (scheme == "hht") {
-        n = NewmarkSettings::hht(s.quantity("hht_alpha", "-", -0.05));
-    } else if (scheme == "newmark") {
+    // The methods' names (solver/settings.hpp), and "average_acceleration": newmark at gamma = 1/2, beta = 1/4.
+    std::vector<std::string_view> schemes{"average_acceleration"};
+    for (const MethodTraits& t : method_table) schemes.push_back(t.name);
+    const std::string scheme = s.choice("scheme", "average_acceleration", schemes);
+    SolverSettings& n = v.settings;
+    if (scheme != "average_acceleration") n.method = method_from_name(scheme);
+    if (n.method == Method::hht) n.hht_alpha = s.quantity("hht_alpha", "-", default_hht_alpha);
+    if (scheme == "newmark") {
         n.gamma = s.quantity("gamma", "-");
         n.beta = s.quantity("beta", "-");
-    } else if (scheme != "average_acceleration") {
-        set_method(n, scheme);  // fox_goodwin, dormand_prince, dop853, radau, auto
     }
-    // With a tolerance, the Newmark schemes adapt their steps and "auto" chooses among the adaptive methods.
-    if (s.has("tolerance")) set_tolerance(n, s.quantity("tolerance", "-", n.tolerance));
-    if (uses_tolerance(n.method)) {
+    // With a tolerance every method adapts its steps ("auto" chooses among dop853 and radau); the
+    // Runge-Kutta methods have one by default.
+    if (s.has("tolerance")) n.tolerance = s.quantity("tolerance", "-");
+    give_default_tolerance(n);
+    if (n.tolerance) {
         n.max_step = s.quantity("max_step", "s", n.max_step);
     } else if (s.has("max_step")) {
         s.fail("max_step", "applies with a tolerance only (scheme = \"" + scheme + "\" without one runs fixed steps of time_step)");
@@ -803,7 +805,7 @@ SolverConfig read_solver(const Section& s) {
               "residual_tolerance", "increment_tolerance", "max_iterations", "max_halvings", "linear_solver", "settle",
               "tolerance", "max_step",
               "settle_tolerance", "settle_dofs", "settle_min_revolutions", "settle_max_revolutions"});
-    NewmarkSettings check = n;
+    SolverSettings check = n;
     check.time_step = 1.0;
     located(s, [&] { check.validate(); });
     return v;

@@ -22,7 +22,7 @@ struct SolverConfig {
     double duration = 0.0;              // s
     double time_step = 0.0;             // s; 0: period / steps_per_revolution
     long long steps_per_revolution = 32768;
-    NewmarkSettings newmark;            // scheme and Newton tolerances (its time_step: see time_step_for)
+    SolverSettings settings;           // method and Newton tolerances (its time_step: see time_step_for)
     bool settle = false;                // first settle on the periodic response
     double settle_tolerance = 1e-4;
     std::vector<std::string> settle_dofs;  // empty: each contact's follower DOF

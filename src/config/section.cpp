@@ -262,7 +262,7 @@ std::vector<std::string> Section::texts(std::string_view key) const {
 }
 
 std::string Section::choice(std::string_view key, std::string_view fallback,
-                            std::initializer_list<std::string_view> allowed) const {
+                            const std::vector<std::string_view>& allowed) const {
     const std::string v = text(key, fallback);
     std::string list;
     for (std::string_view a : allowed) {

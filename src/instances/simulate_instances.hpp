@@ -18,10 +18,10 @@
 // CAMFOLLOWER_SIMULATE_INSTANCES(, S) defines them (in exactly one unit).
 #define CAMFOLLOWER_SIMULATE_INSTANCES(PREFIX, SYSTEM)                                                           \
     PREFIX template camfollower::RunResult<SYSTEM> camfollower::simulate<SYSTEM>(                                \
-        const SYSTEM&, const camfollower::NewmarkSettings&, const camfollower::RunOptions&,                      \
+        const SYSTEM&, const camfollower::SolverSettings&, const camfollower::RunOptions&,                      \
         const std::optional<SYSTEM::Vector>&, const std::optional<SYSTEM::Vector>&);                             \
     PREFIX template camfollower::PeriodicOrbit camfollower::periodic_orbit<SYSTEM>(                              \
-        const SYSTEM&, const camfollower::NewmarkSettings&, camfollower::ShootingOptions,                       \
+        const SYSTEM&, const camfollower::SolverSettings&, camfollower::ShootingOptions,                       \
         const std::optional<SYSTEM::Vector>&, const std::optional<SYSTEM::Vector>&, const std::function<bool()>&);
 
 CAMFOLLOWER_SIMULATE_INSTANCES(extern, camfollower::CamFollowerModel)

@@ -24,7 +24,7 @@ int main() {
     cf::RunOptions options;
     options.duration = mine.period();
     options.record.decimation = 10;
-    const cf::RunResult<cf::Mechanism<>> run = cf::simulate(mine, cf::NewmarkSettings{}, options);
+    const cf::RunResult<cf::Mechanism<>> run = cf::simulate(mine, cf::SolverSettings{}, options);
     const double* force = run.recording.channel("cam.force");
 
     const auto preset = cf::presets::paper();                  // the paper's 7-DOF model

@@ -108,7 +108,7 @@ TEST_CASE("modal analysis: contact-free camshaft bearing mode and the specified 
 
 TEST_CASE("Sherman-Morrison and dense LU give the same trajectory") {
     const Model m;
-    NewmarkSettings s;
+    SolverSettings s;
     const auto a = run(m, s, 0.3 * m.period(), 10);
     s.linear_solver = LinearSolver::dense_lu;
     const auto b = run(m, s, 0.3 * m.period(), 10);
@@ -122,7 +122,7 @@ TEST_CASE("Sherman-Morrison and dense LU give the same trajectory") {
 
 TEST_CASE("one revolution: y4 follows h, the dwell starts at rest, Newton needs about two iterations") {
     const Model m;
-    NewmarkSettings s;
+    SolverSettings s;
     const auto r = run(m, s, m.period(), 1);
     CHECK(r.stats.halvings == 0);
     CHECK(r.stats.mean_iterations() < 2.5);
@@ -144,7 +144,7 @@ TEST_CASE("rigid limit: with stiffnesses x1e3 the follower acceleration approach
                                  "guide_stiffness", "rod_stiffness"})
             p.set(name, p.get(name) * scale);
         const Model m(p);
-        NewmarkSettings s;
+        SolverSettings s;
         s.time_step = dt;
         const auto r = run(m, s, m.period(), 10);
         double worst = 0;
@@ -165,7 +165,7 @@ TEST_CASE("contact loss at high speed is detected and reported as intervals") {
     CamFollowerParameters p;
     p.camshaft_speed_rpm = 3000;  // inertia ~ 16 x: the 182 N preload cannot hold the follower
     const Model m(p);
-    NewmarkSettings s;
+    SolverSettings s;
     s.time_step = 1e-6;
     const auto r = run(m, s, m.period(), 1);
     const auto losses = Model::contact_loss(r.final_state.workspace, r.final_state.t);
@@ -229,7 +229,7 @@ TEST_CASE("contact damping: exact (non-symmetric) tangent keeps Newton fast, bot
     p.contact_exponent = 1.5;
     p.contact_stiffness = 1e11;  // N/m^1.5: tangent 1.5 F / delta ~ 1.9e8 N/m at the 1.5 um static penetration
     const Model m(p);
-    NewmarkSettings s;
+    SolverSettings s;
     const auto a = run(m, s, 0.6 * m.period(), 10);
     s.linear_solver = LinearSolver::dense_lu;
     const auto b = run(m, s, 0.6 * m.period(), 10);
@@ -243,7 +243,7 @@ TEST_CASE("contact damping: exact (non-symmetric) tangent keeps Newton fast, bot
     // The damped contact dissipates: less residual vibration on the top dwell than without it.
     p.contact_damping = ContactDampingModel::none;
     const Model undamped(p);
-    const auto c = run(undamped, NewmarkSettings{}, 0.6 * m.period(), 10);
+    const auto c = run(undamped, SolverSettings{}, 0.6 * m.period(), 10);
     auto dwell_vibration = [&](const Histories<Model>& r) {
         double worst = 0;
         for (std::size_t i = 0; i < r.rows; ++i)

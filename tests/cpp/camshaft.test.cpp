@@ -198,7 +198,7 @@ TEST_CASE("a twisting cam: the moment on the shaft is the derivative of the cont
 
 TEST_CASE("a stiff drive: the twisting camshaft tends to the rigid one (the paper preset)") {
     const Mechanism<7> rigid = presets::paper();
-    NewmarkSettings s;
+    SolverSettings s;
     const double duration = 0.5 * rigid.period();
     const auto reference = run(rigid, s, duration, 20);
     double fmax = 0.0;
@@ -262,7 +262,7 @@ TEST_CASE("the sparse backend (KLU, CHOLMOD) reproduces the dense one on a four-
         INFO((damped ? "with" : "without") << " contact damping");
         const Mechanism<> m(camshaft(4, 8, damped));
         REQUIRE(m.size() > sparse_backend_threshold);
-        NewmarkSettings s;
+        SolverSettings s;
         s.time_step = 2e-5;
         s.backend = Backend::dense;
         const double duration = 0.25 * m.period();

@@ -30,25 +30,25 @@ LinearSystem<2> coupled(double k, double c) {
     return s;
 }
 
-NewmarkSettings automatic(double output_interval, double tolerance) {
-    NewmarkSettings s;
-    set_method(s, "auto");
+SolverSettings automatic(double output_interval, double tolerance) {
+    SolverSettings s;
+    s.method = method_from_name("auto");
     s.time_step = output_interval;
-    set_auto_tolerance(s, tolerance);
+    s.tolerance = tolerance;
     return s;
 }
 
 // `chosen_by_auto` runs as the method auto names, value for value.
 template <class System>
-void check_same_run(const System& system, const NewmarkSettings& chosen_by_auto, const char* method, double duration) {
+void check_same_run(const System& system, const SolverSettings& chosen_by_auto, const char* method, double duration) {
     RunOptions o;
     o.duration = duration;
     const auto r = simulate(system, chosen_by_auto, o);
     CHECK(std::string(r.method) == method);
     CHECK(std::string(r.requested_method) == "auto");
     CHECK(r.method_choice.rfind(std::string(method) + ": ", 0) == 0);
-    NewmarkSettings named = chosen_by_auto;
-    set_method(named, method);
+    SolverSettings named = chosen_by_auto;
+    named.method = method_from_name(method);
     const auto direct = simulate(system, named, o);
     CHECK(direct.method_choice.empty());
     REQUIRE(direct.recording.rows == r.recording.rows);
@@ -124,7 +124,7 @@ TEST_CASE("Auto under a tolerance above 1e-5 bounds radau's steps by the output 
     CHECK(loose.settings.method == Method::radau);
     CHECK(loose.settings.max_step == dt);
     CHECK_THAT(loose.reason, Catch::EndsWith("; max_step = the output interval 3.906e-05 s (tolerance above 1e-05)"));
-    NewmarkSettings bounded = automatic(dt, 1e-4);
+    SolverSettings bounded = automatic(dt, 1e-4);
     bounded.max_step = 4 * dt;
     CHECK(choose_method(damped, bounded, start).settings.max_step == 4 * dt);
     const MethodChoice tight = choose_method(damped, automatic(dt, 1e-5), start);
@@ -143,8 +143,8 @@ TEST_CASE("Auto at a fixed step says why it took Fox-Goodwin or average accelera
     const Mechanism<presets::paper_dofs> paper = presets::paper();
     RunOptions o;
     o.duration = paper.period() / 64;
-    NewmarkSettings s;
-    set_method(s, "auto");
+    SolverSettings s;
+    s.method = method_from_name("auto");
     s.time_step = paper.period() / 8192;
     const auto fine = simulate(paper, s, o);
     CHECK(std::string(fine.method) == "fox_goodwin");
@@ -155,18 +155,15 @@ TEST_CASE("Auto at a fixed step says why it took Fox-Goodwin or average accelera
     CHECK_THAT(coarse.method_choice, Catch::StartsWith("newmark (average acceleration): time_step 7.81"));
 }
 
-TEST_CASE("Auto under a tolerance refuses what it cannot honour, naming it") {
-    NewmarkSettings named;
-    set_method(named, "dop853");
-    CHECK_THROWS_WITH(set_auto_tolerance(named, 1e-6), Catch::Contains("set_auto_tolerance: the method must be 'auto', got 'dop853'"));
-    NewmarkSettings s = automatic(1e-3, 1e-6);
-    CHECK(std::string(method_name(s)) == "auto");
-    CHECK(uses_tolerance(s.method));
-    s.adaptive = false;
-    CHECK_THROWS_WITH(s.validate(), Catch::Contains("adaptive = false needs a named method"));
+TEST_CASE("Auto refuses settings it would ignore, naming them") {
+    SolverSettings s = automatic(1e-3, 1e-6);
+    CHECK(std::string(method_name(s.method)) == "auto");
     s = automatic(1e-3, 0.0);
-    CHECK_THROWS_WITH(s.validate(), Catch::Contains("tolerance"));
+    CHECK_THROWS_WITH(s.validate(), Catch::Contains("tolerance must be in [1e-13, 0.1]"));
     s = automatic(1e-3, 1e-6);
     s.beta = 1.0 / 12.0;
-    CHECK_THROWS_WITH(s.validate(), Catch::Contains("method 'auto' chooses gamma and beta itself"));
+    CHECK_THROWS_WITH(s.validate(), Catch::Contains("gamma and beta apply to method 'newmark' only (method 'auto' sets its own)"));
+    s = automatic(1e-3, 1e-6);
+    s.hht_alpha = -0.1;
+    CHECK_THROWS_WITH(s.validate(), Catch::Contains("hht_alpha applies to method 'hht' only (method 'auto')"));
 }

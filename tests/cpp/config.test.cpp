@@ -81,7 +81,7 @@ cf::MechanismBuilder two_mass_by_hand() {
 template <class F>
 void simulate_both(const cf::MechanismBuilder& a, const cf::MechanismBuilder& b, F&& check) {
     const cf::Mechanism<Eigen::Dynamic> ma(a), mb(b);
-    cf::NewmarkSettings s;
+    cf::SolverSettings s;
     s.time_step = ma.period() / 8000;
     cf::RunOptions o;
     o.duration = ma.period();

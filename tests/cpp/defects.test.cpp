@@ -125,7 +125,7 @@ TEST_CASE("a run on an eccentric cam starts in its quasi-static state: no start-
     // Free vibration left after a revolution, quasi-static start vs a start at rest: the follower's
     // deviation from the quasi-static lift is the forced response (tiny far below resonance) plus
     // what the start leaves ringing.
-    NewmarkSettings s;
+    SolverSettings s;
     s.time_step = m.period() / 4096;
     const auto from_qs = run(m, s, m.period(), 1);
     RunOptions options;
@@ -223,7 +223,7 @@ TEST_CASE("guide clearance: a free rod rattles between the walls with the closed
     // walls the rod flies 2 c at speed v0. Period = 2 (2 c / v0 + pi sqrt(m / k)).
     const double c = 10e-6, v0 = 0.01, k = 2.5e8, mass = 0.2;
     const Mechanism<> m = rod_in_guide(c, 0.0, 0.0);
-    NewmarkSettings s;
+    SolverSettings s;
     s.time_step = 1e-7;
     RunOptions options;
     options.duration = 0.02;
@@ -248,7 +248,7 @@ TEST_CASE("guide clearance: a free rod rattles between the walls with the closed
 TEST_CASE("guide clearance with friction: a seated rod sliding axially decelerates at mu N / m (closed form)") {
     const double mu = 0.15, load = 50.0, v0 = 0.5, mass_w = 0.3;
     const Mechanism<> m = rod_in_guide(10e-6, mu, load, 1.0);  // 1 N/m: holds w statically, negligible
-    NewmarkSettings s;
+    SolverSettings s;
     s.time_step = 1e-6;
     RunOptions options;
     options.duration = 0.05;

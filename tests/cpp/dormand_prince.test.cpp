@@ -19,9 +19,9 @@ using namespace camfollower;
 
 namespace {
 
-NewmarkSettings dopri(double time_step, double tolerance = 1e-6, const char* method = "dormand_prince") {
-    NewmarkSettings s;
-    set_method(s, method);
+SolverSettings dopri(double time_step, double tolerance = 1e-6, const char* method = "dormand_prince") {
+    SolverSettings s;
+    s.method = method_from_name(method);
     s.time_step = time_step;
     s.tolerance = tolerance;
     return s;
@@ -46,8 +46,8 @@ TEST_CASE("Dormand-Prince 5(4) and 8(5,3) with fixed steps are fifth and eighth 
     for (const Scheme& scheme : schemes) {
         double errors[4];
         for (int i = 0; i <= scheme.halvings; ++i) {
-            NewmarkSettings s = dopri(T / (scheme.coarsest * (1 << i)), 1e-6, scheme.method);
-            s.adaptive = false;
+            SolverSettings s = dopri(T / (scheme.coarsest * (1 << i)), 1e-6, scheme.method);
+            s.tolerance.reset();
             errors[i] = max_error(sdof, s, 3 * T);
         }
         for (int i = 0; i < scheme.halvings; ++i) {
@@ -66,8 +66,8 @@ TEST_CASE("The dense output between fixed steps keeps the order of the steps") {
     for (const Scheme& scheme : schemes) {
         double errors[3];
         for (int i = 0; i < 3; ++i) {
-            NewmarkSettings s = dopri(T / (8.0 * scheme.coarsest * (1 << i)), 1e-6, scheme.method);  // output 8 times per step
-            s.adaptive = false;
+            SolverSettings s = dopri(T / (8.0 * scheme.coarsest * (1 << i)), 1e-6, scheme.method);  // output 8 times per step
+            s.tolerance.reset();
             s.max_step = 8.0 * s.time_step;
             errors[i] = max_error(sdof, s, 3 * T);
         }
@@ -102,7 +102,7 @@ TEST_CASE("Dormand-Prince on the paper preset: contact force against Richardson-
     const int grid = 512;  // output rows per revolution
     // Reference: average-acceleration Newmark is second order, so (4 F(h/2) - F(h)) / 3 cancels the h^2 term.
     auto newmark = [&](int per_output) {
-        NewmarkSettings s;
+        SolverSettings s;
         s.time_step = T / (grid * per_output);
         return run(m, s, T, std::size_t(per_output));
     };
@@ -172,9 +172,9 @@ TEST_CASE("Fox-Goodwin (beta = 1/12) is fourth order on an undamped oscillator, 
     system.q0[0] = 0.01;
     const double w = std::sqrt(free.k / free.m), T = 2 * pi / w;
     auto error = [&](const char* method, double dt) {
-        NewmarkSettings s;
+        SolverSettings s;
         s.time_step = dt;
-        set_method(s, method);
+        s.method = method_from_name(method);
         const auto r = run(system, s, 5 * T);
         double err = 0.0;
         for (std::size_t i = 0; i < r.rows; ++i) err = std::max(err, std::abs(r.q[i] - 0.01 * std::cos(w * r.t[i])));
@@ -185,14 +185,14 @@ TEST_CASE("Fox-Goodwin (beta = 1/12) is fourth order on an undamped oscillator, 
         INFO(method << ": errors " << e1 << ", " << e2);
         CHECK(std::log2(e1 / e2) == Approx(order).margin(0.1));
     }
-    NewmarkSettings s;
-    set_method(s, "fox_goodwin");
-    CHECK(s.gamma == 0.5);
-    CHECK(s.beta == Approx(1.0 / 12.0));
-    CHECK(std::string(method_name(s)) == "fox_goodwin");
+    SolverSettings s;
+    s.method = method_from_name("fox_goodwin");
+    CHECK(newmark_parameters(s).gamma == 0.5);
+    CHECK(newmark_parameters(s).beta == 1.0 / 12.0);
+    CHECK(std::string(method_name(s.method)) == "fox_goodwin");
     s.time_step = 3.0 / w;  // beyond sqrt(6) / w
     CHECK_THROWS_WITH(run(system, s, 10 * T), Catch::Contains("exceeds the stability limit"));
-    CHECK_THROWS_WITH(set_method(s, "rk4"), Catch::Contains("method must be 'newmark', 'fox_goodwin', 'dormand_prince', 'dop853', 'radau' or 'auto', got 'rk4'"));
+    CHECK_THROWS_WITH(s.method = method_from_name("rk4"), Catch::Contains("method must be 'newmark', 'fox_goodwin', 'hht', 'dormand_prince', 'dop853', 'radau' or 'auto', got 'rk4'"));
 }
 
 TEST_CASE("Method auto takes Fox-Goodwin within its stability limit sqrt(6) / w (10 % margin), else average acceleration") {
@@ -203,26 +203,26 @@ TEST_CASE("Method auto takes Fox-Goodwin within its stability limit sqrt(6) / w 
     system.q0[0] = 0.01;
     const double limit = 0.9 * std::sqrt(6.0) / 20.0;
     for (auto [dt, chosen] : {std::pair{0.98 * limit, "fox_goodwin"}, std::pair{1.02 * limit, "newmark"}}) {
-        NewmarkSettings s;
-        set_method(s, "auto");
+        SolverSettings s;
+        s.method = method_from_name("auto");
         s.time_step = dt;
         RunOptions o;
         o.duration = 40 * dt;
         const auto r = simulate(system, s, o);
         CHECK(std::string(r.method) == chosen);
         CHECK(std::string(r.requested_method) == "auto");
-        NewmarkSettings same;
-        set_method(same, chosen);
+        SolverSettings same;
+        same.method = method_from_name(chosen);
         same.time_step = dt;
         const auto direct = simulate(system, same, o);
         REQUIRE(direct.recording.rows == r.recording.rows);
         for (std::size_t i = 0; i < r.recording.rows; ++i) CHECK(r.recording.at("q.0", i) == direct.recording.at("q.0", i));
     }
-    NewmarkSettings s;
-    set_method(s, "auto");
-    CHECK(std::string(method_name(s)) == "auto");
-    s.hht_alpha = -0.1, s.gamma = 0.6, s.beta = 0.3025;
-    CHECK_THROWS_WITH(s.validate(), Catch::Contains("method 'auto' chooses gamma and beta itself"));
+    SolverSettings s;
+    s.method = method_from_name("auto");
+    CHECK(std::string(method_name(s.method)) == "auto");
+    s.gamma = 0.6, s.beta = 0.3025;
+    CHECK_THROWS_WITH(s.validate(), Catch::Contains("gamma and beta apply to method 'newmark' only (method 'auto' sets its own)"));
 }
 
 TEST_CASE("Both explicit methods report steps bounded by stability on a stiff system, none on a soft one") {
@@ -247,18 +247,18 @@ TEST_CASE("Both explicit methods refuse tolerances and steps they cannot honour,
     const auto system = sdof.system();
     for (const Scheme& scheme : schemes) {
         CAPTURE(scheme.method);
-        NewmarkSettings named;
-        set_method(named, scheme.method);
-        CHECK(std::string(method_name(named)) == scheme.method);
+        SolverSettings named;
+        named.method = method_from_name(scheme.method);
+        CHECK(std::string(method_name(named.method)) == scheme.method);
         CHECK(is_runge_kutta(named.method));
         for (double tol : {0.0, -1e-6, 1e-14, 0.5, std::nan("")})
             CHECK_THROWS_WITH(run(system, dopri(1e-3, tol, scheme.method), 0.1), Catch::Contains("tolerance must be in [1e-13, 0.1]"));
-        NewmarkSettings s = dopri(1e-3, 1e-6, scheme.method);
+        SolverSettings s = dopri(1e-3, 1e-6, scheme.method);
         s.max_step = -1.0;
         CHECK_THROWS_WITH(run(system, s, 0.1), Catch::Contains("max_step must be 0 (unbounded) or finite and >= 1e-12 s"));
         // A fixed step far beyond the stability limit blows up: reported, not returned.
         s.max_step = 0.0;
-        s.adaptive = false;
+        s.tolerance.reset();
         LinearSystem<1> rigid;
         rigid.K(0, 0) = 1e12;
         rigid.q0[0] = 1e-3;
@@ -276,8 +276,8 @@ TEST_CASE("Both explicit methods sum the solution with compensation: no rounding
     const double U = 0.7;
     for (const Scheme& scheme : schemes) {
         for (const bool adaptive : {false, true}) {
-            NewmarkSettings s = dopri(1.0, 1e-10, scheme.method);
-            s.adaptive = adaptive;
+            SolverSettings s = dopri(1.0, 1e-10, scheme.method);
+            if (!adaptive) s.tolerance.reset();
             s.max_step = adaptive ? 0.0 : 0.1;
             RunOptions o;
             o.duration = 1e4;
@@ -304,7 +304,7 @@ TEST_CASE("The adaptive methods stop within an output interval when the progress
     const auto system = sdof.system();
     for (const char* method : {"dormand_prince", "dop853", "radau"}) {
         CAPTURE(method);
-        NewmarkSettings s = dopri(0.05, 1e-6, method);
+        SolverSettings s = dopri(0.05, 1e-6, method);
         s.max_step = 1e-9;
         RunOptions options;
         options.duration = 0.1;
@@ -321,7 +321,7 @@ TEST_CASE("The adaptive methods stop within an output interval when the progress
 TEST_CASE("A recording window without rows is refused by the option's name") {
     const DrivenSdof sdof;
     const auto system = sdof.system();
-    NewmarkSettings s;
+    SolverSettings s;
     s.time_step = 1e-3;
     RunOptions options;
     options.duration = 0.1;

@@ -33,7 +33,7 @@ struct DrivenSdof {
 };
 
 // The largest |x - exact| over the recorded rows of a run with settings `s`.
-inline double max_error(const DrivenSdof& sdof, const camfollower::NewmarkSettings& s, double duration) {
+inline double max_error(const DrivenSdof& sdof, const camfollower::SolverSettings& s, double duration) {
     const auto r = run(sdof.system(), s, duration);
     double err = 0.0;
     for (std::size_t i = 0; i < r.rows; ++i) err = std::max(err, std::abs(r.q[i] - sdof.exact(r.t[i])));

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Events (solver/events.hpp): contact made and lost located against the closed form of a mass
-// bouncing on a linear unilateral spring; Dormand-Prince 5(4) and 8(5,3) ending their steps there keep
+// Events (solver/events.hpp; every method locates them at the closed-form times of a bouncing mass:
+// steppers.test.cpp): Dormand-Prince 5(4) and 8(5,3) ending their steps there keep
 // their accuracy across the kinks (against the same system without switching functions); events on
 // the paper preset above its jump speed agree between methods and with the recorded penetration.
 #include <catch2/catch.hpp>
@@ -10,75 +10,16 @@
 
 #include "camfollower/model/presets/paper.hpp"
 #include "camfollower/solver/simulate.hpp"
+#include "bouncer.hpp"
 #include "simulate_instances.hpp"  // simulate() for the library's systems, compiled once
 
 using namespace camfollower;
 
 namespace {
 
-// A mass m dropped from height h0 at rest onto a linear spring k (no damping, gravity g): flight,
-// contact while x < 0 (force k (-x), a kink in the force at x = 0), flight again. Closed form:
-// contact at t1 = sqrt(2 h0 / g) with speed v1 = g t1; in contact x = -d + d cos(w s) - (v1 / w)
-// sin(w s), d = m g / k, w = sqrt(k / m), leaving at s = (2 pi - 2 phi) / w, tan phi = v1 / (w d),
-// with speed v1; the flight back lasts 2 v1 / g; and so on, periodically.
-template <bool WithEvents>
-struct Bouncer {
-    using Vector = Eigen::Matrix<double, 1, 1>;
-    using Matrix = Eigen::Matrix<double, 1, 1>;
-    struct Workspace {};
-    double m = 0.5, k = 2.0e5, g = 9.81, h0 = 0.02;
-    Matrix M = Matrix::Constant(0.5), zero = Matrix::Zero();
-
-    int size() const { return 1; }
-    const Matrix& mass() const { return M; }
-    const Matrix& damping() const { return zero; }
-    const Matrix& stiffness() const { return zero; }
-    Vector initial_displacement() const { return Vector::Constant(h0); }
-    Workspace workspace() const { return {}; }
-    void prepare(double, Workspace&) const {}
-    // f - p with p = -m g (gravity) and the spring's internal force -k (-x) when x < 0.
-    void force(const Workspace&, const Vector& q, const Vector&, Vector& f) const {
-        f[0] = m * g - (q[0] < 0.0 ? k * -q[0] : 0.0);
-    }
-    int max_rank() const { return 1; }
-    void tangent(const Workspace&, const Vector& q, const Vector&, double cq, double, LowRank<Vector>& uv) const {
-        if (q[0] < 0.0) uv.add(Vector::Ones(), Vector::Constant(cq * k));
-    }
-    template <bool E = WithEvents, std::enable_if_t<E, int> = 0>
-    std::vector<std::string> event_names() const { return {"ground"}; }
-    template <bool E = WithEvents, std::enable_if_t<E, int> = 0>
-    void event_values(const Workspace&, const Vector& q, const Vector&, double* out) const { out[0] = -q[0]; }
-
-    double flight() const { return 2.0 * std::sqrt(2.0 * h0 / g); }  // between two contacts
-    double impact_speed() const { return std::sqrt(2.0 * g * h0); }
-    double contact_time() const {
-        const double w = std::sqrt(k / m), d = m * g / k;
-        return (2.0 * pi - 2.0 * std::atan(impact_speed() / (w * d))) / w;
-    }
-    // Exact event times (made, lost, made, ...) up to t_end.
-    std::vector<double> event_times(double t_end) const {
-        std::vector<double> out;
-        double t = 0.5 * flight();
-        for (int i = 0; t <= t_end; ++i) {
-            out.push_back(t);
-            t += i % 2 == 0 ? contact_time() : flight();
-        }
-        return out;
-    }
-    // Exact height at t.
-    double height(double t) const {
-        const double v1 = impact_speed(), w = std::sqrt(k / m), d = m * g / k;
-        const double period = flight() + contact_time();
-        double s = std::fmod(t + 0.5 * flight(), period);  // time since the last lift-off (or start - t1)
-        if (s < flight()) return v1 * s - 0.5 * g * s * s;
-        s -= flight();
-        return -d + d * std::cos(w * s) - (v1 / w) * std::sin(w * s);
-    }
-};
-
-NewmarkSettings dopri(double tolerance, double output, const char* method = "dormand_prince") {
-    NewmarkSettings s;
-    set_method(s, method);
+SolverSettings dopri(double tolerance, double output, const char* method = "dormand_prince") {
+    SolverSettings s;
+    s.method = method_from_name(method);
     s.tolerance = tolerance;
     s.time_step = output;
     return s;
@@ -94,24 +35,6 @@ RunOptions for_duration(double duration) {
 }  // namespace
 
 constexpr const char* explicit_methods[] = {"dormand_prince", "dop853"};
-
-TEST_CASE("events: Dormand-Prince 5(4) and 8(5,3) locate every contact made and lost at the closed-form times") {
-    const Bouncer<true> b;
-    const double duration = 3.2 * (b.flight() + b.contact_time());
-    const std::vector<double> exact = b.event_times(duration);
-    REQUIRE(exact.size() == 6);
-    for (const char* method : explicit_methods) {
-        CAPTURE(method);
-        const RunResult<Bouncer<true>> r = simulate(b, dopri(1e-10, 1e-3, method), for_duration(duration));
-        REQUIRE(r.events.size() == exact.size());
-        for (std::size_t i = 0; i < exact.size(); ++i) {
-            CAPTURE(i, r.events[i].time, exact[i]);
-            CHECK(r.events[i].index == 0);
-            CHECK(r.events[i].direction == (i % 2 == 0 ? 1 : -1));
-            CHECK(std::abs(r.events[i].time - exact[i]) < 1e-9 * duration);
-        }
-    }
-}
 
 TEST_CASE("events: ending steps at the kinks keeps both explicit methods accurate and cheaper") {
     const Bouncer<true> with;
@@ -149,7 +72,7 @@ TEST_CASE("events: Newmark reports the crossings within its fixed steps, to its 
     const std::vector<double> exact = b.event_times(duration);
     double previous = 0.0;
     for (const double dt : {2e-5, 5e-6}) {
-        NewmarkSettings s;
+        SolverSettings s;
         s.time_step = dt;
         const auto r = simulate(b, s, for_duration(duration));
         REQUIRE(r.events.size() == exact.size());
@@ -174,7 +97,7 @@ TEST_CASE("events: the paper preset above its jump speed loses and regains conta
     RunOptions run;
     run.duration = m.period();
     run.record.decimation = 1;
-    NewmarkSettings fg;
+    SolverSettings fg;
     fg.beta = 1.0 / 12.0;
     fg.time_step = m.period() / 8192;
     const auto a = simulate(m, fg, run);

@@ -24,10 +24,10 @@ TEST_CASE("paper preset equals the original 7-DOF model: matrices, equilibrium, 
     // ~200 N, so their last ~8 (acceleration) and ~10 (force) digits are rounding: the original model
     // run with its two linear solvers (same equations, other rounding) shows that spread. The preset
     // must agree with the original to 1e-12 in displacement and within that spread elsewhere.
-    NewmarkSettings s;
+    SolverSettings s;
     const auto a = run(old_model, s, old_model.period(), 1);
     const auto b = run(preset, s, preset.period(), 1);
-    NewmarkSettings lu = s;
+    SolverSettings lu = s;
     lu.linear_solver = LinearSolver::dense_lu;
     const auto c = run(old_model, lu, old_model.period(), 1);
     REQUIRE(a.rows == b.rows);
@@ -170,7 +170,7 @@ TEST_CASE("two cams on one shaft: rank-two Woodbury update equals the dense LU, 
     }
     const Mechanism<> m(b);
     REQUIRE(m.max_rank() == 2);
-    NewmarkSettings s;
+    SolverSettings s;
     const auto low_rank = run(m, s, m.period(), 10);
     s.linear_solver = LinearSolver::dense_lu;
     const auto dense = run(m, s, m.period(), 10);

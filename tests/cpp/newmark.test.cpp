@@ -27,7 +27,7 @@ struct Sdof {
     }
 };
 
-double max_error(const Sdof& sdof, const NewmarkSettings& settings, double duration) {
+double max_error(const Sdof& sdof, const SolverSettings& settings, double duration) {
     const auto system = sdof.system();
     const auto r = run(system, settings, duration);
     double err = 0.0;
@@ -40,7 +40,7 @@ double max_error(const Sdof& sdof, const NewmarkSettings& settings, double durat
 TEST_CASE("linear SDOF: average acceleration matches the exact solution, order 2") {
     const Sdof sdof;
     const double period = 2 * pi / std::sqrt(sdof.k / sdof.m);
-    NewmarkSettings s;
+    SolverSettings s;
     double errors[4];
     for (int i = 0; i < 4; ++i) {
         s.time_step = period / (40.0 * (1 << i));
@@ -57,8 +57,8 @@ TEST_CASE("linear SDOF: average acceleration matches the exact solution, order 2
 TEST_CASE("HHT-alpha is second order too, and damps a high-frequency mode") {
     const Sdof sdof;
     const double period = 2 * pi / std::sqrt(sdof.k / sdof.m);
-    const double e1 = max_error(sdof, NewmarkSettings::hht(-0.1, period / 80), 3 * period);
-    const double e2 = max_error(sdof, NewmarkSettings::hht(-0.1, period / 160), 3 * period);
+    const double e1 = max_error(sdof, SolverSettings::hht(-0.1, period / 80), 3 * period);
+    const double e2 = max_error(sdof, SolverSettings::hht(-0.1, period / 160), 3 * period);
     CHECK(std::log2(e1 / e2) == Approx(2.0).margin(0.1));
 
     // Undamped oscillator, dt = period / 2 (unresolved): trapezoidal keeps the amplitude, HHT kills it.
@@ -66,15 +66,15 @@ TEST_CASE("HHT-alpha is second order too, and damps a high-frequency mode") {
     stiff.c = 0.0;
     const double T = 2 * pi / std::sqrt(stiff.k / stiff.m);
     const auto system = stiff.system();
-    auto final_energy_ratio = [&](const NewmarkSettings& s) {
+    auto final_energy_ratio = [&](const SolverSettings& s) {
         const auto r = run(system, s, 50 * T);
         const double x = r.q.back(), v = r.v.back();
         return (stiff.m * v * v + stiff.k * x * x) / (stiff.k * stiff.x0 * stiff.x0);
     };
-    NewmarkSettings trapezoidal;
+    SolverSettings trapezoidal;
     trapezoidal.time_step = T / 2;
     CHECK(final_energy_ratio(trapezoidal) == Approx(1.0).epsilon(1e-12));
-    CHECK(final_energy_ratio(NewmarkSettings::hht(-0.3, T / 2)) < 1e-4);
+    CHECK(final_energy_ratio(SolverSettings::hht(-0.3, T / 2)) < 1e-4);
 }
 
 TEST_CASE("trapezoidal rule conserves the energy of an undamped linear system to round-off") {
@@ -82,7 +82,7 @@ TEST_CASE("trapezoidal rule conserves the energy of an undamped linear system to
     s.M.diagonal() << 2.0, 1.0, 0.5;
     s.K << 300, -100, 0, -100, 250, -150, 0, -150, 150;
     s.q0 << 0.01, -0.02, 0.03;
-    NewmarkSettings settings;
+    SolverSettings settings;
     settings.time_step = 1e-3;
     const auto r = run(s, settings, 20.0);
     auto energy = [&](std::size_t i) {
@@ -104,7 +104,7 @@ TEST_CASE("trapezoidal rule conserves the energy of an undamped linear system to
 
 TEST_CASE("decimation keeps every n-th row of the full run") {
     const Sdof sdof;
-    NewmarkSettings s;
+    SolverSettings s;
     s.time_step = 1e-3;
     const auto system = sdof.system();
     const auto full = run(system, s, 1.0);
@@ -120,18 +120,26 @@ TEST_CASE("decimation keeps every n-th row of the full run") {
 TEST_CASE("bad settings and durations are rejected with the parameter named") {
     const Sdof sdof;
     const auto system = sdof.system();
-    NewmarkSettings s;
+    SolverSettings s;
     s.time_step = 0.0;
     CHECK_THROWS_WITH((Newmark<LinearSystem<1>>(system, s)), Catch::Contains("time_step must be finite and > 0"));
     s.time_step = NAN;
     CHECK_THROWS_WITH((Newmark<LinearSystem<1>>(system, s)), Catch::Contains("time_step"));
-    s = NewmarkSettings{};
-    s.hht_alpha = -0.5;
+    s = SolverSettings::hht(-0.5);
     CHECK_THROWS_WITH((Newmark<LinearSystem<1>>(system, s)), Catch::Contains("hht_alpha must be in [-0.33"));
-    s = NewmarkSettings{};
+    // Each of gamma, beta, hht_alpha belongs to one method: a value another method would ignore is refused.
+    s = SolverSettings{};
+    s.hht_alpha = -0.1;
+    CHECK_THROWS_WITH((Newmark<LinearSystem<1>>(system, s)), Catch::Contains("hht_alpha applies to method 'hht' only"));
+    s = SolverSettings::hht(-0.1);
+    s.beta = 0.3;
+    CHECK_THROWS_WITH((Newmark<LinearSystem<1>>(system, s)), Catch::Contains("gamma and beta apply to method 'newmark' only"));
+    s = SolverSettings::named(Method::dop853, 1e-3, 1e-6);
+    CHECK_THROWS_WITH((Newmark<LinearSystem<1>>(system, s)), Catch::Contains("the Newmark stepper runs methods 'newmark'"));
+    s = SolverSettings{};
     s.beta = 0.0;
     CHECK_THROWS_WITH((Newmark<LinearSystem<1>>(system, s)), Catch::Contains("beta must be in (0, 0.5]"));
-    s = NewmarkSettings{};
+    s = SolverSettings{};
     CHECK_THROWS_WITH(run(system, s, -1.0), Catch::Contains("duration must be finite and > 0"));
     CHECK_THROWS_WITH(run(system, s, INFINITY), Catch::Contains("duration"));
     CHECK_THROWS_WITH(run(system, s, 1.0, 0), Catch::Contains("decimation must be >= 1"));
@@ -141,7 +149,7 @@ TEST_CASE("bad settings and durations are rejected with the parameter named") {
 
 TEST_CASE("a step that cannot converge halves, then reports time, step, iterations and residual") {
     const Sdof sdof;
-    NewmarkSettings s;
+    SolverSettings s;
     s.time_step = 1e-3;
     s.max_iterations = 1;  // one Newton iteration can never confirm convergence
     s.max_halvings = 3;
@@ -160,7 +168,7 @@ TEST_CASE("Bathe's 2-DOF worked example (Finite Element Procedures, trapezoidal 
     s.M.diagonal() << 2.0, 1.0;
     s.K << 6, -2, -2, 4;
     s.external = [](double) { return Eigen::Vector2d(0.0, 10.0); };
-    NewmarkSettings settings;
+    SolverSettings settings;
     settings.time_step = 0.28;
     const auto r = run(s, settings, 12 * 0.28);
     const double u1[12] = {0.00673, 0.0505, 0.189, 0.485, 0.961, 1.58, 2.23, 2.76, 3.00, 2.85, 2.28, 1.40};
@@ -185,7 +193,7 @@ TEST_CASE("beta < 1/4: a step beyond the stability limit is refused; a blow-up i
     Sdof sdof;
     sdof.c = 0.0;
     const auto system = sdof.system();
-    NewmarkSettings s;
+    SolverSettings s;
     s.beta = 1.0 / 12.0;  // stable for omega dt < 2.449
     const double omega = std::sqrt(sdof.k / sdof.m);
     s.time_step = 2.0 / omega;
@@ -197,7 +205,7 @@ TEST_CASE("beta < 1/4: a step beyond the stability limit is refused; a blow-up i
     // A state that overflows (here a load growing without bound) is an error, never a result.
     LinearSystem<1> exploding = system;
     exploding.external = [](double t) { return Eigen::Matrix<double, 1, 1>(std::exp(1000.0 * t)); };
-    NewmarkSettings plain;
+    SolverSettings plain;
     plain.time_step = 1e-3;
     plain.max_halvings = 1;
     CHECK_THROWS_WITH(run(exploding, plain, 1.0), Catch::Contains("became non-finite"));

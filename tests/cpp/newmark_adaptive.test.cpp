@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Newmark and Fox-Goodwin under a tolerance (Method::newmark_adaptive): the level the controller holds
+// Newmark and Fox-Goodwin under a tolerance: the level the controller holds
 // against the closed-form leading term of the local error, the error against closed-form responses,
 // adaptivity, and the settings it refuses.
 #include <catch2/catch.hpp>
@@ -17,11 +17,11 @@ using namespace camfollower;
 
 namespace {
 
-NewmarkSettings under_tolerance(const char* method, double output_interval, double tolerance, int max_halvings = 10) {
-    NewmarkSettings s;
-    set_method(s, method);
+SolverSettings under_tolerance(const char* method, double output_interval, double tolerance, int max_halvings = 10) {
+    SolverSettings s;
+    s.method = method_from_name(method);
     s.time_step = output_interval;
-    set_tolerance(s, tolerance);
+    s.tolerance = tolerance;
     s.max_halvings = max_halvings;
     return s;
 }
@@ -67,8 +67,8 @@ TEST_CASE("newmark under a tolerance: a loose tolerance runs fixed steps of the 
     const double D = sdof.period() / 32.0, duration = 3.0 * sdof.period();
     for (const char* method : {"newmark", "fox_goodwin"}) {
         INFO(method);
-        NewmarkSettings fixed;
-        set_method(fixed, method);
+        SolverSettings fixed;
+        fixed.method = method_from_name(method);
         fixed.time_step = D;
         const auto a = run(sdof.system(), fixed, duration);
         const auto b = run(sdof.system(), under_tolerance(method, D, 0.1), duration);
@@ -94,7 +94,7 @@ TEST_CASE("fox_goodwin under a tolerance: steps ~ tol^(-1/3), error against the 
     std::uint64_t last_steps = 0;
     for (double tol : {1e-4, 1e-6, 1e-8}) {
         INFO("tolerance " << tol);
-        const NewmarkSettings s = under_tolerance("fox_goodwin", sdof.period() / 8.0, tol, 14);
+        const SolverSettings s = under_tolerance("fox_goodwin", sdof.period() / 8.0, tol, 14);
         const auto r = run(sdof.system(), s, duration);
         double err = 0.0;
         for (std::size_t i = 0; i < r.rows; ++i) err = std::max(err, std::abs(r.q[i] - sdof.exact(r.t[i])));
@@ -151,21 +151,22 @@ TEST_CASE("fox_goodwin under a tolerance keeps its steps within the stability li
 TEST_CASE("newmark under a tolerance refuses what it cannot do, naming the setting") {
     const DrivenSdof sdof;
     const double D = sdof.period() / 8.0;
-    NewmarkSettings hht = NewmarkSettings::hht(-0.1, D);
-    set_tolerance(hht, 1e-6);
-    CHECK_THROWS_WITH(hht.validate(), Catch::Contains("hht_alpha = 0"));
-    NewmarkSettings fixed = under_tolerance("fox_goodwin", D, 1e-6);
-    fixed.adaptive = false;
-    CHECK_THROWS_WITH(fixed.validate(), Catch::Contains("adaptive = false"));
-    NewmarkSettings small = under_tolerance("newmark", D, 1e-6, 2);
+    SolverSettings hht = SolverSettings::hht(-0.1, D);
+    hht.tolerance = 1e-6;
+    CHECK_THROWS_WITH(hht.validate(), Catch::Contains("method 'hht' takes no tolerance"));
+    SolverSettings fixed = under_tolerance("fox_goodwin", D, 1e-6);
+    fixed.tolerance.reset();
+    fixed.max_step = D / 4.0;
+    CHECK_THROWS_WITH(fixed.validate(), Catch::Contains("max_step applies with a tolerance"));
+    SolverSettings small = under_tolerance("newmark", D, 1e-6, 2);
     small.max_step = D / 16.0;
     CHECK_THROWS_WITH(run(sdof.system(), small, 2.0 * sdof.period()), Catch::Contains("max_halvings"));
     // A tolerance the smallest step cannot meet: a ConvergenceError naming the tolerance.
-    const NewmarkSettings tight = under_tolerance("fox_goodwin", D, 1e-12, 1);
+    const SolverSettings tight = under_tolerance("fox_goodwin", D, 1e-12, 1);
     CHECK_THROWS_WITH(run(sdof.system(), tight, sdof.period()),
                       Catch::Contains("tolerance = 1e-12") && Catch::Contains("max_halvings"));
     // max_step bounds the steps: the coarsest level is the first at or below it.
-    NewmarkSettings bounded = under_tolerance("newmark", D, 0.1);
+    SolverSettings bounded = under_tolerance("newmark", D, 0.1);
     bounded.max_step = D / 3.0;
     const auto r = run(sdof.system(), bounded, sdof.period());
     CHECK(r.stats.steps == 8 * 4);

@@ -21,9 +21,9 @@ using namespace camfollower;
 
 namespace {
 
-NewmarkSettings radau(double time_step, double tolerance = 1e-6) {
-    NewmarkSettings s;
-    set_method(s, "radau");
+SolverSettings radau(double time_step, double tolerance = 1e-6) {
+    SolverSettings s;
+    s.method = method_from_name("radau");
     s.time_step = time_step;
     s.tolerance = tolerance;
     return s;
@@ -78,8 +78,8 @@ TEST_CASE("Radau IIA with fixed steps is fifth order on a driven damped oscillat
     const double T = sdof.period();
     double errors[4];
     for (int i = 0; i < 4; ++i) {
-        NewmarkSettings s = radau(T / (20 * (1 << i)));
-        s.adaptive = false;
+        SolverSettings s = radau(T / (20 * (1 << i)));
+        s.tolerance.reset();
         errors[i] = max_error(sdof, s, 3 * T);
     }
     for (int i = 1; i < 4; ++i) {
@@ -149,8 +149,8 @@ TEST_CASE("Radau IIA on a stiff system: exact to the tolerance in a few hundred 
 TEST_CASE("Radau IIA on the paper preset agrees with DOP853 at tight tolerance") {
     const Mechanism<presets::paper_dofs> m = presets::paper();
     const double T = m.period();
-    NewmarkSettings d8 = radau(T / 512, 1e-10);
-    set_method(d8, "dop853");
+    SolverSettings d8 = radau(T / 512, 1e-10);
+    d8.method = method_from_name("dop853");
     const auto ra = run(m, radau(T / 512, 1e-9), T);
     const auto dp = run(m, d8, T);
     REQUIRE(ra.rows == 513);
@@ -177,8 +177,8 @@ TEST_CASE("Radau IIA locates a contact loss and re-contact where DOP853 does") {
     p.camshaft_speed_rpm = 2000.0;  // above the jump speed, 1329 rpm
     const Mechanism<presets::paper_dofs> m = presets::paper(p);
     const double T = m.period();
-    NewmarkSettings d8 = radau(T / 1024, 1e-10);
-    set_method(d8, "dop853");
+    SolverSettings d8 = radau(T / 1024, 1e-10);
+    d8.method = method_from_name("dop853");
     RunOptions o;
     o.duration = T;
     const auto a = simulate(m, radau(T / 1024, 1e-10), o);
@@ -194,7 +194,7 @@ TEST_CASE("Radau IIA locates a contact loss and re-contact where DOP853 does") {
 
 TEST_CASE("Radau IIA refuses what it cannot honour, naming it") {
     const DrivenSdof sdof;
-    NewmarkSettings s = radau(1e-3, 0.0);
+    SolverSettings s = radau(1e-3, 0.0);
     CHECK_THROWS_WITH(s.validate(), Catch::Contains("tolerance"));
     s = radau(1e-3);
     s.backend = Backend::sparse;

@@ -21,7 +21,7 @@ struct Histories {
 };
 
 template <class System>
-Histories<System> run(const System& system, const camfollower::NewmarkSettings& settings, double duration,
+Histories<System> run(const System& system, const camfollower::SolverSettings& settings, double duration,
                       std::size_t decimation = 1, double max_bytes = 4.0 * 1024 * 1024 * 1024) {
     camfollower::RunOptions options;
     options.duration = duration;

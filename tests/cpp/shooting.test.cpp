@@ -46,7 +46,7 @@ TEST_CASE("shooting: a linear forced system lands on the closed-form periodic re
     const Forced2 f;
     const auto sys = f.system();
     const int steps = 1024;
-    NewmarkSettings s;
+    SolverSettings s;
     s.time_step = f.period() / steps;
     ShootingOptions o;
     o.period = f.period();
@@ -74,7 +74,7 @@ TEST_CASE("shooting: a linear forced system lands on the closed-form periodic re
 TEST_CASE("shooting: Floquet multipliers of a linear system are the scheme's amplification of its eigenvalues") {
     const Forced2 f;
     const auto sys = f.system();
-    NewmarkSettings s;
+    SolverSettings s;
     s.time_step = f.period() / 1024;
     ShootingOptions o;
     o.period = f.period();
@@ -105,7 +105,7 @@ TEST_CASE("shooting: Floquet multipliers of a linear system are the scheme's amp
 
 TEST_CASE("shooting: the paper mechanism's periodic orbit is the one a long transient run converges to") {
     const auto m = presets::paper_damped();
-    NewmarkSettings s;
+    SolverSettings s;
     s.time_step = m.period() / 4096;
     ShootingOptions o;
     o.tolerance = 1e-11;
@@ -130,7 +130,7 @@ TEST_CASE("shooting: the paper mechanism's periodic orbit is the one a long tran
 TEST_CASE("shooting: bad options are refused naming the option") {
     const Forced2 f;
     const auto sys = f.system();
-    NewmarkSettings s;
+    SolverSettings s;
     s.time_step = f.period() / 1000.5;
     ShootingOptions o;
     o.period = f.period();
@@ -156,7 +156,7 @@ TEST_CASE("shooting: bad options are refused naming the option") {
 
 TEST_CASE("long runs keep time as t0 + n dt: no drift to excite lightly damped modes") {
     LinearSystem<1> sys;
-    NewmarkSettings s;
+    SolverSettings s;
     s.time_step = 1e-5 / 3.0;  // not a binary fraction: a running sum drifts
     Newmark<LinearSystem<1>> stepper(sys, s);
     auto state = stepper.start(0.0, LinearSystem<1>::Vector::Zero(), LinearSystem<1>::Vector::Zero());

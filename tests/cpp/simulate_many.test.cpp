@@ -22,9 +22,9 @@ Paper paper_with_contact_stiffness(double scale) {
     return presets::paper(p);
 }
 
-NewmarkSettings fox_goodwin(const Paper& m) {
-    NewmarkSettings s;
-    set_method(s, "fox_goodwin");
+SolverSettings fox_goodwin(const Paper& m) {
+    SolverSettings s;
+    s.method = method_from_name("fox_goodwin");
     s.time_step = m.period() / 4096.0;
     return s;
 }
@@ -37,7 +37,7 @@ TEST_CASE("simulate_many gives every case bit for bit what simulate gives it alo
     std::vector<const Paper*> systems;
     for (const Paper& m : models) systems.push_back(&m);
     systems.push_back(&models[1]);  // one system twice: runs share only the immutable model
-    const NewmarkSettings s = fox_goodwin(models[0]);
+    const SolverSettings s = fox_goodwin(models[0]);
     RunOptions options;
     options.duration = 0.5 * models[0].period();
     options.record.decimation = 64;

@@ -138,7 +138,8 @@ def test_the_gil_is_released_during_a_run(model):
         (dict(duration=1.0, revolutions=1), "exactly one of duration"),
         (dict(duration=-1.0), "duration must be finite and > 0"),
         (dict(revolutions=1, decimation=0), "decimation must be >= 1"),
-        (dict(revolutions=1, hht_alpha=0.2), "hht_alpha must be in"),
+        (dict(revolutions=1, method="hht", hht_alpha=0.2), "hht_alpha must be in"),
+        (dict(revolutions=1, hht_alpha=-0.1), "hht_alpha applies to method 'hht' only"),
         (dict(revolutions=1, linear_solver="qr"), "linear_solver must be"),
         (dict(duration=100.0, max_output_bytes=1e6), "increase decimation"),
     ],
@@ -156,12 +157,21 @@ def test_conditionally_stable_scheme_refuses_a_step_beyond_its_limit(model):
     assert np.max(np.abs(r["q"][:, 0])) < 2e-6  # the camshaft stays at its ~1 um deflection
 
 
-def test_hht_alpha_alone_gets_its_own_gamma_and_beta(model):
+def test_hht_takes_its_own_gamma_and_beta_from_alpha(model):
     ref = cf.simulate(model, revolutions=1, time_step=model.period / 32768, decimation=8)
-    r = cf.simulate(model, revolutions=1, time_step=model.period / 4096, hht_alpha=-0.1)
+    r = cf.simulate(model, revolutions=1, time_step=model.period / 4096, method="hht", hht_alpha=-0.1)
+    assert r.stats["method"] == "hht"
     assert np.max(np.abs(r["q"][:, 3] - ref["q"][:, 3])) < 1e-4 * 0.01
-    with pytest.raises(ValueError, match="needs gamma = 1/2 - alpha"):
-        cf.simulate(model, revolutions=1, hht_alpha=-0.1, gamma=0.5, beta=0.25)
+    # Newmark with HHT's gamma = 1/2 - alpha, beta = (1 - alpha)^2 / 4 but alpha = 0 is another scheme.
+    nm = cf.simulate(model, revolutions=1, time_step=model.period / 4096, gamma=0.6, beta=0.3025)
+    assert np.max(np.abs(nm["q"][:, 3] - r["q"][:, 3])) > 0.0
+    # Given at all, a parameter the method does not read is refused (even at its default value).
+    with pytest.raises(
+        ValueError, match=r"gamma and beta apply to method 'newmark' only \(method 'hht' sets its own\)"
+    ):
+        cf.simulate(model, revolutions=1, method="hht", hht_alpha=-0.1, gamma=0.5, beta=0.25)
+    with pytest.raises(ValueError, match=r"hht_alpha applies to method 'hht' only \(method 'newmark'\)"):
+        cf.simulate(model, revolutions=1, hht_alpha=0.0)
 
 
 def test_non_convergence_raises_runtime_error_with_context(model):

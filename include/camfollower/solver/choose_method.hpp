@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Method "auto" made concrete at the start of a run, with the reason in words:
-//   at a fixed time_step (Method::automatic): Fox-Goodwin within its stability limit, else
+//   at a fixed time_step (no tolerance): Fox-Goodwin within its stability limit, else
 //   average-acceleration Newmark;
-//   under a tolerance (Method::automatic_adaptive): radau when the model's fastest modes are damped,
+//   under a tolerance: radau when the model's fastest modes are damped,
 //   or when the fastest rings alone (a stiff contact) at tolerances of 1e-7 and looser, else dop853.
 //   Not Fox-Goodwin: its per-step error control does not hold the run's error within a band of the
 //   tolerance across output intervals (docs/solvers.md, "Error control across output intervals").
@@ -17,7 +17,8 @@
 #include <Eigen/Eigenvalues>
 
 #include "camfollower/error.hpp"
-#include "camfollower/solver/newmark.hpp"
+#include "camfollower/solver/settings.hpp"
+#include "camfollower/solver/state.hpp"
 
 namespace camfollower {
 
@@ -87,16 +88,16 @@ inline std::string figure(double x) {
 
 // The method a run with `s` uses, and why, in words (RunResult::method_choice).
 struct MethodChoice {
-    NewmarkSettings settings;
+    SolverSettings settings;
     std::string reason;  // empty when the method was named
 };
 
 // Method "auto" made concrete for a run starting at `start`; other methods are returned as they are.
-//  - automatic: Fox-Goodwin when time_step is within its stability limit there (at equal cost per
+//  - no tolerance: Fox-Goodwin when time_step is within its stability limit there (at equal cost per
 //    step it is 50x to 1000x more accurate in contact force than average acceleration on the paper
 //    preset, docs/benchmarks.md), else average-acceleration Newmark (unconditionally stable). Above
 //    200 DOFs the highest mode is not computed: average acceleration.
-//  - automatic_adaptive: radau (L-stable: it steps over what it need not resolve) when a damped mode
+//  - under a tolerance: radau (L-stable: it steps over what it need not resolve) when a damped mode
 //    (damping ratio >= 0.3) is at least half as fast as the fastest ringing one, or when the fastest
 //    ringing mode is isolated_mode_ratio times faster than the next at tolerances of
 //    isolated_mode_tolerance and looser; else dop853 (order 8, no linear solves). Above 200 DOFs the
@@ -106,10 +107,10 @@ struct MethodChoice {
 //    paper preset at tolerance 1e-7: 4x the tolerance in force at output T/2048, 215x at T/16384;
 //    docs/solvers.md): auto does not take it.
 template <class System>
-MethodChoice choose_method(const System& system, NewmarkSettings s, const State<System>& start) {
-    if (s.method == Method::automatic) {
+MethodChoice choose_method(const System& system, SolverSettings s, const State<System>& start) {
+    if (s.method != Method::automatic) return {s, ""};
+    if (!s.tolerance) {
         s.method = Method::newmark;
-        s.gamma = 0.5, s.beta = 0.25, s.hht_alpha = 0.0;
         if (system.size() > 200)
             return {s, detail::concat("newmark (average acceleration): ", system.size(),
                                       " DOFs, above 200 the highest mode is not computed")};
@@ -118,50 +119,47 @@ MethodChoice choose_method(const System& system, NewmarkSettings s, const State<
         const std::string where = "time_step " + detail::figure(s.time_step) + " s against Fox-Goodwin's stability limit " +
                                   detail::figure(limit) + " s (highest mode " + detail::figure(omega / (2.0 * pi)) + " Hz)";
         if (omega >= 0.0 && s.time_step <= limit) {
-            s.beta = 1.0 / 12.0;
+            s.method = Method::fox_goodwin;
             return {s, "fox_goodwin: " + where};
         }
         return {s, "newmark (average acceleration): " + where};
     }
-    if (s.method == Method::automatic_adaptive) {
-        if (system.size() > 200) {
-            s.method = Method::dop853;
-            return {s, detail::concat("dop853: ", system.size(), " DOFs, above 200 the spectrum is not computed")};
-        }
-        const FastestModes modes = fastest_modes(system, start);
-        using detail::figure;
-        const auto mode = [](const ModeRate& m) {
-            return figure(m.rate / (2.0 * pi)) + " Hz at damping ratio " + figure(m.damping_ratio);
-        };
-        const std::string units = " (rates |lambda| / 2 pi)";
-        // Radau's error estimate misjudges a long step across the start of a rise after a dwell at
-        // tolerances above 1e-5 (100x the tolerance in force, docs/solvers.md): there its steps are
-        // bounded by the output interval unless max_step says otherwise.
-        const auto take_radau = [&s](const std::string& why) {
-            s.method = Method::radau;
-            if (s.tolerance <= radau_long_step_tolerance || s.max_step > 0.0) return MethodChoice{s, why};
-            s.max_step = s.time_step;
-            return MethodChoice{s, why + "; max_step = the output interval " + figure(s.time_step) + " s (tolerance above " +
-                                       figure(radau_long_step_tolerance) + ")"};
-        };
-        if (modes.damped.rate > 0.0 && modes.damped.rate >= 0.5 * modes.ringing.rate)
-            return take_radau("radau: the fastest modes are damped: " + mode(modes.damped) + " (>= " + figure(ringing_damping_ratio) +
-                         "), the fastest ringing mode " + mode(modes.ringing) + units);
-        const double isolation = modes.next_ringing.rate > 0.0 ? modes.ringing.rate / modes.next_ringing.rate : 0.0;
-        const std::string ringing = mode(modes.ringing) + ", " + figure(isolation) + " times the next ringing mode (" +
-                                    figure(modes.next_ringing.rate / (2.0 * pi)) + " Hz)";
-        const bool isolated = isolation >= isolated_mode_ratio;
-        if (isolated && s.tolerance >= isolated_mode_tolerance)
-            return take_radau("radau: the fastest mode rings alone, a stiff spring loaded quasi-statically: " + ringing + " (>= " +
-                         figure(isolated_mode_ratio) + ", tolerance >= " + figure(isolated_mode_tolerance) + ")" + units);
+    if (system.size() > 200) {
         s.method = Method::dop853;
-        return {s, "dop853: the fastest modes ring: " + ringing +
-                       (modes.damped.rate > 0.0 ? ", the fastest damped mode (>= " + figure(ringing_damping_ratio) + ") " +
-                                                      mode(modes.damped) + ", below half that rate"
-                                                : ", no mode damped at " + figure(ringing_damping_ratio) + " or more") +
-                       units + (isolated ? "; tolerance < " + figure(isolated_mode_tolerance) : "")};
+        return {s, detail::concat("dop853: ", system.size(), " DOFs, above 200 the spectrum is not computed")};
     }
-    return {s, ""};
+    const FastestModes modes = fastest_modes(system, start);
+    using detail::figure;
+    const auto mode = [](const ModeRate& m) {
+        return figure(m.rate / (2.0 * pi)) + " Hz at damping ratio " + figure(m.damping_ratio);
+    };
+    const std::string units = " (rates |lambda| / 2 pi)";
+    // Radau's error estimate misjudges a long step across the start of a rise after a dwell at
+    // tolerances above 1e-5 (100x the tolerance in force, docs/solvers.md): there its steps are
+    // bounded by the output interval unless max_step says otherwise.
+    const auto take_radau = [&s](const std::string& why) {
+        s.method = Method::radau;
+        if (*s.tolerance <= radau_long_step_tolerance || s.max_step > 0.0) return MethodChoice{s, why};
+        s.max_step = s.time_step;
+        return MethodChoice{s, why + "; max_step = the output interval " + figure(s.time_step) + " s (tolerance above " +
+                                   figure(radau_long_step_tolerance) + ")"};
+    };
+    if (modes.damped.rate > 0.0 && modes.damped.rate >= 0.5 * modes.ringing.rate)
+        return take_radau("radau: the fastest modes are damped: " + mode(modes.damped) + " (>= " + figure(ringing_damping_ratio) +
+                     "), the fastest ringing mode " + mode(modes.ringing) + units);
+    const double isolation = modes.next_ringing.rate > 0.0 ? modes.ringing.rate / modes.next_ringing.rate : 0.0;
+    const std::string ringing = mode(modes.ringing) + ", " + figure(isolation) + " times the next ringing mode (" +
+                                figure(modes.next_ringing.rate / (2.0 * pi)) + " Hz)";
+    const bool isolated = isolation >= isolated_mode_ratio;
+    if (isolated && *s.tolerance >= isolated_mode_tolerance)
+        return take_radau("radau: the fastest mode rings alone, a stiff spring loaded quasi-statically: " + ringing + " (>= " +
+                     figure(isolated_mode_ratio) + ", tolerance >= " + figure(isolated_mode_tolerance) + ")" + units);
+    s.method = Method::dop853;
+    return {s, "dop853: the fastest modes ring: " + ringing +
+                   (modes.damped.rate > 0.0 ? ", the fastest damped mode (>= " + figure(ringing_damping_ratio) + ") " +
+                                                  mode(modes.damped) + ", below half that rate"
+                                            : ", no mode damped at " + figure(ringing_damping_ratio) + " or more") +
+                   units + (isolated ? "; tolerance < " + figure(isolated_mode_tolerance) : "")};
 }
 
 }  // namespace camfollower

@@ -43,8 +43,9 @@
 #include "camfollower/solver/dop853_tableau.hpp"
 #include "camfollower/solver/error_scales.hpp"
 #include "camfollower/solver/events.hpp"
-#include "camfollower/solver/interrupt.hpp"
-#include "camfollower/solver/newmark.hpp"
+#include "camfollower/solver/first_order.hpp"
+#include "camfollower/solver/settings.hpp"
+#include "camfollower/solver/state.hpp"
 
 namespace camfollower {
 
@@ -72,6 +73,7 @@ inline constexpr std::array<double, 7> d{-12715105075.0 / 11282082432.0, 0.0, 87
 // (FSAL), and the one before it also ends at c = 1 (the stiffness test compares the two).
 struct Scheme {
     static constexpr const char* name = "Dormand-Prince";  // in error messages
+    static constexpr Method method = Method::dormand_prince;
     static constexpr int order = 5;                         // of the solution
     static constexpr int stages = 7;                        // evaluated each step (the first reused)
     static constexpr int dense_stages = 0;                  // more, for the dense output
@@ -93,6 +95,7 @@ struct Scheme {
 namespace dop853 {
 struct Scheme {
     static constexpr const char* name = "DOP853";
+    static constexpr Method method = Method::dop853;
     static constexpr int order = 8;
     static constexpr int stages = step_stages;  // 12 and f at the solution (FSAL)
     static constexpr int dense_stages = all_stages - step_stages;
@@ -113,111 +116,50 @@ struct Scheme {
 }  // namespace dop853
 
 template <class System, class Scheme>
-class EmbeddedRungeKutta {
-    static_assert(check_system<System>());
+class EmbeddedRungeKutta : public FirstOrderStepper<EmbeddedRungeKutta<System, Scheme>, System> {
+    using Base = FirstOrderStepper<EmbeddedRungeKutta<System, Scheme>, System>;
+    friend Base;
     static constexpr std::size_t S = std::size_t(Scheme::stages);            // a step's stages
     static constexpr std::size_t K = S + std::size_t(Scheme::dense_stages);  // with the dense output's
     static constexpr std::size_t E = std::size(Scheme::e);                  // error estimates
     static constexpr std::size_t R = 4 + std::size(Scheme::d);              // dense-output coefficients
 
 public:
-    using Vector = typename System::Vector;
-    using Matrix = typename System::Matrix;
-    using StateType = State<System>;
+    using typename Base::Matrix;
+    using typename Base::StateType;
+    using typename Base::Vector;
     // h |lambda| beyond this (the scheme's stability boundary on the negative real axis) on
     // `stiff_run` successive steps: the step is bounded by stability, not by accuracy.
     static constexpr double stiffness_bound = Scheme::stiffness_bound;
     static constexpr int stiff_run = 15;
 
-    EmbeddedRungeKutta(const System& system, const NewmarkSettings& settings)
-        : system_(system), s_(validated(settings)), n_(system.size()), uvq_(n_, std::max(1, max_rank(system))),
-          uvv_(n_, std::max(1, max_rank(system))) {
-        const Matrix& M = system.mass();
-        if (M.rows() != n_ || M.cols() != n_ || system.damping().rows() != n_ || system.stiffness().rows() != n_)
-            detail::fail("system: mass, damping and stiffness must be ", n_, " x ", n_, " (size())");
-        for (int k = 0; k < n_; ++k)
-            if (!(M(k, k) > 0.0)) detail::fail("system: mass matrix diagonal must be > 0, got M(", k, ", ", k, ") = ", M(k, k));
-        M_inv_ = M.partialPivLu().inverse();
-        for (Vector* x : {&q_, &v_, &qs_, &vs_, &ql_, &vl_, &qd_, &vd_, &ef_, &f_, &rhs_, &dq_, &dv_, &cq_, &cv_,
-                          &cq_trial_, &cv_trial_})
+    EmbeddedRungeKutta(const System& system, const SolverSettings& settings)
+        : Base(system, settings, Scheme::method, Scheme::name) {
+        for (Vector* x : {&qs_, &vs_, &ql_, &vl_, &qd_, &vd_, &ef_, &dq_, &dv_, &cq_, &cv_, &cq_trial_, &cv_trial_})
             x->resize(n_);
         auto resize = [this](auto&... sets) { (..., [this](auto& set) { for (Vector& x : set) x.resize(n_); }(sets)); };
         resize(eq_, ev_, kq_, kv_, rq_, rv_);
     }
-    EmbeddedRungeKutta(System&&, const NewmarkSettings&) = delete;
+    EmbeddedRungeKutta(System&&, const SolverSettings&) = delete;
 
-    const NewmarkSettings& settings() const { return s_; }
-    const System& system() const { return system_; }
-    double time_step() const { return s_.time_step; }  // the output interval (steps are adaptive)
-    double force_scale() const { return force_scale_; }
+private:
+    using Base::acceleration, Base::reaches;
+    using Base::system_, Base::s_, Base::adaptive_, Base::tolerance_, Base::n_, Base::force_scale_, Base::t_,
+        Base::t_start_, Base::fixed_steps_, Base::ws_, Base::scales_, Base::q_, Base::v_, Base::f_, Base::uvq_,
+        Base::uvv_, Base::events_;
 
-    StateType start(double t, const Vector& q, const Vector& v) {
-        StateType s = state_at(system_, t, q, v);
-        acceleration(s.q, s.v, s.f, s.a);
-        const Vector Kq = system_.stiffness() * s.q;
-        force_scale_ = std::max({1.0, Kq.cwiseAbs().maxCoeff(), s.f.cwiseAbs().maxCoeff()});
-        accepted(system_, s.workspace, s.q, s.v);
-        // The integration state starts at the reported one.
-        ws_ = s.workspace;
-        t_ = t, q_ = q, v_ = v;
+    // FirstOrderStepper's hooks: the start after the shared one, a step, the dense output.
+    void restart(const StateType& s) {
         cq_.setZero(), cv_.setZero(), ct_ = 0.0;
-        events_.start(ws_, q_, v_);  // before initial_step() moves the workspace's last force() elsewhere
-        t_start_ = t, fixed_steps_ = 0;
         kq_[0] = v_, kv_[0] = s.a;
-        scales_.start(reference_rate(system_, s, s_.time_step), q_, v_);
         h_ = initial_step(s.a);
         t_old_ = t_, h_last_ = 0.0, err_old_ = 1e-4;
         stiff_count_ = 0, non_stiff_count_ = 0;
         event_retake_ = false, dense_ready_ = false;
         if constexpr (K > S) dense_ws_ = ws_;  // (its copies in the loop then reuse this one's storage)
-        return s;
     }
-
-    // Moves the reported state one output interval on (dense output between integration steps).
-    void step(StateType& s, SolverStatistics& stats) {
-        const double target = s.t + s_.time_step;
-        while (!reaches(t_, target)) {
-            interrupt_();
-            take_step(target, stats);
-        }
-        interpolate(target, s.q, s.v);
-        s.t = target;
-        // The reported state carries the integration's path memory (e.g. contact losses so far).
-        s.workspace = ws_;
-        prepare(system_, target, s.workspace);
-        nonlinear_force(system_, s.workspace, s.q, s.v, s.f);
-        acceleration(s.q, s.v, s.f, s.a);
-        ++stats.evaluations;
-    }
-
-    // Polled every few integration steps within an output interval (solver/interrupt.hpp).
-    void set_interrupt(std::function<bool()> keep_going) { interrupt_.set(std::move(keep_going)); }
-
-    // Contact losses and re-contacts since start(); each ended an integration step (solver/events.hpp).
-    const std::vector<Event>& events() const { return events_.events(); }
-    std::vector<Event> take_events() { return events_.take_events(); }
-
-    // Highest natural angular frequency at a state (rad/s), contacts linearized.
-    double highest_angular_frequency(const StateType& s) const { return camfollower::highest_angular_frequency(system_, s); }
-
-private:
-    static NewmarkSettings validated(const NewmarkSettings& s) {
-        s.validate();
-        return s;
-    }
-
-    // Whether a step ending at t_end reaches the output time `target` (a step ending within rounding
-    // of it does: no sliver of a step).
-    bool reaches(double t_end, double target) const { return target - t_end <= 1e-9 * s_.time_step; }
-
-    // a = M^-1 (-(C v + K q + f)).
-    void acceleration(const Vector& q, const Vector& v, const Vector& f, Vector& out) {
-        rhs_.noalias() = system_.damping() * v;
-        rhs_.noalias() += system_.stiffness() * q;
-        rhs_ += f;
-        out.noalias() = M_inv_ * rhs_;  // then negated in place: -(M^-1 r) would be a temporary for dynamic sizes
-        out = -out;
-    }
+    void advance(double target, SolverStatistics& stats) { take_step(target, stats); }
+    void dense_output(double t, Vector& q, Vector& v) const { interpolate(t, q, v); }
 
     // Stage derivative at (t, q, v): kq = v, kv = a.
     void derivative(double t, const Vector& q, const Vector& v, Vector& kq, Vector& kv, workspace_t<System>& ws,
@@ -279,7 +221,7 @@ private:
 
     double error_norm_qv(const Vector& eq, const Vector& ev, const Vector& q0, const Vector& v0, const Vector& q1,
                          const Vector& v1) const {
-        return scales_.mixed(s_.tolerance, eq, ev, q0, v0, q1, v1);
+        return scales_.mixed(tolerance_, eq, ev, q0, v0, q1, v1);
     }
 
     // Hairer's starting step: from the sizes of y, y' and an estimate of y''.
@@ -309,10 +251,10 @@ private:
         for (;;) {
             double h = h_;
             if (s_.max_step > 0.0) h = std::min(h, s_.max_step);
-            if (!s_.adaptive) h = s_.max_step > 0.0 ? s_.max_step : s_.time_step;
+            if (!adaptive_) h = s_.max_step > 0.0 ? s_.max_step : s_.time_step;
             if (!(h >= min_step))
                 throw ConvergenceError(detail::concat(Scheme::name, ": the step fell to ", h, " s at t = ", t_,
-                                                      " s without meeting tolerance = ", s_.tolerance,
+                                                      " s without meeting tolerance = ", tolerance_,
                                                       " (the response is not smooth there, or the tolerance is below rounding)"));
             dense_ready_ = false;
             // Stages 1 ... S - 1 (stage 0 is the previous step's last: FSAL); the one before the last
@@ -335,9 +277,9 @@ private:
                 mixed[k] = error_norm_qv(eq_[k], ev_[k], q_, v_, qs_, vs_);
             }
             force_errors(qs_, vs_, force);
-            double err = std::max(Scheme::combine(mixed), Scheme::combine(force) / (s_.tolerance * force_scale_));
+            double err = std::max(Scheme::combine(mixed), Scheme::combine(force) / (tolerance_ * force_scale_));
             if (!std::isfinite(err)) err = 1e10;
-            if (!s_.adaptive) {
+            if (!adaptive_) {
                 if (err == 1e10)
                     throw ConvergenceError(detail::concat(Scheme::name, ": the state became non-finite at t = ", t_,
                                                           " s with the fixed step ", h, " s: the step is beyond the stability limit"));
@@ -377,7 +319,7 @@ private:
             const Crossing first = events_.earliest(t_, t_ + h, path);
             // A crossing within a millionth of the step from its start is left inside: its error,
             // ~ (1e-6 h)^2 times the force's kink, is below any tolerance.
-            if (s_.adaptive && !event_retake_ && first.beyond < t_ + h && first.beyond - t_ > 1e-6 * h) {
+            if (adaptive_ && !event_retake_ && first.beyond < t_ + h && first.beyond - t_ > 1e-6 * h) {
                 event_retake_ = true;
                 h_before_event_ = h_new;
                 h_ = first.beyond - t_;
@@ -444,10 +386,10 @@ private:
         // Fixed steps: time as t0 + n h (a sum drifts by ulps, off the output grid); adaptive ones
         // compensated like the state (the cam's motion turns a drifting time into a drifting input).
         double t_new = t_start_ + double(fixed_steps_ + 1) * h;
-        if (s_.adaptive) t_new = two_sum(t_, h + ct_, ct_);
+        if (adaptive_) t_new = two_sum(t_, h + ct_, ct_);
         if (reaches(t_new, target)) dense_coefficients(h, stats);  // step() interpolates in this step
         t_old_ = t_, h_last_ = h, t_ = t_new;
-        if (!s_.adaptive) ++fixed_steps_;
+        if (!adaptive_) ++fixed_steps_;
         q_ = qs_, v_ = vs_;
         cq_ = cq_trial_, cv_ = cv_trial_;
         kq_[0] = kq_[S - 1], kv_[0] = kv_[S - 1];  // FSAL; the workspace holds the force at the new state
@@ -469,31 +411,21 @@ private:
         }
     }
 
-    const System& system_;
-    NewmarkSettings s_;
-    int n_;
-    Matrix M_inv_;
-    double force_scale_ = 1.0;
-    // The integration state (ahead of the reported one) and its workspace.
-    double t_ = 0.0, t_old_ = 0.0, h_ = 0.0, h_last_ = 0.0, err_old_ = 1e-4;
-    ErrorScales scales_;
-    double t_start_ = 0.0, ct_ = 0.0;  // ct_: the time's compensation (adaptive steps)
-    std::uint64_t fixed_steps_ = 0;
+    // The integration state (ahead of the reported one) beyond the shared part.
+    double t_old_ = 0.0, h_ = 0.0, h_last_ = 0.0, err_old_ = 1e-4;
+    double ct_ = 0.0;  // the time's compensation (adaptive steps)
     bool rejected_last_ = false;
     bool event_retake_ = false;  // the step being taken ends at a located crossing
     bool dense_ready_ = false;   // rq_, rv_ hold the dense output of the step last computed
     double h_before_event_ = 0.0;
     int stiff_count_ = 0, non_stiff_count_ = 0;
-    workspace_t<System> ws_, dense_ws_;
+    workspace_t<System> dense_ws_;
     // Scratch, sized once: nothing is allocated inside the time loop.
-    Vector q_, v_, qs_, vs_, ql_, vl_, qd_, vd_, ef_, f_, rhs_;
+    Vector qs_, vs_, ql_, vl_, qd_, vd_, ef_;
     Vector dq_, dv_, cq_, cv_, cq_trial_, cv_trial_;  // the solution's increment and compensation
     std::array<Vector, E> eq_, ev_;
     std::array<Vector, K> kq_, kv_;
     std::array<Vector, R> rq_, rv_;
-    LowRank<Vector> uvq_, uvv_;
-    InterruptPoll interrupt_;
-    EventWatch<System> events_{system_};
 };
 
 template <class System>

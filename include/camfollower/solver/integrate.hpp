@@ -11,7 +11,7 @@
 
 #include "camfollower/error.hpp"
 #include "camfollower/solver/interrupt.hpp"
-#include "camfollower/solver/newmark.hpp"
+#include "camfollower/solver/state.hpp"
 
 namespace camfollower {
 

@@ -12,7 +12,7 @@
 
 #include "camfollower/core/system.hpp"
 #include "camfollower/error.hpp"
-#include "camfollower/solver/newmark.hpp"
+#include "camfollower/solver/state.hpp"
 
 namespace camfollower {
 

@@ -36,8 +36,9 @@
 #include "camfollower/error.hpp"
 #include "camfollower/solver/error_scales.hpp"
 #include "camfollower/solver/events.hpp"
-#include "camfollower/solver/interrupt.hpp"
-#include "camfollower/solver/newmark.hpp"
+#include "camfollower/solver/first_order.hpp"
+#include "camfollower/solver/settings.hpp"
+#include "camfollower/solver/state.hpp"
 
 namespace camfollower {
 
@@ -109,101 +110,50 @@ inline Tableau tableau() {
 }  // namespace radau5
 
 template <class System>
-class Radau {
-    static_assert(check_system<System>());
+class Radau : public FirstOrderStepper<Radau<System>, System> {
+    using Base = FirstOrderStepper<Radau<System>, System>;
+    friend Base;
 
 public:
-    using Vector = typename System::Vector;
-    using Matrix = typename System::Matrix;
-    using StateType = State<System>;
+    using typename Base::Matrix;
+    using typename Base::StateType;
+    using typename Base::Vector;
     using Complex = std::complex<double>;
     using ComplexVector = Eigen::Matrix<Complex, Vector::RowsAtCompileTime, 1, 0, Vector::MaxRowsAtCompileTime, 1>;
     using ComplexMatrix = Eigen::Matrix<Complex, Matrix::RowsAtCompileTime, Matrix::ColsAtCompileTime, 0,
                                         Matrix::MaxRowsAtCompileTime, Matrix::MaxColsAtCompileTime>;
     static constexpr int max_newton_iterations = 7;  // RADAU5's default
 
-    Radau(const System& system, const NewmarkSettings& settings)
-        : system_(system), s_(validated(settings)), n_(system.size()), tab_(radau5::tableau()),
-          uvq_(n_, std::max(1, max_rank(system))), uvv_(n_, std::max(1, max_rank(system))), lu_real_(n_),
-          lu_pair_(n_) {
-        const Matrix& M = system.mass();
-        if (M.rows() != n_ || M.cols() != n_ || system.damping().rows() != n_ || system.stiffness().rows() != n_)
-            detail::fail("system: mass, damping and stiffness must be ", n_, " x ", n_, " (size())");
-        for (int k = 0; k < n_; ++k)
-            if (!(M(k, k) > 0.0)) detail::fail("system: mass matrix diagonal must be > 0, got M(", k, ", ", k, ") = ", M(k, k));
-        M_inv_ = M.partialPivLu().inverse();
-        M_complex_ = M.template cast<Complex>();
-        for (Vector* x : {&q_, &v_, &a_, &qs_, &vs_, &as_, &q_old_, &v_old_, &f_, &rhs_, &eq_, &ev_, &tq_, &tv_, &dq_, &dv_,
-                          &w_real_q_, &w_real_v_, &rq_, &rv_, &sum_})
+    Radau(const System& system, const SolverSettings& settings)
+        : Base(system, settings, Method::radau, "Radau"), tab_(radau5::tableau()), lu_real_(n_), lu_pair_(n_) {
+        M_complex_ = system.mass().template cast<Complex>();
+        for (Vector* x : {&a_, &qs_, &vs_, &as_, &q_old_, &v_old_, &eq_, &ev_, &tq_, &tv_, &dq_, &dv_, &w_real_q_,
+                          &w_real_v_, &rq_, &rv_, &sum_})
             x->resize(n_);
         for (ComplexVector* x : {&w_pair_q_, &w_pair_v_, &rcq_, &rcv_, &xcq_, &xcv_, &tc_, &csum_}) x->resize(n_);
         for (auto* set : {&zq_, &zv_, &fq_, &fv_, &Qq_, &Qv_, &Pq_, &Pv_})
             for (Vector& x : *set) x.resize(n_);
         Kt_.resize(n_, n_), Ct_.resize(n_, n_), G_real_.resize(n_, n_), G_pair_.resize(n_, n_), Ct_complex_.resize(n_, n_);
     }
-    Radau(System&&, const NewmarkSettings&) = delete;
+    Radau(System&&, const SolverSettings&) = delete;
 
-    const NewmarkSettings& settings() const { return s_; }
-    const System& system() const { return system_; }
-    double time_step() const { return s_.time_step; }  // the output interval (steps are adaptive)
-    double force_scale() const { return force_scale_; }
+private:
+    using Base::acceleration, Base::reaches;
+    using Base::system_, Base::s_, Base::adaptive_, Base::tolerance_, Base::n_, Base::M_inv_, Base::force_scale_,
+        Base::t_, Base::t_start_, Base::fixed_steps_, Base::ws_, Base::scales_, Base::q_, Base::v_, Base::f_,
+        Base::rhs_, Base::uvq_, Base::uvv_, Base::events_;
 
-    StateType start(double t, const Vector& q, const Vector& v) {
-        StateType s = state_at(system_, t, q, v);
-        acceleration(s.q, s.v, s.f, s.a);
-        const Vector Kq = system_.stiffness() * s.q;
-        force_scale_ = std::max({1.0, Kq.cwiseAbs().maxCoeff(), s.f.cwiseAbs().maxCoeff()});
-        accepted(system_, s.workspace, s.q, s.v);
-        ws_ = s.workspace;
-        t_ = t, q_ = q, v_ = v, a_ = s.a;
-        events_.start(ws_, q_, v_);
-        t_start_ = t, fixed_steps_ = 0;
-        scales_.start(reference_rate(system_, s, s_.time_step), q_, v_);
+    // FirstOrderStepper's hooks: the start after the shared one, a step, the dense output.
+    void restart(const StateType& s) {
+        a_ = s.a;
         h_ = initial_step();
         t_old_ = t_, h_last_ = 0.0, h_old_ = 0.0, err_old_ = 0.0;
         faccon_ = 1.0;
         has_polynomial_ = false, rejected_last_ = false, event_retake_ = false, first_step_ = true;
-        return s;
     }
+    void advance(double /*target*/, SolverStatistics& stats) { take_step(stats); }
+    void dense_output(double t, Vector& q, Vector& v) const { polynomial(Qq_, Qv_, t, t_old_, h_last_, q_old_, v_old_, q, v); }
 
-    // Polled every few integration steps within an output interval (solver/interrupt.hpp).
-    void set_interrupt(std::function<bool()> keep_going) { interrupt_.set(std::move(keep_going)); }
-
-    // Moves the reported state one output interval on (dense output between integration steps).
-    void step(StateType& s, SolverStatistics& stats) {
-        const double target = s.t + s_.time_step;
-        while (!reaches(t_, target)) {
-            interrupt_();
-            take_step(stats);
-        }
-        polynomial(Qq_, Qv_, target, t_old_, h_last_, q_old_, v_old_, s.q, s.v);
-        s.t = target;
-        s.workspace = ws_;  // the integration's path memory (e.g. contact losses so far)
-        prepare(system_, target, s.workspace);
-        nonlinear_force(system_, s.workspace, s.q, s.v, s.f);
-        acceleration(s.q, s.v, s.f, s.a);
-        ++stats.evaluations;
-    }
-
-    const std::vector<Event>& events() const { return events_.events(); }
-    std::vector<Event> take_events() { return events_.take_events(); }
-    double highest_angular_frequency(const StateType& s) const { return camfollower::highest_angular_frequency(system_, s); }
-
-private:
-    static NewmarkSettings validated(const NewmarkSettings& s) {
-        s.validate();
-        return s;
-    }
-
-    bool reaches(double t_end, double target) const { return target - t_end <= 1e-9 * s_.time_step; }
-
-    void acceleration(const Vector& q, const Vector& v, const Vector& f, Vector& out) {
-        rhs_.noalias() = system_.damping() * v;
-        rhs_.noalias() += system_.stiffness() * q;
-        rhs_ += f;
-        out.noalias() = M_inv_ * rhs_;  // then negated in place: -(M^-1 r) would be a temporary for dynamic sizes
-        out = -out;
-    }
     // y' at (t, q, v) into (kq, kv) = (v, a); the workspace prepared at t with the force there.
     void derivative(double t, const Vector& q, const Vector& v, Vector& kq, Vector& kv, SolverStatistics& stats) {
         prepare(system_, t, ws_);
@@ -216,7 +166,7 @@ private:
     // The scaled error of a displacement/velocity pair (eq, ev), in units of the tolerance: the larger
     // of the mixed norm and the force-weighted norm (the explicit methods' test).
     double error_norm(const Vector& eq, const Vector& ev, const Vector& q1, const Vector& v1) {
-        const double tol = s_.tolerance;
+        const double tol = tolerance_;
         rhs_.noalias() = Kt_ * eq;
         rhs_.noalias() += Ct_ * ev;
         return std::max(scales_.mixed(tol, eq, ev, q_, v_, q1, v1),
@@ -238,7 +188,7 @@ private:
                                    (dv_ - a_).cwiseAbs().maxCoeff() / (v_ref + 1e-12)) / h0;
         const double rate = std::max({d1, std::sqrt(d2), scales_.omega_ref});
         derivative(t_, q_, v_, dq_, a_, scratch);  // the workspace back at the start, its force there
-        return std::min(s_.time_step, 0.1 * std::pow(s_.tolerance, 0.25) / rate);
+        return std::min(s_.time_step, 0.1 * std::pow(tolerance_, 0.25) / rate);
     }
 
     // K_t, C_t at the step's start (the workspace holds the force there).
@@ -294,8 +244,8 @@ private:
     // Simplified Newton on the stage equations of the step [t_, t_ + h] from the guess in zq_, zv_;
     // false when it diverges or is too slow (the step is then retried at half the size).
     bool newton(double h, SolverStatistics& stats, int& iterations) {
-        const double kappa = std::max(10.0 * std::numeric_limits<double>::epsilon() / s_.tolerance,
-                                      std::min(0.03, std::sqrt(s_.tolerance)));
+        const double kappa = std::max(10.0 * std::numeric_limits<double>::epsilon() / tolerance_,
+                                      std::min(0.03, std::sqrt(tolerance_)));
         w_real_q_.setZero(), w_real_v_.setZero(), w_pair_q_.setZero(), w_pair_v_.setZero();
         for (int i = 0; i < 3; ++i) {
             w_real_q_ += tab_.w_row_real[i] * zq_[i], w_real_v_ += tab_.w_row_real[i] * zv_[i];
@@ -380,10 +330,10 @@ private:
         for (;;) {
             double h = h_;
             if (s_.max_step > 0.0) h = std::min(h, s_.max_step);
-            if (!s_.adaptive) h = s_.max_step > 0.0 ? s_.max_step : s_.time_step;
+            if (!adaptive_) h = s_.max_step > 0.0 ? s_.max_step : s_.time_step;
             if (!(h >= min_step))
                 throw ConvergenceError(detail::concat("Radau IIA: the step fell to ", h, " s at t = ", t_,
-                                                      " s without meeting tolerance = ", s_.tolerance,
+                                                      " s without meeting tolerance = ", tolerance_,
                                                       " (the response is not smooth there, or the tolerance is below rounding)"));
             if (h != factored) factor(h), factored = h;
             // Start from the last step's collocation polynomial, extrapolated.
@@ -400,7 +350,7 @@ private:
             stats.newton_iterations += std::uint64_t(iterations);
             stats.max_iterations_in_a_step = std::max(stats.max_iterations_in_a_step, iterations);
             if (!converged) {
-                if (!s_.adaptive)
+                if (!adaptive_)
                     throw ConvergenceError(detail::concat("Radau IIA: Newton did not converge at t = ", t_,
                                                           " s with the fixed step ", h, " s"));
                 h_ = 0.5 * h;
@@ -411,7 +361,7 @@ private:
             qs_ = q_ + zq_[2];
             vs_ = v_ + zv_[2];
             double err = error_estimate(h, stats);
-            if (!s_.adaptive) err = 0.5;
+            if (!adaptive_) err = 0.5;
             if (err > 1.0) {
                 h_ = h * std::max(0.2, step_factor(h, err, iterations));
                 rejected_last_ = true, event_retake_ = false;
@@ -440,7 +390,7 @@ private:
         trial_polynomial();
         auto path = [&](double t, Vector& q, Vector& v) { polynomial(Pq_, Pv_, t, t_, h, q_, v_, q, v); };
         const Crossing first = events_.earliest(t_, t_ + h, path);
-        if (s_.adaptive && !event_retake_ && first.beyond < t_ + h && first.beyond - t_ > 1e-6 * h) {
+        if (adaptive_ && !event_retake_ && first.beyond < t_ + h && first.beyond - t_ > 1e-6 * h) {
             event_retake_ = true;
             h_before_event_ = h_new;
             h_ = first.beyond - t_;
@@ -453,8 +403,8 @@ private:
 
     void accept(double h, double err) {
         double t_new = t_start_ + double(fixed_steps_ + 1) * h;
-        if (s_.adaptive) t_new = t_ + h;
-        if (!s_.adaptive) ++fixed_steps_;
+        if (adaptive_) t_new = t_ + h;
+        if (!adaptive_) ++fixed_steps_;
         trial_polynomial();
         std::swap(Qq_, Pq_), std::swap(Qv_, Pv_);
         q_old_ = q_, v_old_ = v_;
@@ -481,29 +431,20 @@ private:
         v = v0 + x * (Qv[0] + x * (Qv[1] + x * Qv[2]));
     }
 
-    const System& system_;
-    NewmarkSettings s_;
-    int n_;
     radau5::Tableau tab_;
-    Matrix M_inv_, Kt_, Ct_, G_real_;
+    Matrix Kt_, Ct_, G_real_;
     ComplexMatrix G_pair_, M_complex_, Ct_complex_;  // M and C_t as complex, for the complex pair's solve
-    double force_scale_ = 1.0, force_floor_ = 0.0;
-    double t_ = 0.0, t_old_ = 0.0, h_ = 0.0, h_last_ = 0.0, h_old_ = 0.0, err_old_ = 0.0, faccon_ = 1.0;
-    ErrorScales scales_;
-    double t_start_ = 0.0, h_before_event_ = 0.0;
-    std::uint64_t fixed_steps_ = 0;
+    double force_floor_ = 0.0;
+    double t_old_ = 0.0, h_ = 0.0, h_last_ = 0.0, h_old_ = 0.0, err_old_ = 0.0, faccon_ = 1.0;
+    double h_before_event_ = 0.0;
     bool has_polynomial_ = false, rejected_last_ = false, event_retake_ = false, first_step_ = true;
-    workspace_t<System> ws_;
     // Scratch, sized once: nothing is allocated inside the time loop.
-    Vector q_, v_, a_, qs_, vs_, as_, q_old_, v_old_, f_, rhs_, eq_, ev_, tq_, tv_, dq_, dv_, w_real_q_, w_real_v_, rq_, rv_,
+    Vector a_, qs_, vs_, as_, q_old_, v_old_, eq_, ev_, tq_, tv_, dq_, dv_, w_real_q_, w_real_v_, rq_, rv_,
         sum_;
     ComplexVector w_pair_q_, w_pair_v_, rcq_, rcv_, xcq_, xcv_, tc_, csum_;
     std::array<Vector, 3> zq_, zv_, fq_, fv_, Qq_, Qv_, Pq_, Pv_;  // Q: the last accepted step's polynomial
-    LowRank<Vector> uvq_, uvv_;
     Eigen::PartialPivLU<Matrix> lu_real_;
     Eigen::PartialPivLU<ComplexMatrix> lu_pair_;
-    InterruptPoll interrupt_;
-    EventWatch<System> events_{system_};
 };
 
 }  // namespace camfollower

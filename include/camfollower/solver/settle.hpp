@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "camfollower/error.hpp"
-#include "camfollower/solver/newmark.hpp"
+#include "camfollower/solver/state.hpp"
 
 namespace camfollower {
 

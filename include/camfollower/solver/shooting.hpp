@@ -30,7 +30,7 @@
 #include <Eigen/LU>
 
 #include "camfollower/error.hpp"
-#include "camfollower/solver/newmark.hpp"
+#include "camfollower/solver/state.hpp"
 
 namespace camfollower {
 

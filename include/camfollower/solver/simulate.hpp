@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // One call for the common case: start a system in its initial state (or a given state), integrate
-// with Newmark/HHT, Dormand-Prince 5(4) / 8(5,3) or Radau IIA (settings.method) for a duration, record named
+// with settings.method (solver/settings.hpp; "auto" chosen at the start) for a duration, record named
 // channels, report progress and honour cancellation.
 #pragma once
 
@@ -14,14 +14,13 @@
 #include <utility>
 
 #include "camfollower/solver/choose_method.hpp"
-#include "camfollower/solver/dormand_prince.hpp"
+#include "camfollower/solver/dispatch.hpp"
 #include "camfollower/solver/integrate.hpp"
-#include "camfollower/solver/newmark.hpp"
 #include "camfollower/solver/observers.hpp"
-#include "camfollower/solver/radau.hpp"
+#include "camfollower/solver/settings.hpp"
 #include "camfollower/solver/settle.hpp"
 #include "camfollower/solver/shooting.hpp"
-#include "camfollower/solver/sparse_newton.hpp"
+#include "camfollower/solver/state.hpp"
 
 namespace camfollower {
 
@@ -61,20 +60,13 @@ struct RunResult {
 namespace detail {
 
 template <class S, class = void>
-struct has_sparse_matrices : std::false_type {};
-template <class S>
-struct has_sparse_matrices<S, void_t<decltype(std::declval<const S&>().sparse_mass()),
-                                     decltype(std::declval<const S&>().tangent_pattern())>>
-    : std::bool_constant<S::Vector::RowsAtCompileTime == Eigen::Dynamic> {};
-
-template <class S, class = void>
 struct has_set_interrupt : std::false_type {};
 template <class S>
 struct has_set_interrupt<S, void_t<decltype(std::declval<S&>().set_interrupt(std::function<bool()>()))>>
     : std::true_type {};
 
 template <class Stepper, class System>
-RunResult<System> run(const System& system, const NewmarkSettings& settings, const RunOptions& options,
+RunResult<System> run(const System& system, const SolverSettings& settings, const RunOptions& options,
                       const std::optional<typename System::Vector>& q0,
                       const std::optional<typename System::Vector>& v0) {
     using Vector = typename System::Vector;
@@ -83,7 +75,7 @@ RunResult<System> run(const System& system, const NewmarkSettings& settings, con
     const Vector q = q0 ? *q0 : initial_displacement(system);
     const Vector v = v0 ? *v0 : initial_velocity(system);
     RunResult<System> result;
-    result.method = result.requested_method = method_name(settings);
+    result.method = result.requested_method = method_name(settings.method);
     result.final_state = stepper.start(0.0, q, v);
     if constexpr (!std::is_same_v<Stepper, SparseNewmark<System>>)
         if (system.size() <= 200) result.highest_mode_hz = highest_angular_frequency(system, result.final_state) / (2.0 * pi);
@@ -129,29 +121,16 @@ RunResult<System> run(const System& system, const NewmarkSettings& settings, con
 
 }  // namespace detail
 
-// Whether simulate() runs `system` on the sparse backend with these settings.
-template <class System>
-bool uses_sparse_backend(const System& system, const NewmarkSettings& settings) {
-    if constexpr (detail::has_sparse_matrices<System>::value) {
-        if (settings.backend == Backend::sparse) return true;
-        return settings.backend == Backend::automatic && system.size() >= sparse_backend_threshold;
-    } else {
-        if (settings.backend == Backend::sparse)
-            detail::fail("linear_solver 'sparse' or 'klu' (the sparse backend) needs a dynamic-size system with sparse matrices (a Mechanism of other than the paper preset's 7 DOFs)");
-        return false;
-    }
-}
-
 // Refuses a time step the run cannot use: longer than the run itself, or (for a cam mechanism) longer
 // than a twelfth of a camshaft revolution, which cannot resolve the cam's motion.
 template <class System>
-void check_time_step(const System& system, const NewmarkSettings& settings, double duration) {
+void check_time_step(const System& system, const SolverSettings& settings, double duration) {
     settings.validate();
     detail::require_positive(duration, "duration", "(s)");
     if (settings.time_step > duration)
         detail::fail("time_step = ", settings.time_step, " s is longer than the duration ", duration, " s");
     // A run whose steps are bounded by max_step is bounded like a fixed-step run (1e10 steps).
-    if (uses_tolerance(settings.method) && settings.max_step > 0.0 && !(duration / settings.max_step <= 1e10))
+    if ((settings.tolerance || is_runge_kutta(settings.method)) && settings.max_step > 0.0 && !(duration / settings.max_step <= 1e10))
         detail::fail("duration / max_step = ", duration / settings.max_step, " steps is too many (limit 1e10); raise "
                      "max_step or shorten the run");
     if constexpr (detail::has_period<System>::value) {
@@ -164,7 +143,7 @@ void check_time_step(const System& system, const NewmarkSettings& settings, doub
 
 // The settings with method "auto" made concrete for a run starting at (q0, v0), and why (choose_method).
 template <class System>
-MethodChoice concrete_settings(const System& system, const NewmarkSettings& settings,
+MethodChoice concrete_settings(const System& system, const SolverSettings& settings,
                                const std::optional<typename System::Vector>& q0,
                                const std::optional<typename System::Vector>& v0) {
     if (!is_automatic(settings.method)) return {settings, ""};
@@ -174,7 +153,7 @@ MethodChoice concrete_settings(const System& system, const NewmarkSettings& sett
 }
 
 template <class System>
-RunResult<System> simulate(const System& system, const NewmarkSettings& requested, const RunOptions& options,
+RunResult<System> simulate(const System& system, const SolverSettings& requested, const RunOptions& options,
                            const std::optional<typename System::Vector>& q0 = std::nullopt,
                            const std::optional<typename System::Vector>& v0 = std::nullopt) {
     if (options.progress && options.progress_every < 1) detail::fail("progress_every must be >= 1");
@@ -186,26 +165,14 @@ RunResult<System> simulate(const System& system, const NewmarkSettings& requeste
         r.method_choice = std::move(choice.reason) + (r.method_choice.empty() ? "" : "; " + r.method_choice);
         return r;
     }
-    const NewmarkSettings& settings = requested;
-    if (is_runge_kutta(settings.method)) {
-        if (settings.backend == Backend::sparse)
-            detail::fail("linear_solver 'sparse' or 'klu' applies to Newmark; ", method_name(settings),
-                         settings.method == Method::radau ? " runs on the dense backend only" : " solves no linear system");
-        if (settings.method == Method::dop853) return detail::run<Dop853<System>>(system, settings, options, q0, v0);
-        if (settings.method == Method::radau) return detail::run<Radau<System>>(system, settings, options, q0, v0);
-        return detail::run<DormandPrince<System>>(system, settings, options, q0, v0);
-    }
-    if constexpr (detail::has_sparse_matrices<System>::value) {
-        if (uses_sparse_backend(system, settings)) return detail::run<SparseNewmark<System>>(system, settings, options, q0, v0);
-    } else {
-        (void)uses_sparse_backend(system, settings);  // refuses backend = sparse
-    }
-    return detail::run<Newmark<System>>(system, settings, options, q0, v0);
+    return with_stepper(system, requested, [&](auto stepper) {
+        return detail::run<typename decltype(stepper)::type>(system, requested, options, q0, v0);
+    });
 }
 
 namespace detail {
 template <class Stepper, class System>
-PeriodicOrbit shoot_with(const System& system, const NewmarkSettings& settings, const ShootingOptions& options,
+PeriodicOrbit shoot_with(const System& system, const SolverSettings& settings, const ShootingOptions& options,
                          const Eigen::VectorXd& q0, const Eigen::VectorXd& v0, const std::function<bool()>& keep_going) {
     Stepper stepper(system, settings);
     return shoot(stepper, q0, v0, options, [&] { return !keep_going || keep_going(); });
@@ -216,7 +183,7 @@ PeriodicOrbit shoot_with(const System& system, const NewmarkSettings& settings, 
 // (default: the system's initial state), on the backend simulate() would use. options.period
 // defaults to the system's period(). Check orbit.converged (or call require_converged).
 template <class System>
-PeriodicOrbit periodic_orbit(const System& system, const NewmarkSettings& requested, ShootingOptions options,
+PeriodicOrbit periodic_orbit(const System& system, const SolverSettings& requested, ShootingOptions options,
                              const std::optional<typename System::Vector>& q0 = std::nullopt,
                              const std::optional<typename System::Vector>& v0 = std::nullopt,
                              const std::function<bool()>& keep_going = {}) {
@@ -224,22 +191,12 @@ PeriodicOrbit periodic_orbit(const System& system, const NewmarkSettings& reques
         if (options.period == 0.0) options.period = system.period();
     }
     check_time_step(system, requested, options.period);
-    const NewmarkSettings settings = concrete_settings(system, requested, q0, v0).settings;
+    const SolverSettings settings = concrete_settings(system, requested, q0, v0).settings;
     const Eigen::VectorXd q = q0 ? Eigen::VectorXd(*q0) : Eigen::VectorXd(initial_displacement(system));
     const Eigen::VectorXd v = v0 ? Eigen::VectorXd(*v0) : Eigen::VectorXd(initial_velocity(system));
-    if (settings.method == Method::dop853)
-        return detail::shoot_with<Dop853<System>>(system, settings, options, q, v, keep_going);
-    if (settings.method == Method::radau)
-        return detail::shoot_with<Radau<System>>(system, settings, options, q, v, keep_going);
-    if (settings.method == Method::dormand_prince)
-        return detail::shoot_with<DormandPrince<System>>(system, settings, options, q, v, keep_going);
-    if constexpr (detail::has_sparse_matrices<System>::value) {
-        if (uses_sparse_backend(system, settings))
-            return detail::shoot_with<SparseNewmark<System>>(system, settings, options, q, v, keep_going);
-    } else {
-        (void)uses_sparse_backend(system, settings);
-    }
-    return detail::shoot_with<Newmark<System>>(system, settings, options, q, v, keep_going);
+    return with_stepper(system, settings, [&](auto stepper) {
+        return detail::shoot_with<typename decltype(stepper)::type>(system, settings, options, q, v, keep_going);
+    });
 }
 
 }  // namespace camfollower

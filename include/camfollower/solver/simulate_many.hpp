@@ -58,7 +58,7 @@ struct CaseRun {
 // simulate() for every system with the same settings; options[i] for case i (one entry: for all).
 // threads = 0: one per hardware thread. Results in the systems' order.
 template <class System>
-std::vector<CaseRun<System>> simulate_many(const std::vector<const System*>& systems, const NewmarkSettings& settings,
+std::vector<CaseRun<System>> simulate_many(const std::vector<const System*>& systems, const SolverSettings& settings,
                                            const std::vector<RunOptions>& options, unsigned threads = 0) {
     if (options.size() != 1 && options.size() != systems.size())
         detail::fail("simulate_many: options must hold one entry or one per system (", systems.size(), "), got ",

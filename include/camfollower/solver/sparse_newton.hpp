@@ -38,7 +38,7 @@ public:
     using Tangent = SparseLowRank;
     static_assert(Vector::RowsAtCompileTime == Eigen::Dynamic, "the sparse backend needs a dynamic-size system");
 
-    SparseNewtonSolve(const System& system, const NewmarkSettings& s) : system_(system), s_(s), n_(system.size()) {
+    SparseNewtonSolve(const System& system, const SolverSettings& s) : system_(system), s_(s), p_(newmark_parameters(s)), n_(system.size()) {
         const Sparse& M = system.sparse_mass();
         const Sparse& C = system.sparse_damping();
         const Sparse& K = system.sparse_stiffness();
@@ -47,9 +47,9 @@ public:
                 detail::fail("system: sparse mass, damping and stiffness must be ", n_, " x ", n_, " (size())");
         for (int k = 0; k < n_; ++k)
             if (!(M.coeff(k, k) > 0.0)) detail::fail("system: mass matrix diagonal must be > 0, got M(", k, ", ", k, ") = ", M.coeff(k, k));
-        if (s_.beta < 0.5 * s_.gamma)
-            detail::fail("the sparse backend needs an unconditionally stable scheme (beta >= gamma / 2), got beta = ", s_.beta,
-                         ", gamma = ", s_.gamma);
+        if (p_.beta < 0.5 * p_.gamma)
+            detail::fail("the sparse backend needs an unconditionally stable scheme (beta >= gamma / 2), got beta = ", p_.beta,
+                         ", gamma = ", p_.gamma);
 
         // The fixed pattern: M, C, K and every DOF pair a tangent column can couple.
         std::vector<Eigen::Triplet<double>> t;
@@ -71,10 +71,10 @@ public:
         const int levels = s_.max_halvings + 1;
         for (int level = 0; level < levels; ++level) {
             const double dt = s_.time_step / double(1 << level);
-            const double one_alpha = 1.0 + s_.hht_alpha;
-            Sparse A0 = (1.0 / (s_.beta * dt * dt)) * M + (one_alpha * s_.gamma / (s_.beta * dt)) * C + one_alpha * K;
+            const double one_alpha = 1.0 + p_.alpha;
+            Sparse A0 = (1.0 / (p_.beta * dt * dt)) * M + (one_alpha * p_.gamma / (p_.beta * dt)) * C + one_alpha * K;
             A0.makeCompressed();
-            Aa_[level] = (s_.beta * dt * dt) * A0;
+            Aa_[level] = (p_.beta * dt * dt) * A0;
             std::vector<double>& values = a0_values_[level];
             values.assign(std::size_t(J_.nonZeros()), 0.0);
             for (int col = 0; col < A0.outerSize(); ++col)
@@ -226,14 +226,15 @@ private:
     }
 
     const System& system_;
-    NewmarkSettings s_;
+    SolverSettings s_;
+    NewmarkParameters p_;  // gamma, beta, alpha of the method
     int n_;
     Sparse J_;  // the Newton matrix on its fixed pattern, values rewritten at each solve
-    std::array<Sparse, NewmarkSettings::max_levels> Aa_;
-    std::array<std::vector<double>, NewmarkSettings::max_levels> a0_values_;
-    std::array<bool, NewmarkSettings::max_levels> symmetric_{};
-    std::array<double, NewmarkSettings::max_levels> inverse_bound_{};
-    std::array<Factor, NewmarkSettings::max_levels> a0_factors_;
+    std::array<Sparse, SolverSettings::max_levels> Aa_;
+    std::array<std::vector<double>, SolverSettings::max_levels> a0_values_;
+    std::array<bool, SolverSettings::max_levels> symmetric_{};
+    std::array<double, SolverSettings::max_levels> inverse_bound_{};
+    std::array<Factor, SolverSettings::max_levels> a0_factors_;
     Eigen::KLU<Sparse> klu_;
     Eigen::CholmodDecomposition<Sparse, Eigen::Lower> cholmod_;
     Eigen::CholmodDecomposition<Sparse, Eigen::Lower> mass_;
