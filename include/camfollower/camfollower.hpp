@@ -44,3 +44,8 @@
 #include "camfollower/structure/shaft_spec.hpp"
 #include "camfollower/structure/timoshenko_beam.hpp"
 #include "camfollower/units.hpp"
+
+// Linked with camfollower::precompiled: simulate() for the library's mechanisms comes compiled.
+#ifdef CAMFOLLOWER_PRECOMPILED
+#include "camfollower/precompiled.hpp"
+#endif

@@ -86,9 +86,13 @@ class PeriodicOrbit:
     def record(self, system, *, revolutions: float = 1.0, decimation: int = 1, **overrides) -> Result:
         """Simulate ``revolutions`` from the orbit with the scheme it was found with (so the recorded
         revolution is the orbit itself) and return the Result."""
-        kwargs = {**self.scheme, **overrides}
         return simulate(
-            system, revolutions=revolutions, decimation=decimation, initial_state=(self.q, self.v), **kwargs
+            system,
+            _settings_of(self.scheme),
+            revolutions=revolutions,
+            decimation=decimation,
+            initial_state=(self.q, self.v),
+            **overrides,
         )
 
     def summary(self) -> Dict[str, Any]:
@@ -214,6 +218,17 @@ def periodic_steady_state(
     )
 
 
+def _settings_of(scheme: Dict[str, Any]) -> SolverSettings:
+    """The SolverSettings of an orbit's ``scheme``; an orbit pickled before the settings were one object
+    carries newmark's hht_alpha = 0 and default gamma, beta, which are dropped."""
+    kw = dict(scheme)
+    if kw.get("method", "newmark") != "hht" and kw.get("hht_alpha") in (0, 0.0, None):
+        kw.pop("hht_alpha", None)
+    if kw.get("method", "newmark") != "newmark" or (kw.get("gamma"), kw.get("beta")) in ((None, None), (0.5, 0.25)):
+        kw.pop("gamma", None), kw.pop("beta", None)
+    return SolverSettings(**{k: v for k, v in kw.items() if v is not None})
+
+
 def _transient(
     system, scheme: Dict[str, Any], failed: PeriodicOrbit, tolerance: float, max_revolutions: int
 ) -> PeriodicOrbit:
@@ -225,7 +240,7 @@ def _transient(
         settle_tolerance=tolerance,
         settle_max_revolutions=max_revolutions,
         settle_dofs=list(system.dof_names),
-        **scheme,
+        **_settings_of(scheme).fields(),
     )
     settle = r.settle or {}
     q, v = np.array(r.q[-1]), np.array(r.v[-1])

@@ -242,7 +242,7 @@ py::dict to_python(const config::CaseConfig& c) {
         solver["gamma"] = n.gamma;
         solver["beta"] = n.beta;
     }
-    if (n.method == Method::hht) solver["hht_alpha"] = n.hht_alpha;
+    if (n.method == Method::hht) solver["hht_alpha"] = newmark_parameters(n).alpha;
     if (n.tolerance) {
         solver["tolerance"] = *n.tolerance;
         solver["max_step"] = n.max_step;

@@ -24,11 +24,17 @@ std::string listed_fields() {
     return list;
 }
 
+// An integer: int or anything with __index__ (NumPy integers), never a bool.
 int integer_argument(const std::string& name, const py::handle& value) {
-    if (py::isinstance<py::bool_>(value) || !py::isinstance<py::int_>(value))
+    if (py::isinstance<py::bool_>(value) || !PyIndex_Check(value.ptr()))
         throw py::type_error(name + " must be an integer, got " + std::string(py::str(py::type::handle_of(value).attr("__name__"))));
-    const long long x = value.cast<long long>();
-    if (x < -1000000 || x > 1000000) detail::fail(name, " must be a small integer, got ", x);
+    PyObject* index = PyNumber_Index(value.ptr());
+    if (!index) throw py::error_already_set();
+    int overflow = 0;
+    const long long x = PyLong_AsLongLongAndOverflow(index, &overflow);
+    Py_DECREF(index);
+    if (overflow != 0 || x < -1000000 || x > 1000000)
+        detail::fail(name, " must be an integer in [-1e6, 1e6], got ", std::string(py::str(value)));
     return int(x);
 }
 
@@ -51,7 +57,6 @@ SolverSettings settings_from_keywords(const py::dict& kw) {
     SolverSettings s;
     if (given("method")) s.method = method_from_name(text_argument("method", kw["method"]));
     check_newmark_parameters_apply(s.method, given("gamma") || given("beta"), given("hht_alpha"));
-    if (s.method == Method::hht) s.hht_alpha = default_hht_alpha;
     const auto number = [&](const char* key, double& field) {
         if (given(key)) field = number_argument(key, kw[key]);
     };
@@ -60,7 +65,7 @@ SolverSettings settings_from_keywords(const py::dict& kw) {
     number("max_step", s.max_step);
     number("gamma", s.gamma);
     number("beta", s.beta);
-    number("hht_alpha", s.hht_alpha);
+    if (given("hht_alpha")) s.hht_alpha = number_argument("hht_alpha", kw["hht_alpha"]);
     number("residual_tolerance", s.residual_tolerance);
     number("increment_tolerance", s.increment_tolerance);
     if (given("max_iterations")) s.max_iterations = integer_argument("max_iterations", kw["max_iterations"]);
@@ -80,7 +85,7 @@ py::dict fields_of(const SolverSettings& s) {
     if (s.tolerance) f["tolerance"] = *s.tolerance;
     if (s.max_step != d.max_step) f["max_step"] = s.max_step;
     if (s.method == Method::newmark && (s.gamma != d.gamma || s.beta != d.beta)) f["gamma"] = s.gamma, f["beta"] = s.beta;
-    if (s.method == Method::hht) f["hht_alpha"] = s.hht_alpha;
+    if (s.method == Method::hht) f["hht_alpha"] = newmark_parameters(s).alpha;
     if (std::string(linear_solver_name(s)) != "auto") f["linear_solver"] = linear_solver_name(s);
     if (s.residual_tolerance != d.residual_tolerance) f["residual_tolerance"] = s.residual_tolerance;
     if (s.increment_tolerance != d.increment_tolerance) f["increment_tolerance"] = s.increment_tolerance;
@@ -130,14 +135,16 @@ Raises ValueError for a value out of range, TypeError for an unknown keyword or 
                                "Newmark's gamma as the method steps with it")
         .def_property_readonly("beta", [](const SolverSettings& s) { return newmark_parameters(s).beta; },
                                "Newmark's beta as the method steps with it")
-        .def_property_readonly("hht_alpha", [](const SolverSettings& s) { return s.hht_alpha; })
+        .def_property_readonly("hht_alpha", [](const SolverSettings& s) { return newmark_parameters(s).alpha; },
+                               "HHT's alpha as the method steps with it (0 but for method 'hht')")
         .def_property_readonly("linear_solver", [](const SolverSettings& s) { return std::string(linear_solver_name(s)); })
         .def_property_readonly("residual_tolerance", [](const SolverSettings& s) { return s.residual_tolerance; })
         .def_property_readonly("increment_tolerance", [](const SolverSettings& s) { return s.increment_tolerance; })
         .def_property_readonly("max_iterations", [](const SolverSettings& s) { return s.max_iterations; })
         .def_property_readonly("max_halvings", [](const SolverSettings& s) { return s.max_halvings; })
-        .def_property_readonly("adaptive", [](const SolverSettings& s) { return s.adaptive(); },
-                               "True when a tolerance is set")
+        .def_property_readonly("adaptive", [](const SolverSettings& s) { return s.adaptive() || is_runge_kutta(s.method); },
+                               "True when the run adapts its steps: a tolerance set, or a Runge-Kutta method "
+                               "(which runs under 1e-6 without one)")
         .def("fields", &fields_of, "The fields that say what these settings are (method, time step, and the others "
                                    "that apply and differ from their defaults), as keywords of SolverSettings.")
         .def("replace",
@@ -149,7 +156,9 @@ Raises ValueError for a value out of range, TypeError for an unknown keyword or 
                  for (const auto& item : changes) kw[item.first] = item.second;
                  return settings_from_keywords(kw);
              })
-        .def("__eq__", [](const SolverSettings& a, const SolverSettings& b) { return fields_of(a).equal(fields_of(b)); })
+        .def(
+            "__eq__", [](const SolverSettings& a, const SolverSettings& b) { return fields_of(a).equal(fields_of(b)); },
+            py::is_operator())
         .def("__hash__", [](const SolverSettings& s) { return py::hash(py::tuple(fields_of(s).attr("items")())); })
         .def("__repr__",
              [](const SolverSettings& s) {

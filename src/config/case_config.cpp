@@ -801,6 +801,8 @@ SolverConfig read_solver(const Section& s) {
         for (const char* k : {"settle_tolerance", "settle_dofs", "settle_min_revolutions", "settle_max_revolutions"})
             if (s.has(k)) s.fail(k, "applies only with settle = true");
     if (scheme != "hht" && s.has("hht_alpha")) s.fail("hht_alpha", "applies only with scheme = \"hht\"");
+    for (const char* k : {"gamma", "beta"})
+        if (scheme != "newmark" && s.has(k)) s.fail(k, "applies only with scheme = \"newmark\" (\"" + scheme + "\" sets its own)");
     s.finish({"revolutions", "duration", "time_step", "steps_per_revolution", "scheme", "hht_alpha", "gamma", "beta",
               "residual_tolerance", "increment_tolerance", "max_iterations", "max_halvings", "linear_solver", "settle",
               "tolerance", "max_step",

@@ -29,9 +29,10 @@ std::vector<MethodTraits> concrete_methods() {
     return out;
 }
 
+// Fixed steps of time_step (a Runge-Kutta method takes them as max_step).
 SolverSettings fixed_steps(Method method, double time_step) {
     SolverSettings s = SolverSettings::named(method, time_step);
-    if (method == Method::hht) s.hht_alpha = default_hht_alpha;
+    if (is_runge_kutta(method)) s.max_step = time_step;
     return s;
 }
 
@@ -76,6 +77,17 @@ TEST_CASE("Every method that takes a tolerance holds its error near it, tighter 
             CHECK(errors[i] / peak < 300.0 * tolerances[i]);
         }
         CHECK(errors[1] < errors[0] / 30.0);
+    }
+}
+
+TEST_CASE("A Runge-Kutta method without a tolerance needs max_step for its fixed steps") {
+    const DrivenSdof sdof;
+    for (const MethodTraits& t : concrete_methods()) {
+        if (!is_runge_kutta(t.method)) continue;
+        CAPTURE(t.name);
+        CHECK_THROWS_WITH(run(sdof.system(), SolverSettings::named(t.method, 1e-3), 0.1),
+                          Catch::Contains("adapts its steps under a tolerance: set tolerance") &&
+                              Catch::Contains("or max_step for fixed steps of max_step"));
     }
 }
 

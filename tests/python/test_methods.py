@@ -183,7 +183,10 @@ def test_fox_goodwin_is_newmark_with_beta_one_twelfth(model):
         (dict(method="dop853", tolerance=-1e-6), r"tolerance must be in \[1e-13, 0.1\], got -1e-06"),
         (dict(method="dop853", tolerance=float("inf")), r"tolerance must be in \[1e-13, 0.1\], got inf"),
         (dict(method="dop853", max_step=-1.0), r"max_step must be 0 \(unbounded\) or finite and >= 1e-12 s"),
-        (dict(method="dop853", hht_alpha=-0.05), r"hht_alpha applies to method 'hht' only \(method 'dop853'\)"),
+        (
+            dict(method="dop853", hht_alpha=-0.05),
+            r"hht_alpha applies to method 'hht' only, got it with method 'dop853'",
+        ),
     ],
 )
 def test_method_settings_are_checked_by_name(model, kwargs, message):

@@ -43,7 +43,9 @@ def test_replace_changes_fields_and_drops_parameters_of_another_method():
     d = n.replace(method="dop853", tolerance=1e-7)
     assert (d.method, d.time_step, d.tolerance) == ("dop853", 1e-5, 1e-7)
     assert n.method == "newmark" and n.tolerance is None  # unchanged: immutable
-    with pytest.raises(ValueError, match=r"gamma and beta apply to method 'newmark' only \(method 'dop853'"):
+    with pytest.raises(
+        ValueError, match=r"gamma and beta apply to method 'newmark' only, got them with method 'dop853'"
+    ):
         n.replace(method="dop853", gamma=0.6)
     with pytest.raises(ValueError, match=r"tolerance must be in \[1e-13, 0.1\], got 0"):
         n.replace(tolerance=0.0)
@@ -109,3 +111,30 @@ def test_the_config_produces_the_same_objects():
     r = cfg.run(revolutions=0.05)
     s = cf.simulate(m, cfg.settings, cfg.options, revolutions=0.05)
     np.testing.assert_array_equal(r["cam.force"], s["cam.force"])
+
+
+def test_numpy_integers_and_comparisons_with_other_types():
+    assert cf.SolverSettings(max_halvings=np.int64(8), max_iterations=np.int32(30)).max_halvings == 8
+    assert (cf.SolverSettings() == None) is False  # noqa: E711 (the operator, not identity)
+    assert cf.SolverSettings() != "newmark"
+    with pytest.raises(ValueError, match=r"max_halvings must be an integer in \[-1e6, 1e6\]"):
+        cf.SolverSettings(max_halvings=2**70)
+
+
+def test_an_orbit_pickled_before_the_settings_objects_still_records():
+    from camfollower.periodic import _settings_of
+
+    legacy = {
+        "time_step": 1e-5,
+        "gamma": 0.5,
+        "beta": 0.25,
+        "hht_alpha": 0.0,
+        "linear_solver": "auto",
+        "residual_tolerance": 1e-10,
+        "increment_tolerance": 1e-10,
+        "max_iterations": 25,
+        "max_halvings": 6,
+    }
+    assert _settings_of(legacy) == cf.SolverSettings(time_step=1e-5)
+    fox = {**legacy, "method": "fox_goodwin"}
+    assert _settings_of(fox) == cf.SolverSettings("fox_goodwin", time_step=1e-5)

@@ -142,6 +142,9 @@ private:
         if (s.method != method)
             detail::fail("the ", name, " stepper runs method '", method_name(method), "', got '", method_name(s.method),
                          "' (simulate() and periodic_orbit() run every method)");
+        if (!s.tolerance && s.max_step == 0.0)
+            detail::fail("method '", method_name(method), "' adapts its steps under a tolerance: set tolerance (Python and the "
+                         "config default to ", runge_kutta_default_tolerance, "), or max_step for fixed steps of max_step");
         return s;
     }
 };

@@ -330,7 +330,7 @@ private:
         for (;;) {
             double h = h_;
             if (s_.max_step > 0.0) h = std::min(h, s_.max_step);
-            if (!adaptive_) h = s_.max_step > 0.0 ? s_.max_step : s_.time_step;
+            if (!adaptive_) h = s_.max_step;  // fixed steps (FirstOrderStepper requires max_step without a tolerance)
             if (!(h >= min_step))
                 throw ConvergenceError(detail::concat("Radau IIA: the step fell to ", h, " s at t = ", t_,
                                                       " s without meeting tolerance = ", tolerance_,

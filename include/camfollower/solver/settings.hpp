@@ -3,10 +3,10 @@
 // (read by C++, the config, Python, the command line and the docs' test), and SolverSettings.
 //
 // A run is error-controlled exactly when SolverSettings::tolerance is set: every method then adapts
-// its steps under it and time_step becomes the output interval. Without one, every method takes
-// fixed steps (Newmark's of time_step; the Runge-Kutta methods' of max_step, or time_step): the
-// Runge-Kutta methods' fixed steps are for order studies and benchmarks, so the front ends (config,
-// Python, command line) give them runge_kutta_default_tolerance when none is asked for.
+// its steps under it and time_step becomes the output interval. Without one the Newmark family takes
+// fixed steps of time_step; a Runge-Kutta method takes fixed steps of max_step only when max_step is
+// set (for order studies and benchmarks) and is refused with neither. The front ends (config,
+// Python, command line) give a Runge-Kutta method runge_kutta_default_tolerance when none is asked for.
 #pragma once
 
 #include <array>
@@ -113,12 +113,14 @@ inline double newmark_step_limit(double gamma, double beta, double omega_max) {
 }
 
 // gamma and beta belong to method newmark, hht_alpha to hht: a value another method would ignore is
-// refused (validate(): a value other than the default; the front ends: a value given at all).
+// refused (validate(): gamma, beta other than their defaults, hht_alpha set; the front ends: any
+// value given).
 inline void check_newmark_parameters_apply(Method method, bool gamma_or_beta_given, bool hht_alpha_given) {
     if (gamma_or_beta_given && method != Method::newmark)
-        detail::fail("gamma and beta apply to method 'newmark' only (method '", method_name(method), "' sets its own)");
+        detail::fail("gamma and beta apply to method 'newmark' only, got them with method '", method_name(method), "'");
     if (hht_alpha_given && method != Method::hht)
-        detail::fail("hht_alpha applies to method 'hht' only (method '", method_name(method), "')");
+        detail::fail("hht_alpha applies to method 'hht' only, got it with method '", method_name(method), "'",
+                     method == Method::newmark ? " (HHT-alpha is method 'hht')" : "");
 }
 
 struct SolverSettings {
@@ -126,9 +128,9 @@ struct SolverSettings {
     double time_step = 3e-6;         // s: the fixed step, or under a tolerance the output interval
     std::optional<double> tolerance;  // set: adaptive steps, relative error per step (displacements, forces)
     double max_step = 0.0;           // s, 0: unbounded. Under a tolerance the largest step (Newmark: at most
-                                     // time_step); Runge-Kutta without one: the fixed step (0: time_step)
+                                     // time_step); a Runge-Kutta method without one: its fixed step (required)
     double gamma = 0.5, beta = 0.25;  // method newmark only
-    double hht_alpha = 0.0;          // method hht only, in [-1/3, 0]
+    std::optional<double> hht_alpha;  // method hht only, in [-1/3, 0]; unset: default_hht_alpha
     double residual_tolerance = 1e-10;   // Newton, relative to the system's force scale
     double increment_tolerance = 1e-10;  // Newton, relative to max |q| (+ 1 nm floor)
     int max_iterations = 25;
@@ -160,12 +162,12 @@ struct SolverSettings {
         // Below a picosecond M / (beta dt^2) leaves the range of doubles for any mechanical mass.
         if (!(std::isfinite(time_step) && time_step >= 1e-12))
             detail::fail("time_step must be finite and > 0 (at least 1e-12 s), got ", time_step);
-        check_newmark_parameters_apply(method, gamma != 0.5 || beta != 0.25, hht_alpha != 0.0);
+        check_newmark_parameters_apply(method, gamma != 0.5 || beta != 0.25, hht_alpha.has_value());
         if (method == Method::newmark) {
             detail::require_in_range(gamma, 0.5, 1.0, "gamma (below 1/2 the scheme adds negative damping)");
             if (!(std::isfinite(beta) && beta > 0.0 && beta <= 0.5)) detail::fail("beta must be in (0, 0.5], got ", beta);
         }
-        if (method == Method::hht) detail::require_in_range(hht_alpha, -1.0 / 3.0, 0.0, "hht_alpha");
+        if (method == Method::hht) detail::require_in_range(hht_alpha.value_or(default_hht_alpha), -1.0 / 3.0, 0.0, "hht_alpha");
         detail::require_positive(residual_tolerance, "residual_tolerance");
         detail::require_positive(increment_tolerance, "increment_tolerance");
         if (max_iterations < 1 || max_iterations > 1000)
@@ -196,7 +198,10 @@ inline void give_default_tolerance(SolverSettings& s) {
 // The Newmark family's gamma, beta and alpha for its method (newmark: the settings' own).
 inline NewmarkParameters newmark_parameters(const SolverSettings& s) {
     if (s.method == Method::fox_goodwin) return {0.5, 1.0 / 12.0, 0.0};
-    if (s.method == Method::hht) return {0.5 - s.hht_alpha, 0.25 * (1.0 - s.hht_alpha) * (1.0 - s.hht_alpha), s.hht_alpha};
+    if (s.method == Method::hht) {
+        const double alpha = s.hht_alpha.value_or(default_hht_alpha);
+        return {0.5 - alpha, 0.25 * (1.0 - alpha) * (1.0 - alpha), alpha};
+    }
     return {s.gamma, s.beta, 0.0};
 }
 
