@@ -161,7 +161,7 @@ int run(const std::string& config, std::string output) {
         const cf::SolverStatistics& stats = result.report.stats;
         // Newmark under a tolerance (named: auto does not take it).
         const std::string ran = result.method;
-        if (settings.tolerance && (ran == "newmark" || ran == "fox_goodwin"))
+        if (settings.tolerance && cf::is_newmark_family(cf::method_from_name(ran)))
             std::printf("%zu rows, %zu channels (%s under tolerance %.3g: %llu steps, %llu rejected, %.3f Newton "
                         "iterations/step, output every %.4g s)",
                         result.recording.rows, result.recording.names.size(), result.method, *settings.tolerance,

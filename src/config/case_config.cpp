@@ -774,7 +774,9 @@ SolverConfig read_solver(const Section& s) {
     SolverSettings& n = v.settings;
     if (scheme != "average_acceleration") n.method = method_from_name(scheme);
     if (n.method == Method::hht) n.hht_alpha = s.quantity("hht_alpha", "-", default_hht_alpha);
-    if (scheme == "newmark") {
+    // "newmark" by name takes gamma and beta (average_acceleration is newmark at their defaults).
+    const bool named_newmark = scheme == method_name(Method::newmark);
+    if (named_newmark) {
         n.gamma = s.quantity("gamma", "-");
         n.beta = s.quantity("beta", "-");
     }
@@ -800,9 +802,12 @@ SolverConfig read_solver(const Section& s) {
     if (!v.settle)
         for (const char* k : {"settle_tolerance", "settle_dofs", "settle_min_revolutions", "settle_max_revolutions"})
             if (s.has(k)) s.fail(k, "applies only with settle = true");
-    if (scheme != "hht" && s.has("hht_alpha")) s.fail("hht_alpha", "applies only with scheme = \"hht\"");
+    if (n.method != Method::hht && s.has("hht_alpha"))
+        s.fail("hht_alpha", detail::concat("applies only with scheme = \"", method_name(Method::hht), "\""));
     for (const char* k : {"gamma", "beta"})
-        if (scheme != "newmark" && s.has(k)) s.fail(k, "applies only with scheme = \"newmark\" (\"" + scheme + "\" sets its own)");
+        if (!named_newmark && s.has(k))
+            s.fail(k, detail::concat("applies only with scheme = \"", method_name(Method::newmark), "\" (\"", scheme,
+                                     "\" sets its own)"));
     s.finish({"revolutions", "duration", "time_step", "steps_per_revolution", "scheme", "hht_alpha", "gamma", "beta",
               "residual_tolerance", "increment_tolerance", "max_iterations", "max_halvings", "linear_solver", "settle",
               "tolerance", "max_step",

@@ -89,3 +89,14 @@ def test_the_config_names_the_same_methods():
         {"camshaft": {"speed": "750 rpm"}, "preset": {"name": "paper"}, "solver": {"scheme": "dop853"}}
     ).simulate_kwargs()
     assert kw["tolerance"] == cf._core.RUNGE_KUTTA_DEFAULT_TOLERANCE == 1e-6
+
+
+def test_the_config_refuses_parameters_of_another_method():
+    base = {"camshaft": {"speed": "750 rpm"}, "preset": {"name": "paper"}}
+    for scheme in ("fox_goodwin", "average_acceleration", "dop853"):
+        with pytest.raises(
+            ValueError, match=rf'solver.gamma: applies only with scheme = "newmark" \("{scheme}" sets its own\)'
+        ):
+            cf.config_from_dict({**base, "solver": {"scheme": scheme, "gamma": 0.6}})
+    with pytest.raises(ValueError, match=r'solver.hht_alpha: applies only with scheme = "hht"'):
+        cf.config_from_dict({**base, "solver": {"scheme": "newmark", "gamma": 0.5, "beta": 0.25, "hht_alpha": -0.1}})
