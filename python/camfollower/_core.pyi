@@ -1080,6 +1080,36 @@ class MechanismBuilder:
     @property
     def dof_names(self) -> list[str]:
         ...
+    @property
+    def clearances(self) -> list:
+        """
+        Clearances, as dicts with add_clearance's parameters.
+        """
+    @property
+    def contacts(self) -> list:
+        """
+        Cam-follower contacts, as dicts with add_contact's parameters (name, program, follower, stiffness, exponent, damping_factor, phase, cam_x, cam_y, follower_dof, lateral, eccentricity, cam_twist) and paper_backlash (backlash, switch_width, guide_dof, guide_stiffness).
+        """
+    @property
+    def dofs(self) -> list:
+        """
+        DOFs in order, as dicts (name, mass, direction); a shaft's DOFs as one dict describing the shaft.
+        """
+    @property
+    def loads(self) -> list:
+        """
+        Constant loads, as dicts (dof, force).
+        """
+    @property
+    def masses(self) -> list:
+        """
+        Point masses added to DOFs, as (dof, mass) tuples (kg).
+        """
+    @property
+    def springs(self) -> list:
+        """
+        Springs and dampers, as dicts (name, a, b, stiffness, damping, preload).
+        """
 class Mechanism:
     """
     An immutable cam mechanism (build one with MechanismBuilder, or camfollower.presets).
@@ -1101,13 +1131,14 @@ class Mechanism:
     def lowest_modes(self, theta: typing.SupportsFloat | typing.SupportsIndex = 0.0, count: typing.SupportsInt | typing.SupportsIndex = 0) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]]:
         """
         (frequencies in Hz ascending, mass-normalized mode shapes as columns) of the lowest `count` modes at
-        camshaft angle theta (rad), contacts linearized; count = 0: all (models up to 200 DOFs). Large
-        models (a flexible camshaft) use shift-invert Lanczos on the sparse factor (Spectra).
+        camshaft angle theta (rad), contacts linearized; count = 0: all (a dense solve). A few of a large
+        model (above 200 DOFs, a flexible camshaft): shift-invert Lanczos on the sparse factor (Spectra).
         """
     def modal_analysis(self, theta: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> dict:
         """
         Undamped natural frequencies (Hz, ascending), mass-normalized mode shapes and the tangent stiffness at
-        the quasi-static equilibrium at camshaft angle theta (rad), contacts linearized.
+        the quasi-static equilibrium at camshaft angle theta (rad), contacts linearized: every mode, as
+        lowest_modes(theta) (the one modal analysis).
         """
     def static_equilibrium(self, theta: typing.SupportsFloat | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         """
@@ -1304,14 +1335,16 @@ def length_units() -> dict:
     """
     Length units accepted by the exports: {name: metres per unit} (m, mm, um, inch = 0.0254 m).
     """
-def paper_preset(parameters: Parameters | None = None, program: MotionProgram | None = None, *, eccentricity: CamEccentricity | None = None, guide_clearance: typing.SupportsFloat | typing.SupportsIndex = 0.0, guide_wall_damping_factor: typing.SupportsFloat | typing.SupportsIndex = 0.0, guide_friction: typing.SupportsFloat | typing.SupportsIndex = 0.0, element_damping_ratio: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> Mechanism:
+def paper_preset(parameters: Parameters | None = None, program: MotionProgram | None = None, *, eccentricity: CamEccentricity | None = None, guide_clearance: typing.SupportsFloat | typing.SupportsIndex = 0.0, guide_wall_damping_factor: typing.SupportsFloat | typing.SupportsIndex = 0.0, guide_friction: typing.SupportsFloat | typing.SupportsIndex = 0.0, element_damping_ratio: typing.SupportsFloat | typing.SupportsIndex = 0.0, paper_backlash: typing.SupportsFloat | typing.SupportsIndex = 0.0, paper_backlash_switch_width: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> Mechanism:
     """
     The paper's 7-DOF model (Tounsi et al.) built from the mechanism parts; DOFs y1..y4, x1..x3,
     contact 'cam'. Parameters as for CamFollowerModel (Table 2 defaults). Options: a CamEccentricity;
     guide_clearance (m, radial) > 0 puts the rod x3 in a gap with walls of stiffness K_rb (clearance
     'guide'; wall damping factor chi in s/m, Coulomb friction on y3); element_damping_ratio in (0, 1)
     puts a damper on every element (springs, contact, guide walls) at that ratio of its own critical
-    damping, in place of the paper's few dampers.
+    damping, in place of the paper's few dampers. paper_backlash (m) > 0: the paper's literal backlash, the
+    rod's side imposed by the program (offset e +- b, K_rb anchored on the displaced rod), its switch
+    ramped over paper_backlash_switch_width (rad; 0: hard).
     """
 def valve_train_parameter_units() -> dict:
     """

@@ -13,6 +13,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import _core
+
 __all__ = [
     "Spectrum",
     "spectrum",
@@ -178,29 +180,44 @@ def sidebands(spec: Spectrum, carrier: float, spacing: float, orders: int = 3) -
     }
 
 
-def theoretical_follower_acceleration(model, theta) -> np.ndarray:
-    """Rigid-follower acceleration omega^2 d2h/dtheta2 at cam angles theta (constant speed)."""
-    _require_model(model)
+def theoretical_follower_acceleration(model, theta, contact: str | None = None) -> np.ndarray:
+    """Rigid-follower acceleration omega^2 d2h/dtheta2 at cam angles theta (constant speed), of the cam
+    of ``contact`` on a Mechanism (the name may be left out when it has one contact); m/s^2, or rad/s^2
+    for an oscillating follower."""
+    program, omega = _program_and_speed(model, contact)
     theta = np.asarray(theta, dtype=float)
     if not np.all(np.isfinite(theta)):
         raise ValueError("theta must be finite (rad)")
-    return model.omega**2 * np.asarray(model.cam.program.evaluate(np.asarray(theta))["d2h"])
+    return omega**2 * np.asarray(program.evaluate(np.asarray(theta))["d2h"])
 
 
-def _require_model(model) -> None:
-    if not (hasattr(model, "omega") and hasattr(model, "cam")):
-        raise ValueError(f"model must be a CamFollowerModel (with .omega and .cam), got {type(model).__name__}")
+def _program_and_speed(model, contact: str | None):
+    """The motion program of a Mechanism's contact and the camshaft speed (rad/s)."""
+    if isinstance(model, _core.Mechanism):
+        contacts = model.builder().contacts
+        names = [c["name"] for c in contacts]
+        if contact is None:
+            if len(contacts) != 1:
+                raise ValueError(f"contact: name one of the mechanism's contacts {names}")
+            return contacts[0]["program"], model.omega
+        for c in contacts:
+            if c["name"] == contact:
+                return c["program"], model.omega
+        raise ValueError(f"contact: no contact named {contact!r}; the mechanism has {names}")
+    if hasattr(model, "omega") and hasattr(model, "cam"):  # the legacy CamFollowerModel
+        if contact is not None:
+            raise ValueError("contact: a CamFollowerModel has one cam; leave contact out")
+        return model.cam.program, model.omega
+    raise ValueError(f"model must be a Mechanism, got {type(model).__name__}")
 
 
-def phase_statistics(model, theta, signal) -> list[dict]:
+def phase_statistics(model, theta, signal, contact: str | None = None) -> list[dict]:
     """Peak |x| and RMS of a signal over each segment of the motion program (dwell, rise, ...), with
-    the number of samples in it. ``model``: a CamFollowerModel or the MotionProgram itself. A segment
-    the samples do not reach is refused (ValueError), not reported as NaN: sample a whole revolution."""
-    if hasattr(model, "segments"):
-        program = model
-    else:
-        _require_model(model)
-        program = model.cam.program
+    the number of samples in it. ``model``: a Mechanism (with ``contact``, the cam whose segments are
+    meant; it may be left out when the mechanism has one contact) or the MotionProgram itself. A
+    segment the samples do not reach is refused (ValueError), not reported as NaN: sample a whole
+    revolution."""
+    program = model if isinstance(model, _core.MotionProgram) else _program_and_speed(model, contact)[0]
     theta = np.mod(_series(theta, "theta"), 2 * math.pi)
     x = _series(signal, "signal")
     if x.shape != theta.shape:

@@ -23,14 +23,14 @@ from typing import Any, Dict, List, Optional, Sequence, Union
 
 import numpy as np
 
-from ._core import Mechanism
+from ._core import Mechanism, MechanismBuilder
 
 
-def _spring_chains(state: dict) -> Dict[str, List[str]]:
+def _spring_chains(builder: MechanismBuilder) -> Dict[str, List[str]]:
     """{follower DOF: [interior DOFs of the spring chain starting there, in order]}."""
-    dofs = {d["name"] for d in state["dofs"] if "name" in d}
+    dofs = {d["name"] for d in builder.dofs if "name" in d}
     chains: Dict[str, List[str]] = {}
-    for s in state["springs"]:
+    for s in builder.springs:
         if s["name"].endswith(".s1"):
             chain = s["name"][:-3]
             interior = []
@@ -41,8 +41,8 @@ def _spring_chains(state: dict) -> Dict[str, List[str]]:
     return chains
 
 
-def _bearings(state: dict) -> Dict[str, tuple]:
-    springs = {s["name"]: s for s in state["springs"]}
+def _bearings(builder: MechanismBuilder) -> Dict[str, tuple]:
+    springs = {s["name"]: s for s in builder.springs}
     out = {}
     for name, s in springs.items():
         if name.endswith(".y") and name[:-2] + ".z" in springs and s["b"] == "ground":
@@ -50,8 +50,8 @@ def _bearings(state: dict) -> Dict[str, tuple]:
     return out
 
 
-def _drives(state: dict) -> List[dict]:
-    return [s for s in state["springs"] if s["a"].endswith(".rx") and s["b"] == "ground" and s["stiffness"] > 0]
+def _drives(builder: MechanismBuilder) -> List[dict]:
+    return [s for s in builder.springs if s["a"].endswith(".rx") and s["b"] == "ground" and s["stiffness"] > 0]
 
 
 def _drive_torque(s: dict, result) -> np.ndarray:
@@ -69,13 +69,13 @@ def _main_frequency(x: np.ndarray, sample_rate: float) -> float:
 
 def run_summary(mechanism: Mechanism, result) -> Dict[str, Any]:
     """The per-cam, per-bearing and drive figures of one run (see the module's description)."""
-    state = mechanism.builder().__getstate__()
+    builder = mechanism.builder()
     omega = mechanism.omega
     t = np.asarray(result.t)
-    chains = _spring_chains(state)
+    chains = _spring_chains(builder)
     sample_rate = 1.0 / (result.time_step * result.decimation)
     cams = {}
-    for c in state["contacts"]:
+    for c in builder.contacts:
         name, dof = c["name"], c["follower_dof"]
         nominal = omega * t + c["phase"]
         lift = np.asarray(c["program"].evaluate(np.mod(nominal, 2 * math.pi))["h"])
@@ -104,12 +104,12 @@ def run_summary(mechanism: Mechanism, result) -> Dict[str, Any]:
             entry["surge_main_frequency_Hz"] = _main_frequency(departure, sample_rate)
         cams[name] = entry
     bearings = {}
-    for name, (sy, sz) in _bearings(state).items():
+    for name, (sy, sz) in _bearings(builder).items():
         fy = sy["stiffness"] * np.asarray(result[f"q.{sy['a']}"]) + sy["damping"] * np.asarray(result[f"v.{sy['a']}"])
         fz = sz["stiffness"] * np.asarray(result[f"q.{sz['a']}"]) + sz["damping"] * np.asarray(result[f"v.{sz['a']}"])
         bearings[name] = {"max_load_N": float(np.hypot(fy, fz).max())}
     drives = {}
-    for s in _drives(state):
+    for s in _drives(builder):
         torque = _drive_torque(s, result)
         drives[s["name"]] = {
             "mean_torque_Nm": float(torque.mean()),
@@ -210,14 +210,14 @@ def plot_traces(mechanism: Mechanism, result):
 
     from .plot import per_revolution
 
-    state = mechanism.builder().__getstate__()
+    builder = mechanism.builder()
     theta = np.asarray(result["theta"])
     fig, (a, b) = plt.subplots(2, 1, figsize=(10, 7), sharex=True, constrained_layout=True)
-    for c in state["contacts"]:
+    for c in builder.contacts:
         a.plot(*per_revolution(theta, np.asarray(result[f"{c['name']}.force"])), lw=0.8, label=c["name"])
     a.set_ylabel("contact force (N)")
     a.legend(fontsize=7, ncol=4, loc="best")
-    drives = _drives(state)
+    drives = _drives(builder)
     for s in drives:
         b.plot(*per_revolution(theta, _drive_torque(s, result)), lw=0.8, label=s["name"])
     if drives:

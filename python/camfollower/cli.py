@@ -175,7 +175,7 @@ def figures(config: str, out: str) -> dict:
     result = case.run()
     _write(config, folder / "run.csv", _recording_csv(result))
     written = ["run.csv"]
-    contacts = case.builder.__getstate__()["contacts"]
+    contacts = case.builder.contacts
     summary = {
         "config": str(case.path),
         "camshaft_speed_rpm": rpm,
@@ -338,7 +338,7 @@ def kinematics(config, rpm=None) -> list:
     omega = rpm * 2 * math.pi / 60.0
     print(f"{_origin(case)} at {rpm:.6g} rpm")
     rows = []
-    for c in case.builder.__getstate__()["contacts"]:
+    for c in case.builder.contacts:
         follower, program = c["follower"], c["program"]
         translating = type(follower).__name__.startswith("Translating")
         alpha_at, alpha = follower.max_pressure_angle(program)
@@ -460,7 +460,7 @@ def export(
     if unit not in units:
         raise ValueError(f"--unit must be one of {', '.join(units)}, got {unit!r}")
     case = _load(config)
-    contacts = case.builder.__getstate__()["contacts"]
+    contacts = case.builder.contacts
     names = [c["name"] for c in contacts]
     name = contact or (names[0] if names else None)
     if name not in names:

@@ -29,6 +29,8 @@ def paper(
     guide_wall_damping_factor: float = 0.0,
     guide_friction: float = 0.0,
     element_damping_ratio: float = 0.0,
+    paper_backlash: float = 0.0,
+    paper_backlash_switch_width: float = 0.0,
 ) -> Mechanism:
     """The paper's 7-DOF cam-follower model (Tounsi et al.): camshaft on bearings (y1, x1), roller on
     its pin (y2, x2), follower rod in its guide (y3, x3), follower top on the preloaded return spring
@@ -44,7 +46,13 @@ def paper(
     c = 2 zeta sqrt(k m_a m_b / (m_a + m_b)); the cam contact and the guide walls the same through their
     Hunt-Crossley factor at the return spring's force on the dwell. Only element deformation rates are
     damped, so the follower's lift is not resisted. The return spring's preload is calibrated on the
-    healthy mechanism, so every variant has the same spring."""
+    healthy mechanism, so every variant has the same spring.
+
+    The paper's literal reading of the guide clearance, a named formulation beside ``guide_clearance``:
+    ``paper_backlash`` (m) > 0 imposes the rod's side from the program (its eqs 12-18): offset e + b
+    during rises and e - b during returns, dwells keeping the last side, the switch ramped over
+    ``paper_backlash_switch_width`` (rad; 0: the literal hard switch); the contact geometry follows the
+    offset and the guide spring K_rb is anchored on the displaced rod."""
     return paper_preset(
         parameters,
         program,
@@ -53,6 +61,8 @@ def paper(
         guide_wall_damping_factor=guide_wall_damping_factor,
         guide_friction=guide_friction,
         element_damping_ratio=element_damping_ratio,
+        paper_backlash=paper_backlash,
+        paper_backlash_switch_width=paper_backlash_switch_width,
     )
 
 

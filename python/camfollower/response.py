@@ -70,7 +70,7 @@ def contact_of(system, contact: Optional[str]) -> Dict[str, Any]:
     name = names[0] if contact is None else contact
     if name not in names:
         raise ValueError(f"contact: unknown contact {name!r}; the mechanism's contacts are {names}")
-    for c in system.builder().__getstate__()["contacts"]:
+    for c in system.builder().contacts:
         if c["name"] == name:
             return {"name": name, "program": c["program"], "dof": c["follower_dof"], "phase": float(c["phase"])}
     raise ValueError(f"contact {name!r} not found in the mechanism's description")  # pragma: no cover

@@ -738,7 +738,7 @@ def size_spring(
             p, row, mech = size_at(critical, p)
         lift = max(
             float(np.max(np.asarray(c["program"].evaluate(np.linspace(0, 2 * math.pi, 4097))["h"])))
-            for c in mech.builder().__getstate__()["contacts"]
+            for c in mech.builder().contacts
         )
         out.append(
             SpringSize(

@@ -6,7 +6,7 @@ healthy, camshaft eccentricity and guide clearance, each in two formulations sid
 
 - ``paper``: the paper's literal reading: its element dampers (lateral modes at ~1e-5 of critical),
   eccentricity as the force K_h epsilon sin(theta) of its eq 6, backlash as an imposed switch of the
-  rod's side at the start of each rise and return (the legacy CamFollowerModel);
+  rod's side at the start of each rise and return (the preset's ``paper_backlash``);
 - ``physical``: the defects from their mechanisms: dashpots on every element (3 % on the lowest
   modes), the cam's centre displaced (exact contact geometry), the rod in a guide with a radial gap
   (wall contacts).
@@ -35,8 +35,6 @@ import numpy as np
 
 from . import (
     CamEccentricity,
-    CamFollowerModel,
-    Defects,
     DiskCam,
     MotionProgram,
     Parameters,
@@ -121,11 +119,10 @@ def build(cfg: StudyConfig, follower: str, formulation: str, defect: str, p: Par
     p = p or parameters(cfg, follower)
     if formulation == "paper":
         if defect == "clearance":
-            return CamFollowerModel(
+            return presets.paper(
                 p,
-                defects=Defects(
-                    backlash=cfg.clearance, backlash_switch_width=math.radians(cfg.backlash_switch_width_deg)
-                ),
+                paper_backlash=cfg.clearance,
+                paper_backlash_switch_width=math.radians(cfg.backlash_switch_width_deg),
             )
         ecc = CamEccentricity(cfg.eccentricity, formulation="paper_force_both") if defect == "eccentricity" else None
         with warnings.catch_warnings():  # the literal force exceeds the preload: reported in the summary
@@ -134,13 +131,6 @@ def build(cfg: StudyConfig, follower: str, formulation: str, defect: str, p: Par
     ecc = CamEccentricity(cfg.eccentricity) if defect == "eccentricity" else None
     clearance = cfg.clearance if defect == "clearance" else 0.0
     return presets.paper_damped(p, eccentricity=ecc, guide_clearance=clearance, damping_ratio=cfg.damping_ratio)
-
-
-def _channel(r, *names):
-    for n in names:
-        if n in r:
-            return np.asarray(r[n])
-    raise KeyError(names)
 
 
 def _run_options(cfg: StudyConfig, model) -> dict:
@@ -165,10 +155,10 @@ def _case_result(cfg: StudyConfig, key: str, model, r) -> CaseResult:
     omega = 2 * math.pi / model.period
     theory = omega**2 * np.asarray(program.evaluate(theta)["d2h"])
     a1 = np.asarray(r["a.y1"])[w]
-    force = _channel(r, "cam.force", "contact_force")[w]
-    pressure_angle = _channel(r, "cam.pressure_angle", "pressure_angle")[w]
-    k_vertical = _channel(r, "cam.stiffness", "contact_stiffness")[w] * np.cos(pressure_angle) ** 2
-    in_contact = _channel(r, "cam.in_contact", "in_contact")[w].astype(bool)
+    force = np.asarray(r["cam.force"])[w]
+    pressure_angle = np.asarray(r["cam.pressure_angle"])[w]
+    k_vertical = np.asarray(r["cam.stiffness"])[w] * np.cos(pressure_angle) ** 2
+    in_contact = np.asarray(r["cam.in_contact"])[w].astype(bool)
     lost = an.contact_loss_intervals(np.asarray(r["t"])[w], in_contact)
     sample_rate = n / model.period
     guide = an.clearance_statistics(r, "guide", model.period) if "guide.side" in r else None
@@ -601,7 +591,8 @@ def run_study(cfg: StudyConfig, out: Path, figures: bool = True) -> dict:
     healthy = cases["offset/physical/healthy"]
     modal = healthy.model.modal_analysis(0.0)
     carrier = an.find_peaks(healthy.shaft_spectrum, 1, lo=50.0)[0][0]
-    cam = CamFollowerModel(parameters(cfg, "offset")).cam
+    g = parameters(cfg, "offset")
+    cam = DiskCam(MotionProgram.paper_default(), g.base_radius, g.roller_radius, g.offset)
     summary = {
         "rpm": cfg.rpm,
         "shaft_frequency_hz": cfg.rpm / 60.0,

@@ -169,7 +169,10 @@ py::dict builder_state(const MechanismBuilder& b) {
                                  py::arg("exponent") = c.law.exponent, py::arg("damping_factor") = c.law.damping_factor,
                                  py::arg("phase") = c.phase, py::arg("cam_x") = c.cam_x, py::arg("cam_y") = c.cam_y,
                                  py::arg("follower_dof") = c.follower_dof, py::arg("lateral") = c.lateral,
-                                 py::arg("eccentricity") = c.eccentricity, py::arg("cam_twist") = c.cam_twist));
+                                 py::arg("eccentricity") = c.eccentricity, py::arg("cam_twist") = c.cam_twist,
+                                 py::arg("paper_backlash") = py::make_tuple(c.paper_backlash.backlash, c.paper_backlash.switch_width,
+                                                                            c.paper_backlash.guide_dof,
+                                                                            c.paper_backlash.guide_stiffness)));
     py::list clearances;
     for (const ClearanceSpec& c : b.clearances)
         clearances.append(py::dict(py::arg("name") = c.name, py::arg("gap") = c.gap, py::arg("clearance") = c.clearance,
@@ -218,13 +221,19 @@ MechanismBuilder builder_from(const py::dict& t) {
     b.set_modal_damping(t["modal_ratios"].cast<std::vector<double>>());
     for (const auto& item : t["contacts"].cast<py::list>()) {
         const auto c = item.cast<py::dict>();
-        b.add_contact({c["name"].cast<std::string>(), c["program"].cast<MotionProgram>(), follower_from(c["follower"]),
-                       HertzContact{c["stiffness"].cast<double>(), c["exponent"].cast<double>(),
-                                    c["damping_factor"].cast<double>()},
-                       c["phase"].cast<double>(), c["cam_x"].cast<std::string>(), c["cam_y"].cast<std::string>(),
-                       c["follower_dof"].cast<std::string>(), c["lateral"].cast<std::string>(),
-                       c.contains("eccentricity") ? c["eccentricity"].cast<CamEccentricity>() : CamEccentricity{},
-                       c.contains("cam_twist") ? c["cam_twist"].cast<std::string>() : std::string(ground_name)});
+        ContactPairSpec spec{c["name"].cast<std::string>(), c["program"].cast<MotionProgram>(), follower_from(c["follower"]),
+                             HertzContact{c["stiffness"].cast<double>(), c["exponent"].cast<double>(),
+                                          c["damping_factor"].cast<double>()},
+                             c["phase"].cast<double>(), c["cam_x"].cast<std::string>(), c["cam_y"].cast<std::string>(),
+                             c["follower_dof"].cast<std::string>(), c["lateral"].cast<std::string>(),
+                             c.contains("eccentricity") ? c["eccentricity"].cast<CamEccentricity>() : CamEccentricity{},
+                             c.contains("cam_twist") ? c["cam_twist"].cast<std::string>() : std::string(ground_name)};
+        if (c.contains("paper_backlash")) {
+            const auto pb = c["paper_backlash"].cast<py::tuple>();
+            if (pb.size() != 4) detail::fail("contact paper_backlash: 4 values expected (backlash, switch_width, guide_dof, guide_stiffness)");
+            spec.paper_backlash = {pb[0].cast<double>(), pb[1].cast<double>(), pb[2].cast<std::string>(), pb[3].cast<double>()};
+        }
+        b.add_contact(spec);
     }
     if (t.contains("clearances"))
         for (const auto& item : t["clearances"].cast<py::list>()) {
@@ -242,15 +251,11 @@ MechanismBuilder builder_from(const py::dict& t) {
 
 py::dict modal(const AnyMechanism& m, double theta) {
     return m.visit([&](const auto& mech) {
-        using M = std::decay_t<decltype(mech)>;
-        const typename M::Vector q = mech.static_equilibrium(theta);
-        const typename M::Matrix kt = mech.tangent_stiffness(theta, q);
-        const Eigen::GeneralizedSelfAdjointEigenSolver<typename M::Matrix> eig(kt, mech.mass());
-        if (eig.info() != Eigen::Success) detail::fail("modal analysis: the eigen solver did not converge");
+        const MechanismModes r = lowest_modes(mech, theta);
         py::dict d;
-        d["frequencies_hz"] = Eigen::VectorXd(eig.eigenvalues().cwiseMax(0.0).cwiseSqrt() / two_pi);
-        d["mode_shapes"] = Eigen::MatrixXd(eig.eigenvectors());
-        d["tangent_stiffness"] = Eigen::MatrixXd(kt);
+        d["frequencies_hz"] = r.frequencies_hz;
+        d["mode_shapes"] = r.shapes;
+        d["tangent_stiffness"] = r.tangent_stiffness;
         return d;
     });
 }
@@ -365,12 +370,12 @@ void bind_mechanism(py::module_& m) {
                                   eccentricity_formulation_name(e.formulation), "', unbalance_mass=", e.unbalance_mass, ")");
         });
 
-    py::class_<MechanismBuilder>(
+    py::class_<MechanismBuilder> builder(
         m, "MechanismBuilder",
         "Describe a cam mechanism: DOFs with masses, springs and dampers between DOFs or to 'ground', loads,\n"
         "gravity, global damping, and cam-follower contact pairs. build() makes the immutable Mechanism.\n"
-        "SI units: kg (kg m^2 for a rotation), N/m, N s/m, N; angles in rad.")
-        .def(py::init<>())
+        "SI units: kg (kg m^2 for a rotation), N/m, N s/m, N; angles in rad.");
+    builder.def(py::init<>())
         .def("add_dof", &MechanismBuilder::add_dof, py::arg("name"), py::arg("mass"),
              py::arg("direction") = Eigen::Vector3d::Zero(),
              "A DOF: mass (kg, or kg m^2 for a rotation) and, for a translation, its unit direction in space (for "
@@ -506,6 +511,27 @@ void bind_mechanism(py::module_& m) {
         })
         .def("build", &AnyMechanism::build, "Validate and assemble the immutable Mechanism.")
         .def(py::pickle(&builder_state, &builder_from));
+    // The description read back, one list per kind (copies: change the builder through its add_ methods).
+    const std::pair<const char*, const char*> parts[] = {
+        {"dofs", "DOFs in order, as dicts (name, mass, direction); a shaft's DOFs as one dict describing the shaft."},
+        {"masses", "Point masses added to DOFs, as (dof, mass) tuples (kg)."},
+        {"springs", "Springs and dampers, as dicts (name, a, b, stiffness, damping, preload)."},
+        {"loads", "Constant loads, as dicts (dof, force)."},
+        {"contacts", "Cam-follower contacts, as dicts with add_contact's parameters (name, program, follower, "
+                     "stiffness, exponent, damping_factor, phase, cam_x, cam_y, follower_dof, lateral, eccentricity, "
+                     "cam_twist) and paper_backlash (backlash, switch_width, guide_dof, guide_stiffness)."},
+        {"clearances", "Clearances, as dicts with add_clearance's parameters."},
+    };
+    for (const auto& [key, doc] : parts) {
+        const std::string k = key;
+        builder.def_property_readonly(
+            key,
+            [k](const MechanismBuilder& b) {
+                const py::dict state = builder_state(b);
+                return py::object(state[k.c_str()]);
+            },
+            doc);
+    }
 
     py::class_<AnyMechanism>(m, "Mechanism",
                              "An immutable cam mechanism (build one with MechanismBuilder, or camfollower.presets).\n"
@@ -562,7 +588,8 @@ void bind_mechanism(py::module_& m) {
              py::arg("theta"), "Quasi-static equilibrium at camshaft angle theta (rad).")
         .def("modal_analysis", &modal, py::arg("theta") = 0.0,
              "Undamped natural frequencies (Hz, ascending), mass-normalized mode shapes and the tangent stiffness at\n"
-             "the quasi-static equilibrium at camshaft angle theta (rad), contacts linearized.")
+             "the quasi-static equilibrium at camshaft angle theta (rad), contacts linearized: every mode, as\n"
+             "lowest_modes(theta) (the one modal analysis).")
         .def(
             "lowest_modes",
             [](const AnyMechanism& a, double theta, int count) {
@@ -573,8 +600,8 @@ void bind_mechanism(py::module_& m) {
             },
             py::arg("theta") = 0.0, py::arg("count") = 0,
             "(frequencies in Hz ascending, mass-normalized mode shapes as columns) of the lowest `count` modes at\n"
-            "camshaft angle theta (rad), contacts linearized; count = 0: all (models up to 200 DOFs). Large\n"
-            "models (a flexible camshaft) use shift-invert Lanczos on the sparse factor (Spectra).")
+            "camshaft angle theta (rad), contacts linearized; count = 0: all (a dense solve). A few of a large\n"
+            "model (above 200 DOFs, a flexible camshaft): shift-invert Lanczos on the sparse factor (Spectra).")
         .def("builder", [](const AnyMechanism& a) { return a.visit([](const auto& x) { return x.description(); }); },
              "A copy of the description it was built from: change it and build() a changed mechanism.")
         .def("with_camshaft_speed_rpm",
@@ -598,13 +625,15 @@ void bind_mechanism(py::module_& m) {
         "paper_preset",
         [](const std::optional<CamFollowerParameters>& p, const std::optional<MotionProgram>& program,
            const std::optional<CamEccentricity>& eccentricity, double guide_clearance, double guide_wall_damping_factor,
-           double guide_friction, double element_damping_ratio) {
+           double guide_friction, double element_damping_ratio, double paper_backlash, double paper_backlash_switch_width) {
             presets::PaperOptions o;
             o.eccentricity = eccentricity.value_or(CamEccentricity{});
             o.guide_clearance = guide_clearance;
             o.guide_wall_damping_factor = guide_wall_damping_factor;
             o.guide_friction = guide_friction;
             o.element_damping_ratio = element_damping_ratio;
+            o.paper_backlash = paper_backlash;
+            o.paper_backlash_switch_width = paper_backlash_switch_width;
             AnyMechanism a(presets::paper(p.value_or(CamFollowerParameters{}),
                                           program.value_or(MotionProgram::paper_default()), o));
             a.warn();
@@ -612,13 +641,16 @@ void bind_mechanism(py::module_& m) {
         },
         py::arg("parameters") = py::none(), py::arg("program") = py::none(), py::kw_only(),
         py::arg("eccentricity") = py::none(), py::arg("guide_clearance") = 0.0, py::arg("guide_wall_damping_factor") = 0.0,
-        py::arg("guide_friction") = 0.0, py::arg("element_damping_ratio") = 0.0,
+        py::arg("guide_friction") = 0.0, py::arg("element_damping_ratio") = 0.0, py::arg("paper_backlash") = 0.0,
+        py::arg("paper_backlash_switch_width") = 0.0,
         "The paper's 7-DOF model (Tounsi et al.) built from the mechanism parts; DOFs y1..y4, x1..x3,\n"
         "contact 'cam'. Parameters as for CamFollowerModel (Table 2 defaults). Options: a CamEccentricity;\n"
         "guide_clearance (m, radial) > 0 puts the rod x3 in a gap with walls of stiffness K_rb (clearance\n"
         "'guide'; wall damping factor chi in s/m, Coulomb friction on y3); element_damping_ratio in (0, 1)\n"
         "puts a damper on every element (springs, contact, guide walls) at that ratio of its own critical\n"
-        "damping, in place of the paper's few dampers.");
+        "damping, in place of the paper's few dampers. paper_backlash (m) > 0: the paper's literal backlash, the\n"
+        "rod's side imposed by the program (offset e +- b, K_rb anchored on the displaced rod), its switch\n"
+        "ramped over paper_backlash_switch_width (rad; 0: hard).");
 
     m.def(
         "valve_train_preset",

@@ -737,6 +737,8 @@ MechanismBuilder read_preset(const Section& s, const CaseConfig& c, const Dimens
     o.guide_wall_damping_factor = s.quantity("guide_wall_damping_factor", "s/m", 0.0);
     o.guide_friction = s.quantity("guide_friction", "-", 0.0);
     o.element_damping_ratio = s.quantity("element_damping_ratio", "-", name == "paper_damped" ? presets::realistic_damping_ratio : 0.0);
+    o.paper_backlash = s.quantity("paper_backlash", "m", 0.0);
+    o.paper_backlash_switch_width = s.quantity("paper_backlash_switch_width", "rad", 0.0);
     if (name == "paper_damped" && o.element_damping_ratio == 0.0)
         s.fail("element_damping_ratio", "paper_damped needs a ratio in (0, 1); use name = \"paper\" for the paper's dampers");
     MotionProgram program = MotionProgram::paper_default();
@@ -748,7 +750,7 @@ MechanismBuilder read_preset(const Section& s, const CaseConfig& c, const Dimens
         check_program_lengths(lengths.at(pname), p.geometry.base_radius, true, owner);
     }
     s.finish({"name", "parameters", "eccentricity", "guide_clearance", "guide_wall_damping_factor", "guide_friction",
-              "element_damping_ratio", "program"});
+              "element_damping_ratio", "paper_backlash", "paper_backlash_switch_width", "program"});
     MechanismBuilder b;
     located(s, [&] { b = presets::paper(p, program, o).description(); });
     return b;

@@ -177,13 +177,13 @@ TEST_CASE("a twisting cam: the moment on the shaft is the derivative of the cont
             auto energy = [&](const Eigen::VectorXd& x) {
                 Eigen::VectorXd f(m.size());
                 m.force(w, x, v, f);
-                const double F = w.last[0].force;
+                const double F = w.contact(0).last.force;
                 return kc * std::pow(F / kc, (n + 1.0) / n) / (n + 1.0);
             };
             Eigen::VectorXd f(m.size());
             m.force(w, q, v, f);
             const Eigen::VectorXd contact = f + m.constant_load();
-            REQUIRE(w.last[0].force > 0.0);
+            REQUIRE(w.contact(0).last.force > 0.0);
             for (int dof = 0; dof < 2; ++dof) {
                 const double h = dof == 0 ? 1e-7 : 1e-9;
                 Eigen::VectorXd qp = q, qm = q;

@@ -155,7 +155,7 @@ TEST_CASE("the paper's literal eccentricity force: loads K_h epsilon sin(theta +
     const double t = 0.013;
     m.prepare(t, w);
     const double F = p.contact_stiffness * 10e-6 * std::sin(m.omega() * t + 0.3);
-    const ContactTerms& c = w.terms[0];
+    const ContactTerms& c = w.contact(0).terms;
     double on_y1 = 0, on_y2 = 0;
     for (int k = 0; k < c.count; ++k) {
         if (c.dof[k] == m.dof_index("y1")) on_y1 = c.p[k];
@@ -184,14 +184,14 @@ TEST_CASE("rotating unbalance: m epsilon omega^2 on the cam centre, its rate by 
     auto w = m.workspace();
     const double t = 0.021, dt = 1e-7, w2 = m.omega() * m.omega();
     m.prepare(t, w);
-    const ContactTerms c = w.terms[0];
+    const ContactTerms c = w.contact(0).terms;
     const double phi = m.omega() * t + 0.4;
     CHECK(c.p[0] == Approx(1.5 * 50e-6 * w2 * std::cos(phi)).epsilon(1e-12));
     CHECK(c.p[1] == Approx(1.5 * 50e-6 * w2 * std::sin(phi)).epsilon(1e-12));
     m.prepare(t + dt, w);
-    const ContactTerms cp = w.terms[0];
+    const ContactTerms cp = w.contact(0).terms;
     m.prepare(t - dt, w);
-    const ContactTerms cm = w.terms[0];
+    const ContactTerms cm = w.contact(0).terms;
     for (int k = 0; k < 2; ++k) CHECK(c.p_dot[k] == Approx((cp.p[k] - cm.p[k]) / (2 * dt)).epsilon(1e-6));
 }
 
@@ -362,7 +362,7 @@ TEST_CASE("realistic preset: dashpots on the elements; the five lowest modes at 
         // The contact's damping at rest, dF/d delta_dot = K delta chi, enters as a linearized dashpot.
         auto w = m.workspace();
         m.prepare(0.0, w);
-        const ContactTerms& c = w.terms[0];
+        const ContactTerms& c = w.contact(0).terms;
         const ContactResponse r = m.contacts()[0].spec().law(ContactPair::penetration(c, m.initial_displacement()), 0.0);
         Mechanism<7>::Matrix C = m.damping();
         for (int a = 0; a < c.count; ++a)

@@ -70,6 +70,53 @@ TEST_CASE("paper preset equals the original 7-DOF model: matrices, equilibrium, 
     }
 }
 
+// The paper's imposed backlash (its eqs 12-18) as the preset's named option against the original model
+// that first implemented it (offset e +- b in the geometry, with the offset's rate; K_rb b s on x3).
+TEST_CASE("paper preset's imposed backlash equals the original model's, hard and ramped switch") {
+    // The hard switch (width 0) makes the follower chatter on the cam after each switch, a motion
+    // that amplifies rounding (the two differ by 1e-14 at 107 deg, 5e-7 m by the end): compared
+    // over the first 100 deg, which hold the first switch and its contact losses. Ramped: the whole
+    // revolution.
+    for (const auto& [width_deg, window_deg] : {std::pair{0.0, 100.0}, std::pair{10.0, 360.0}, std::pair{30.0, 360.0}}) {
+        INFO("switch width " << width_deg << " deg");
+        Defects defects;
+        defects.backlash = 1e-4;
+        defects.backlash_switch_width = degrees_to_radians(width_deg);
+        const CamFollowerModel old_model({}, MotionProgram::paper_default(), defects);
+        presets::PaperOptions options;
+        options.paper_backlash = defects.backlash;
+        options.paper_backlash_switch_width = defects.backlash_switch_width;
+        const Mechanism<7> preset = presets::paper({}, MotionProgram::paper_default(), options);
+        const double q_scale = old_model.initial_state().cwiseAbs().maxCoeff();
+        CHECK((preset.initial_displacement() - old_model.initial_state()).cwiseAbs().maxCoeff() <= 1e-12 * q_scale);
+        SolverSettings s;
+        const double duration = degrees_to_radians(window_deg) / old_model.omega();
+        const auto a = run(old_model, s, duration, 1);
+        const auto b = run(preset, s, duration, 1);
+        REQUIRE(a.rows == b.rows);
+        double dq = 0, qmax = 0, df = 0, fmax = 0, dx3 = 0, x3max = 0;
+        for (std::size_t i = 0; i < a.q.size(); ++i)
+            dq = std::max(dq, std::abs(a.q[i] - b.q[i])), qmax = std::max(qmax, std::abs(a.q[i]));
+        for (std::size_t i = 0; i < a.rows; ++i) {
+            df = std::max(df, std::abs(a.channel("contact_force")[i] - b.channel("cam.force")[i]));
+            fmax = std::max(fmax, a.channel("contact_force")[i]);
+            // The rod's lateral position x3 (the last DOF) follows the imposed side, about +-b.
+            dx3 = std::max(dx3, std::abs(a.q[i * 7 + 6] - b.q[i * 7 + 6]));
+            x3max = std::max(x3max, std::abs(a.q[i * 7 + 6]));
+        }
+        INFO("relative differences: q " << dq / qmax << ", x3 " << dx3 / x3max << ", force " << df / fmax);
+        CHECK(x3max > 0.5 * defects.backlash);  // the side switch moves the rod
+        CHECK(dq <= 1e-11 * qmax);  // measured up to 1e-12 (-O1), 2e-12 in x3, 2e-10 in force
+        CHECK(dx3 <= 1e-10 * x3max);
+        CHECK(df <= 2e-9 * fmax);
+    }
+    presets::PaperOptions both;
+    both.paper_backlash = 1e-4;
+    both.guide_clearance = 1e-4;
+    CHECK_THROWS_WITH(presets::paper({}, MotionProgram::paper_default(), both),
+                      Catch::Contains("two models of the same guide clearance"));
+}
+
 namespace {
 
 // A small mechanism around one follower type: camshaft bearing (cam_x, cam_y), the follower coordinate
@@ -123,12 +170,12 @@ double penetration_rate_error(const M& m, double tc, const typename M::Vector& q
     auto delta = [&](double t) {
         auto w = m.workspace();
         m.prepare(t, w);
-        return ContactPair::penetration(w.terms[0], typename M::Vector(q0 + (t - tc) * v0));
+        return ContactPair::penetration(w.contact(0).terms, typename M::Vector(q0 + (t - tc) * v0));
     };
     auto w = m.workspace();
     m.prepare(tc, w);
     const double h = 1e-7, fd = (delta(tc + h) - delta(tc - h)) / (2 * h);
-    return std::abs(ContactPair::penetration_rate(w.terms[0], q0, v0) - fd) / std::max(std::abs(fd), 1e-3);
+    return std::abs(ContactPair::penetration_rate(w.contact(0).terms, q0, v0) - fd) / std::max(std::abs(fd), 1e-3);
 }
 
 }  // namespace

@@ -45,7 +45,7 @@ def test_sidebands_of_an_amplitude_modulated_carrier():
 
 
 def test_phase_statistics_and_theoretical_acceleration():
-    model = cf.CamFollowerModel()
+    model = cf.presets.paper()
     theta = np.linspace(0, 2 * np.pi, 36001)[:-1]
     theory = an.theoretical_follower_acceleration(model, theta)
     stats = an.phase_statistics(model, theta, theory)
@@ -78,3 +78,35 @@ def test_last_revolutions_needs_a_step_dividing_the_period():
         an.spectrum(np.array([1.0, np.nan] * 8), 100.0)
     with pytest.raises(ValueError, match="window must be"):
         an.spectrum(np.ones(16), 100.0, window="kaiser")
+
+
+def test_analysis_helpers_pick_the_named_contact_of_a_mechanism():
+    """Two cams on one mechanism: each helper reads the named contact's program (a 5 mm and a 10 mm rise)."""
+    b = cf.MechanismBuilder()
+    for k, lift in ((1, 0.005), (2, 0.010)):
+        b.add_dof(f"y{k}", 0.2, direction=(0, 1, 0))
+        b.add_spring(f"spring{k}", f"y{k}", "ground", stiffness=2e4, preload=300.0)
+        b.add_contact(
+            f"cam{k}",
+            cf.MotionProgram.paper_default(lift),
+            cf.TranslatingRoller(0.03, 0.008),
+            follower_dof=f"y{k}",
+            stiffness=1e8,
+        )
+    m = b.build()
+    theta = np.linspace(0, 2 * np.pi, 7201)[:-1]
+    a1 = an.theoretical_follower_acceleration(m, theta, contact="cam1")
+    a2 = an.theoretical_follower_acceleration(m, theta, contact="cam2")
+    np.testing.assert_allclose(a2, 2 * a1, rtol=1e-12, atol=0)
+    peak = m.omega**2 * 0.005 * (8 * np.pi / (np.pi + 2)) / np.radians(150) ** 2
+    assert np.max(np.abs(a1)) == pytest.approx(peak, rel=1e-4)
+    stats = an.phase_statistics(m, theta, a2, contact="cam2")
+    assert stats[1]["peak"] == pytest.approx(np.max(np.abs(a2)))
+    for call in (
+        lambda: an.theoretical_follower_acceleration(m, theta),
+        lambda: an.phase_statistics(m, theta, a1),
+    ):
+        with pytest.raises(ValueError, match=r"contact: name one of the mechanism's contacts \['cam1', 'cam2'\]"):
+            call()
+    with pytest.raises(ValueError, match="no contact named 'cam3'"):
+        an.theoretical_follower_acceleration(m, theta, contact="cam3")

@@ -297,7 +297,7 @@ def test_segments_spanning_less_than_a_microradian_are_refused():
 def test_analysis_helpers_name_bad_arguments():
     from camfollower import analysis as an
 
-    model = cf.CamFollowerModel()
+    model = cf.presets.paper()
     cases = [
         (lambda: an.Spectrum(np.array([1.0]), np.array([1.0])), "frequency must be a 1-D array of at least 2"),
         (lambda: an.Spectrum(np.arange(3.0), np.arange(4.0)), "same length"),
@@ -305,7 +305,7 @@ def test_analysis_helpers_name_bad_arguments():
         (lambda: an.last_revolutions({"t": [0.0, 1e-3, 2e-3]}, 1e308, 1), "one period"),
         (lambda: an.last_revolutions({"t": [0.0, 1e-3, 2e-3]}, 0.0, 1), "period must be finite and > 0"),
         (lambda: an.last_revolutions({"t": [0.0, 1e-3, 2e-3]}, 1e-3, 0), "revolutions must be an integer >= 1"),
-        (lambda: an.theoretical_follower_acceleration("x", 0.0), "model must be a CamFollowerModel"),
+        (lambda: an.theoretical_follower_acceleration("x", 0.0), "model must be a Mechanism"),
         (lambda: an.phase_statistics(model, [0.0, 1.0], [1.0]), "same length"),
         (lambda: an.phase_statistics(model, [], []), "theta must be a 1-D array of at least 1"),
         (lambda: an.phase_statistics(model, [0.1, 0.2], [1.0, 2.0]), "no sample of theta falls in the"),

@@ -238,3 +238,37 @@ def test_rayleigh_and_modal_damping_against_their_definitions():
         b = builder_1dof()
         b.set_modal_damping([0.05, 0.02])
         b.build()
+
+
+def test_the_builder_reads_back_what_was_added():
+    """The builder's read accessors give each element as it was added, in order (values typed in here)."""
+    b = cf.MechanismBuilder()
+    b.add_dof("x", 0.2, direction=(1, 0, 0))
+    b.add_dof("w", 0.3, direction=(0, 1, 0))
+    b.add_mass("w", 0.05)
+    b.add_spring("axial", "w", "ground", stiffness=2.5e4, damping=3.0, preload=40.0)
+    b.add_load("x", -1.5)
+    program = cf.MotionProgram.paper_default()
+    b.add_contact("cam", program, cf.TranslatingRoller(0.04, 0.01), follower_dof="w", lateral="x", stiffness=3e8)
+    b.add_clearance("guide", [("x", 1.0)], clearance=2e-5, stiffness=1e8)
+    assert [d["name"] for d in b.dofs] == ["x", "w"]
+    assert b.dofs[1]["mass"] == 0.3 and list(b.dofs[0]["direction"]) == [1, 0, 0]
+    assert b.masses == [("w", 0.05)]
+    (s,) = b.springs
+    assert (s["name"], s["a"], s["b"], s["stiffness"], s["damping"], s["preload"]) == (
+        "axial",
+        "w",
+        "ground",
+        2.5e4,
+        3.0,
+        40.0,
+    )
+    assert b.loads == [{"dof": "x", "force": -1.5}]
+    (c,) = b.contacts
+    assert (c["name"], c["follower_dof"], c["lateral"], c["stiffness"]) == ("cam", "w", "x", 3e8)
+    assert c["follower"].base_radius == 0.04 and c["follower"].roller_radius == 0.01
+    (g,) = b.clearances
+    assert (g["name"], g["gap"], g["clearance"], g["stiffness"]) == ("guide", [("x", 1.0)], 2e-5, 1e8)
+    # Copies: changing what was read does not change the builder.
+    b.contacts[0]["stiffness"] = 1.0
+    assert b.contacts[0]["stiffness"] == 3e8

@@ -15,7 +15,8 @@
 // evaluated at every force evaluation.
 // An eccentric cam (contact/eccentricity.hpp) changes the time-only terms (exact geometry of the
 // displaced profile) and may add time-only loads p(t) on the pair's DOFs (unbalance, or the paper's
-// literal force).
+// literal force). The paper's literal backlash (contact/paper_backlash.hpp) imposes the follower's
+// offset and loads the guide DOF, a sixth role that takes only that load.
 #pragma once
 
 #include <array>
@@ -25,6 +26,7 @@
 
 #include "camfollower/contact/eccentricity.hpp"
 #include "camfollower/contact/hertz.hpp"
+#include "camfollower/contact/paper_backlash.hpp"
 #include "camfollower/core/ground.hpp"
 #include "camfollower/error.hpp"
 #include "camfollower/follower/oscillating_flat.hpp"
@@ -55,15 +57,19 @@ struct ContactPairSpec {
     std::string cam_x = "ground", cam_y = "ground", follower_dof, lateral = "ground";
     CamEccentricity eccentricity;  // none by default
     std::string cam_twist = "ground";  // the shaft's twist DOF at the cam (ground: a rigid camshaft)
+    PaperBacklash paper_backlash{};    // off by default
 
     // The roles in the order of require_distinct_roles' messages (and ContactPair's indices).
-    static constexpr const char* role_names[5] = {"cam_x", "cam_y", "follower_dof", "lateral", "cam_twist"};
+    static constexpr int role_count = 6;
+    static constexpr const char* role_names[role_count] = {"cam_x",   "cam_y",     "follower_dof",
+                                                      "lateral", "cam_twist", "paper_backlash.guide_dof"};
     // Each role is a coordinate of its own: two roles on one DOF would add two different kinematic
     // terms to the same coordinate and give meaningless forces.
     void require_distinct_roles() const {
-        const std::string* roles[5] = {&cam_x, &cam_y, &follower_dof, &lateral, &cam_twist};
+        const std::string* roles[ContactPairSpec::role_count] = {&cam_x, &cam_y, &follower_dof, &lateral, &cam_twist,
+                                                            &paper_backlash.guide_dof};
         if (follower_dof == ground_name) detail::fail("contact '", name, "': follower_dof must be a DOF, not ground");
-        for (int a = 0; a < 5; ++a)
+        for (int a = 0; a < ContactPairSpec::role_count; ++a)
             for (int b = 0; b < a; ++b)
                 if (*roles[a] != ground_name && *roles[a] == *roles[b])
                     detail::fail("contact '", name, "': ", role_names[a], " and ", role_names[b], " both name DOF '", *roles[a],
@@ -71,12 +77,14 @@ struct ContactPairSpec {
     }
 };
 
-// The time-only terms of one pair at one instant: sparse g and its rate (up to four DOFs).
+// The time-only terms of one pair at one instant: sparse g and its rate (up to four DOFs, and the
+// paper backlash's guide DOF, where g is zero and only the load p acts).
 struct ContactTerms {
+    static constexpr int slots = 5;
     double theta = 0.0;  // cam angle, rad
-    std::array<int, 4> dof{};
-    std::array<double, 4> g{}, g_dot{};
-    std::array<double, 4> g_theta{};  // d g / d theta
+    std::array<int, slots> dof{};
+    std::array<double, slots> g{}, g_dot{};
+    std::array<double, slots> g_theta{};  // d g / d theta
     int count = 0;
     double delta0 = 0.0, delta0_dot = 0.0;
     double delta0_theta = 0.0;  // d delta0 / d theta
@@ -85,20 +93,21 @@ struct ContactTerms {
     int twist = -1;
     double moment_arm = 0.0;
     double cos_alpha = 1.0, sin_alpha = 0.0;
-    std::array<double, 4> p{}, p_dot{};  // time-only external loads on the same slots, N, N/s
+    std::array<double, slots> p{}, p_dot{};  // time-only external loads on the same slots, N, N/s
     bool loaded = false;                 // any p != 0
 };
 
 // A pair with its DOFs resolved to indices (-1: ground), ready for the time loop.
 class ContactPair {
 public:
-    ContactPair(ContactPairSpec spec, int cam_x, int cam_y, int follower, int lateral, int twist = -1)
-        : spec_(std::move(spec)), cam_x_(cam_x), cam_y_(cam_y), follower_(follower), lateral_(lateral), twist_(twist) {
+    ContactPair(ContactPairSpec spec, int cam_x, int cam_y, int follower, int lateral, int twist = -1, int guide = -1)
+        : spec_(std::move(spec)), cam_x_(cam_x), cam_y_(cam_y), follower_(follower), lateral_(lateral), twist_(twist),
+          guide_(guide) {
         const std::string who = "contact '" + spec_.name + "'";
         if (follower_ < 0) detail::fail(who, ": follower_dof must be a DOF, not ground");
         spec_.require_distinct_roles();
-        const int indices[] = {cam_x_, cam_y_, follower_, lateral_, twist_};
-        for (int a = 0; a < 5; ++a)
+        const int indices[ContactPairSpec::role_count] = {cam_x_, cam_y_, follower_, lateral_, twist_, guide_};
+        for (int a = 0; a < ContactPairSpec::role_count; ++a)
             for (int b = 0; b < a; ++b)
                 if (indices[a] >= 0 && indices[a] == indices[b])
                     detail::fail(who, ": ", ContactPairSpec::role_names[a], " and ", ContactPairSpec::role_names[b],
@@ -132,9 +141,10 @@ public:
         }
         if (ecc.unbalance_mass > 0.0 && cam_x_ < 0 && cam_y_ < 0)
             detail::fail(who, ": an unbalance mass loads the cam centre, so cam_x or cam_y must be a DOF");
-        // Where each role's coefficient goes in the sparse g.
-        const int roles[4] = {cam_x_, cam_y_, lateral_, follower_};
-        for (int r = 0; r < 4; ++r) {
+        check_paper_backlash(who);
+        // Where each role's coefficient goes in the sparse g (the guide's is zero: a load only).
+        const int roles[ContactTerms::slots] = {cam_x_, cam_y_, lateral_, follower_, guide_};
+        for (int r = 0; r < ContactTerms::slots; ++r) {
             slot_[r] = -1;
             if (roles[r] < 0) continue;
             for (int i = 0; i < count_; ++i)
@@ -177,7 +187,7 @@ public:
         const double g_theta[4] = {k.dnormal.x(), k.dnormal.y(), -k.dnormal.x(), -k.dlever};
         for (int r = 0; r < 4; ++r)
             if (slot_[r] >= 0) c.g[slot_[r]] += g[r], c.g_theta[slot_[r]] += g_theta[r];
-        for (int i = 0; i < 4; ++i) c.g_dot[i] = omega * c.g_theta[i];
+        for (int i = 0; i < ContactTerms::slots; ++i) c.g_dot[i] = omega * c.g_theta[i];
         c.delta0 = k.lever * k.lift;
         c.delta0_theta = k.dlever * k.lift + k.lever * k.dlift;
         c.cos_alpha = k.cos_alpha, c.sin_alpha = k.sin_alpha;
@@ -185,6 +195,7 @@ public:
         c.loaded = false;
         c.p.fill(0.0), c.p_dot.fill(0.0);
         c.delta0_dot = omega * c.delta0_theta;
+        if (spec_.paper_backlash.any()) add_backlash_load(omega, c);
         if (!ecc.any()) return;
         const Eigen::Vector2d u = ecc.offset(c.theta), du = ecc.offset_rate(c.theta);
         if (!ecc.paper_force() && !std::holds_alternative<TranslatingRoller>(spec_.follower)) {
@@ -221,6 +232,7 @@ public:
     // Contact geometry at cam angle theta: nominal, or the displaced profile's for a translating roller
     // on an eccentric cam (exact; the other followers add n . u in prepare()).
     ContactGeometry geometry(double theta) const {
+        if (spec_.paper_backlash.any()) return backlash_geometry(theta);
         const CamEccentricity& ecc = spec_.eccentricity;
         if (ecc.any() && !ecc.paper_force())
             if (const auto* roller = std::get_if<TranslatingRoller>(&spec_.follower))
@@ -247,10 +259,75 @@ public:
     }
 
 private:
+    // The paper backlash: a translating roller on a rigid camshaft, its offset +- b inside the pitch
+    // circle, alone or with the paper's eccentricity force (the exact eccentric geometry has its own
+    // offset).
+    void check_paper_backlash(const std::string& who) {
+        const PaperBacklash& b = spec_.paper_backlash;
+        b.validate(who);
+        if (!b.any()) {
+            if (b.guide_stiffness != 0.0 || b.switch_width != 0.0)
+                detail::fail(who, ": paper backlash switch_width and guide_stiffness need a backlash > 0");
+            return;
+        }
+        const auto* roller = std::get_if<TranslatingRoller>(&spec_.follower);
+        if (!roller)
+            detail::fail(who, ": the paper backlash imposes a translating roller's offset; ", follower_type_name(spec_.follower),
+                         " has none (model the guide's clearance instead)");
+        if (twist_ >= 0) detail::fail(who, ": the paper backlash is not defined on a twisting camshaft");
+        if (spec_.eccentricity.any() && !spec_.eccentricity.paper_force())
+            detail::fail(who, ": the paper backlash combines with the paper's eccentricity force only, not with 'exact' "
+                              "(both move the roller's offset)");
+        const double rp = roller->base_radius() + roller->roller_radius();
+        if (!(std::abs(roller->offset()) + b.backlash < rp))
+            detail::fail(who, ": paper backlash ", b.backlash, " m with |offset| = ", std::abs(roller->offset()),
+                         " m make the offset reach ", std::abs(roller->offset()) + b.backlash,
+                         " m: it must stay below base_radius + roller_radius = ", rp, " m");
+        if (b.guide_stiffness > 0.0 && guide_ < 0)
+            detail::fail(who, ": paper backlash guide_dof must be a DOF, not ground");
+        backlash_side_ = BacklashSide(spec_.program, b.switch_width);
+        for (int i = 0; i < 720; ++i) {
+            const double theta = two_pi * i / 720.0;
+            const ContactGeometry k = backlash_geometry(theta);
+            if (!(std::abs(k.pressure_angle()) < 0.5 * pi))
+                detail::fail(who, ": with paper backlash ", b.backlash, " m the pressure angle reaches ",
+                             radians_to_degrees(k.pressure_angle()), " deg at theta = ", radians_to_degrees(theta),
+                             " deg (must stay below 90 deg)");
+        }
+    }
+    // The geometry at the imposed offset e' = e + b s(theta), its theta-derivatives total (the offset's
+    // rate included): d alpha / d e' = (-R + (R' - e') e' / s0') / (R^2 + (R' - e')^2), R = s0' + h.
+    ContactGeometry backlash_geometry(double theta) const {
+        const auto& roller = std::get<TranslatingRoller>(spec_.follower);
+        const BacklashSide::Value s = backlash_side_.at(theta);
+        const double b = spec_.paper_backlash.backlash, e = roller.offset() + b * s.side;
+        const TranslatingRoller shifted(roller.base_radius(), roller.roller_radius(), e);
+        const FollowerMotion m = spec_.program.evaluate(theta);
+        ContactGeometry k = shifted.contact(theta, m);
+        if (s.dside != 0.0) {
+            const double s0 = shifted.pitch_base(), R = s0 + m.h, p = m.dh - e;
+            const double dalpha = (-R + p * e / s0) / (R * R + p * p) * b * s.dside;
+            k.dnormal += Eigen::Vector2d(-k.cos_alpha, -k.sin_alpha) * dalpha;
+            k.dlever -= k.sin_alpha * dalpha;
+        }
+        return k;
+    }
+    // The guide spring anchored on the displaced rod: K_rb b s(theta) along +guide_dof.
+    void add_backlash_load(double omega, ContactTerms& c) const {
+        if (guide_ < 0) return;
+        const PaperBacklash& b = spec_.paper_backlash;
+        const BacklashSide::Value s = backlash_side_.at(c.theta);
+        const int slot = slot_[4];
+        c.p[slot] += b.guide_stiffness * b.backlash * s.side;
+        c.p_dot[slot] += omega * b.guide_stiffness * b.backlash * s.dside;
+        c.loaded = true;
+    }
+
     ContactPairSpec spec_;
-    int cam_x_, cam_y_, follower_, lateral_, twist_;
-    std::array<int, 4> dofs_{}, slot_{};  // the distinct DOFs of g; slot of each role (-1: ground)
+    int cam_x_, cam_y_, follower_, lateral_, twist_, guide_;
+    std::array<int, ContactTerms::slots> dofs_{}, slot_{};  // the distinct DOFs of g; slot of each role (-1: ground)
     int count_ = 0;
+    BacklashSide backlash_side_;
 };
 
 }  // namespace camfollower

@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Undamped natural frequencies and mode shapes of a mechanism linearized about its quasi-static
 // equilibrium at a cam angle: K_t phi = omega^2 M phi, K_t the tangent stiffness with the contacts.
-// Small models: every mode by the dense symmetric solver. Large models (a flexible camshaft): the
-// lowest `count` modes by shift-invert Lanczos on the sparse factor of K_t - sigma M (Spectra), with
-// a small negative shift so that rigid-body modes (omega = 0) are found as well.
+// Every mode (count <= 0) or a few on a small model: the dense symmetric solver. The lowest `count`
+// modes of a large model (a flexible camshaft): shift-invert Lanczos on the sparse factor of
+// K_t - sigma M (Spectra), with a small negative shift so that rigid-body modes (omega = 0) are found
+// as well. The one modal analysis of C++, Python and the command line.
 #pragma once
 
 #include <algorithm>
@@ -23,12 +24,14 @@ namespace camfollower {
 struct MechanismModes {
     Eigen::VectorXd frequencies_hz;  // ascending
     Eigen::MatrixXd shapes;          // columns, mass-normalized (phi^T M phi = I)
+    Eigen::MatrixXd tangent_stiffness;  // K_t, N/m (and N m/rad on rotations)
 };
 
 // Above this many DOFs lowest_modes() uses the sparse shift-invert solver.
 inline constexpr int dense_modes_limit = 200;
 
-// The lowest `count` modes (all of them for count <= 0 on a small model) at cam angle theta (rad).
+// The lowest `count` modes (all of them for count <= 0: a dense solve, seconds above ~2000 DOFs) at
+// cam angle theta (rad).
 template <int N>
 MechanismModes lowest_modes(const Mechanism<N>& m, double theta, int count = 0) {
     detail::require_finite(theta, "theta");
@@ -36,7 +39,8 @@ MechanismModes lowest_modes(const Mechanism<N>& m, double theta, int count = 0) 
     if (count > n) detail::fail("count must be <= the number of DOFs (", n, "), got ", count);
     const auto Kt = m.tangent_stiffness(theta, m.static_equilibrium(theta));
     MechanismModes r;
-    if (n <= dense_modes_limit) {
+    r.tangent_stiffness = Kt;
+    if (n <= dense_modes_limit || count <= 0) {
         const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(Eigen::MatrixXd(Kt), Eigen::MatrixXd(m.mass()));
         if (eig.info() != Eigen::Success) detail::fail("modal analysis: the eigen solver did not converge");
         const int keep = count > 0 ? count : n;
@@ -44,7 +48,6 @@ MechanismModes lowest_modes(const Mechanism<N>& m, double theta, int count = 0) 
         r.shapes = eig.eigenvectors().leftCols(keep);
         return r;
     }
-    if (count <= 0) detail::fail("a model of ", n, " DOFs needs a mode count (the lowest modes are found by shift-invert)");
     const Eigen::SparseMatrix<double> K = Eigen::MatrixXd(Kt).sparseView(), M = m.sparse_mass();
     // The shift: a little below zero, on the scale of the lowest diagonal stiffness-to-mass ratio.
     double ratio = std::numeric_limits<double>::infinity();

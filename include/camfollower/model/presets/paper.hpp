@@ -12,6 +12,9 @@
 // - eccentricity: the cam's centre displaced (exact), or the paper's literal force (named formulation);
 // - guide_clearance > 0: the rod x3 in its guide with a radial gap, walls of stiffness K_rb (the
 //   paper's guide spring becomes the wall), optional wall damping and Coulomb friction on y3;
+// - paper_backlash > 0: the paper's literal reading of that clearance (contact/paper_backlash.hpp), the
+//   rod's side imposed by the program: offset e +- b in the contact geometry and the guide spring K_rb
+//   anchored on the displaced rod;
 // - element_damping_ratio > 0: a dashpot on every element (six springs and the cam contact; not the
 //   return spring, which carries the lift) in place of the paper's three, which leave the lateral modes at ~1e-5 of critical. The dashpot rates
 //   c_e >= 0 are fitted so that every mode of the healthy mechanism on the dwell gets that ratio:
@@ -44,6 +47,8 @@ struct PaperOptions {
     double guide_wall_damping_factor = 0.0;  // chi of the wall law, s/m
     double guide_friction = 0.0;           // Coulomb coefficient at the guide
     double element_damping_ratio = 0.0;    // 0: the paper's dampers; in (0, 1): every element (above)
+    double paper_backlash = 0.0;           // m; 0: off (the paper's imposed side switch, above)
+    double paper_backlash_switch_width = 0.0;  // rad of cam angle the imposed switch ramps over (0: hard)
 
     void validate() const {
         eccentricity.validate("paper preset");
@@ -52,6 +57,12 @@ struct PaperOptions {
         detail::require_non_negative(guide_friction, "guide_friction");
         if (!(element_damping_ratio >= 0.0 && element_damping_ratio < 1.0))
             detail::fail("element_damping_ratio must be in [0, 1), got ", element_damping_ratio);
+        detail::require_non_negative(paper_backlash, "paper_backlash", "(m)");
+        detail::require_in_range(paper_backlash_switch_width, 0.0, pi, "paper_backlash_switch_width (rad)");
+        if (paper_backlash > 0.0 && guide_clearance > 0.0)
+            detail::fail("paper_backlash and guide_clearance are two models of the same guide clearance; give one");
+        if (paper_backlash == 0.0 && paper_backlash_switch_width != 0.0)
+            detail::fail("paper_backlash_switch_width needs a paper_backlash > 0");
         if (guide_clearance == 0.0 && (guide_friction != 0.0 || guide_wall_damping_factor != 0.0))
             detail::fail("guide_friction and guide_wall_damping_factor need a guide_clearance > 0 (the rod touches a wall)");
     }
@@ -115,6 +126,8 @@ inline MechanismBuilder paper_spec(const CamFollowerParameters& p, const MotionP
                       "x2",
                       options.eccentricity,
                       "ground"};
+    if (options.paper_backlash > 0.0)
+        c.paper_backlash = {options.paper_backlash, options.paper_backlash_switch_width, "x3", p.guide_stiffness};
     spec.add_contact(c);
     return spec;
 }
@@ -136,7 +149,7 @@ inline PaperDampers fit_dampers(const Mechanism<paper_dofs>& m, double zeta) {
     B(y3, 5) = 1, B(y4, 5) = -1, B(y4, 6) = 1;
     auto w = m.workspace();
     m.prepare(0.0, w);
-    const ContactTerms& c = w.terms[0];
+    const ContactTerms& c = w.contact(0).terms;
     for (int k = 0; k < c.count; ++k) B(c.dof[k], 7) = c.g[k];
     // Rows weighted by (omega_1 / omega_i)^3: dashpots on element deformations cannot damp every mode
     // of this chain alike (the first mode's largest deformation is the return spring's), so the fit

@@ -1,0 +1,186 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// A cam-follower contact pair (contact/contact_pair.hpp) as an element of a Mechanism (the contract in
+// model/element_set.hpp): force, tangent, channels, events and statics of one unilateral Hertz
+// contact, on a rigid camshaft (time-only terms prepared once per step) or a twisting one (the cam
+// angle adds the shaft's twist, a state: the terms are re-evaluated at every force).
+#pragma once
+
+#include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "camfollower/contact/contact_pair.hpp"
+#include "camfollower/model/mechanism_builder.hpp"
+#include "camfollower/structure/network.hpp"
+
+namespace camfollower {
+
+class ContactElement : public ContactPair {
+public:
+    using Spec = ContactPairSpec;
+    struct State {
+        ContactTerms terms;    // time-only terms (on a twisting camshaft, at the last force's q)
+        ContactResponse last;  // of the last add_force, reused by add_tangent, events and accepted
+        bool in_contact = true;
+        double loss_start = 0.0;
+        std::vector<std::pair<double, double>> losses;  // contact-loss intervals [start, end), s
+    };
+    static const std::vector<Spec>& specs(const MechanismBuilder& b) { return b.contacts; }
+
+    ContactElement(const Spec& c, const NetworkSpec& net, double omega)
+        : ContactPair(c, net.index(c.cam_x, who(c) + " cam_x"), net.index(c.cam_y, who(c) + " cam_y"),
+                      net.index(c.follower_dof, who(c) + " follower_dof"), net.index(c.lateral, who(c) + " lateral"),
+                      net.index(c.cam_twist, who(c) + " cam_twist"),
+                      net.index(c.paper_backlash.guide_dof, who(c) + " paper_backlash.guide_dof")),
+          omega_(omega) {}
+
+    int max_rank() const { return 1; }
+    std::vector<int> tangent_dofs() const {
+        std::vector<int> d = dofs();
+        if (twist() >= 0) d.push_back(twist());
+        return d;
+    }
+
+    void prepare(double t, State& s) const {
+        if (twist() < 0) ContactPair::prepare(t, omega_, s.terms);
+    }
+    template <class Vector>
+    void add_force(double t, const Vector& q, const Vector& v, State& s, Vector& f) const {
+        ContactTerms& c = s.terms;
+        if (twist() >= 0) twist_terms(t, q, v[twist()], c);
+        s.last = response(c, q, v);
+        const double F = s.last.force;
+        if (c.loaded)
+            for (int k = 0; k < c.count; ++k) f[c.dof[k]] -= c.p[k];
+        if (F == 0.0) return;
+        for (int k = 0; k < c.count; ++k) f[c.dof[k]] += F * c.g[k];
+        if (c.twist >= 0) f[c.twist] += F * c.moment_arm;
+    }
+    template <class Vector, class Sink>
+    void add_tangent(const State& s, const Vector& v, double cq, double cv, Sink& sink) const {
+        const ContactTerms& c = s.terms;
+        const ContactResponse& r = s.last;
+        if (!r.in_contact || (r.stiffness == 0.0 && r.damping == 0.0)) return;
+        const double a = cq * r.stiffness + cv * r.damping, b = cq * r.damping;
+        sink.start_column();
+        for (int k = 0; k < c.count; ++k) sink.add(c.dof[k], c.g[k], a * c.g[k] + b * c.g_dot[k]);
+        // d delta / d q_twist = moment arm; d delta' / d q_twist ~ g_theta . v (the arm's own rate
+        // and F d2 delta / d theta2 are left out: a quasi-Newton tangent, the residual is exact).
+        if (c.twist >= 0) sink.add(c.twist, c.moment_arm, a * c.moment_arm + b * twist_rate_term(c, v));
+    }
+    void accepted(double t, State& s) const {
+        const bool contact = s.last.in_contact;
+        if (contact == s.in_contact) return;
+        if (!contact) s.loss_start = t;
+        else s.losses.emplace_back(s.loss_start, t);
+        s.in_contact = contact;
+    }
+
+    // <name>.force (N), .penetration (m), .stiffness (dF/d delta, N/m), .pressure_angle (rad),
+    // .cam_angle (rad, with the shaft's twist), .in_contact (0/1); on a twisting camshaft also
+    // .cam_torque (N m: the contact's moment about the shaft axis against the cam's rotation).
+    void add_channel_names(std::vector<std::string>& names) const {
+        for (const char* s : {".force", ".penetration", ".stiffness", ".pressure_angle", ".cam_angle", ".in_contact"})
+            names.push_back(name() + s);
+        if (twist() >= 0) names.push_back(name() + ".cam_torque");
+    }
+    template <class Vector>
+    double* observe(double, const State& s, const Vector& q, const Vector& v, double* out) const {
+        const ContactTerms& c = s.terms;
+        const ContactResponse r = response(c, q, v);
+        *out++ = r.force;
+        *out++ = penetration(c, q);
+        *out++ = r.stiffness;
+        *out++ = std::atan2(c.sin_alpha, c.cos_alpha);
+        *out++ = c.theta;
+        *out++ = r.in_contact ? 1.0 : 0.0;
+        if (c.twist >= 0) *out++ = r.force * c.moment_arm;
+        return out;
+    }
+    // <name>.contact: the penetration (m), > 0 in contact.
+    void add_event_names(std::vector<std::string>& names) const { names.push_back(name() + ".contact"); }
+    double* event_values(const State& s, double* g) const {
+        *g++ = s.last.delta;
+        return g;
+    }
+
+    // r += F(delta, 0) g - p, Kt += k g g^T at rest.
+    template <class Vector, class Matrix>
+    void add_static(double t, const Vector& q, State& s, Vector& r, Matrix& Kt) const {
+        ContactTerms& c = s.terms;
+        if (twist() >= 0) twist_terms(t, q, 0.0, c);
+        const ContactResponse f = spec().law(penetration(c, q), 0.0);
+        for (int a = 0; a < c.count; ++a) r[c.dof[a]] += f.force * c.g[a] - c.p[a];
+        if (c.twist >= 0) r[c.twist] += f.force * c.moment_arm;
+        for_each_gradient(c, [&](int a, double ga) {
+            for_each_gradient(c, [&](int b, double gb) { Kt(a, b) += f.stiffness * ga * gb; });
+        });
+    }
+    // As if closed: the law's stiffness at 1 um on g g^T (a follower held only by its contact starts
+    // just touching, where the law has no stiffness).
+    template <class Vector, class Matrix>
+    void add_active_set_guess(const State& s, const Vector&, Vector&, Matrix& Kt) const {
+        const ContactTerms& c = s.terms;
+        const double k = spec().law(1e-6, 0.0).stiffness;
+        for_each_gradient(c, [&](int a, double ga) {
+            for_each_gradient(c, [&](int b, double gb) { Kt(a, b) += k * ga * gb; });
+        });
+    }
+    // d r / dt at fixed q from the time-only terms' rates.
+    template <class Vector>
+    void add_quasi_static_rate(const State& s, const Vector& q, Vector& rate) const {
+        const ContactTerms& c = s.terms;
+        const ContactResponse f = spec().law(penetration(c, q), 0.0);
+        double delta_rate = c.delta0_dot;  // d delta / dt at fixed q
+        for (int a = 0; a < c.count; ++a) delta_rate += c.g_dot[a] * q[c.dof[a]];
+        for (int a = 0; a < c.count; ++a)
+            rate[c.dof[a]] += f.stiffness * delta_rate * c.g[a] + f.force * c.g_dot[a] - c.p_dot[a];
+        // The moment arm's own rate is left out (a start close to, not exactly at, quasi-statics).
+        if (c.twist >= 0) rate[c.twist] += f.stiffness * delta_rate * c.moment_arm;
+    }
+
+    // --- queries ---
+    // The contact force at rest at time t and displacement q, N.
+    template <class Vector>
+    double static_force(double t, const Vector& q, State& s) const {
+        if (twist() >= 0) twist_terms(t, q, 0.0, s.terms);
+        return spec().law(penetration(s.terms, q), 0.0).force;
+    }
+    // The contact-loss intervals up to t_end (a loss still open at t_end ends there).
+    static std::vector<std::pair<double, double>> losses_until(const State& s, double t_end) {
+        std::vector<std::pair<double, double>> out = s.losses;
+        if (!s.in_contact) out.emplace_back(s.loss_start, t_end);
+        return out;
+    }
+
+private:
+    static std::string who(const Spec& c) { return "contact '" + c.name + "'"; }
+
+    // The terms at time t, displacement q and twist rate v_twist: theta = omega t + phase + q_twist,
+    // and the moment arm d delta / d theta at q.
+    template <class Vector>
+    void twist_terms(double t, const Vector& q, double v_twist, ContactTerms& c) const {
+        evaluate(omega_ * t + spec().phase + q[twist()], omega_ + v_twist, c);
+        double arm = c.delta0_theta;
+        for (int k = 0; k < c.count; ++k) arm += c.g_theta[k] * q[c.dof[k]];
+        c.moment_arm = arm;
+    }
+    // d delta' / d q_twist without the arm's own rate: g_theta . v.
+    template <class Vector>
+    static double twist_rate_term(const ContactTerms& c, const Vector& v) {
+        double d = 0.0;
+        for (int k = 0; k < c.count; ++k) d += c.g_theta[k] * v[c.dof[k]];
+        return d;
+    }
+    // f(dof, d delta / d q_dof) over the pair's gradient, the twist included.
+    template <class F>
+    static void for_each_gradient(const ContactTerms& c, F&& f) {
+        for (int k = 0; k < c.count; ++k) f(c.dof[k], c.g[k]);
+        if (c.twist >= 0) f(c.twist, c.moment_arm);
+    }
+
+    double omega_;  // camshaft speed, rad/s
+};
+
+}  // namespace camfollower
