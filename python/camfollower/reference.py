@@ -1,14 +1,15 @@
 # SPDX-License-Identifier: BSD-3-Clause
-"""The 7-DOF equations written again in NumPy, as a user would for scipy.integrate.solve_ivp.
+"""The paper's 7-DOF equations written again in NumPy, as a user would for scipy.integrate.solve_ivp.
 
-A second, independent route to the same model: the reference of the solver tests and the
-scipy/Exudyn comparison in ``bench/``. Only M, C, K, the spring preload and the cam lift h(theta)
-come from camfollower; the contact geometry and force are re-derived here from the paper's equations
-(eqs 2 and 4). Linear contact law (n = 1), no defects, no contact damping.
+A second, independent route to the paper preset: the reference of the solver tests and the
+scipy/Exudyn comparison in ``bench/``. Only M, C, K, the return spring's preload, the cam lift
+h(theta) and the follower's geometry come from camfollower; the contact geometry and force are
+re-derived here from the paper's equations (eqs 2 and 4). Linear contact law (n = 1), no defects, no
+contact damping, no gravity.
 
 >>> import camfollower as cf
 >>> from camfollower.reference import NumpyCamFollower
->>> ref = NumpyCamFollower(cf.CamFollowerModel())
+>>> ref = NumpyCamFollower(cf.presets.paper())
 >>> z0 = ref.initial()                       # static equilibrium, at rest
 >>> bool(abs(ref.rhs(0.0, z0)).max() < 1e-6)  # it is an equilibrium
 True
@@ -16,35 +17,58 @@ True
 
 import numpy as np
 
+from . import _core
+
+# The paper preset's DOFs and roles: y1 camshaft, y2 roller, y3 rod, y4 follower top; x1, x2, x3 across.
+_DOFS = ["y1", "y2", "y3", "y4", "x1", "x2", "x3"]
+_ROLES = {"cam_x": "x1", "cam_y": "y1", "follower_dof": "y2", "lateral": "x2", "cam_twist": "ground"}
+
 
 class NumpyCamFollower:
-    """State z = (q, v), 14 entries; rhs(t, z) and jacobian(t, z) for scipy.integrate.solve_ivp."""
+    """State z = (q, v), 14 entries; rhs(t, z) and jacobian(t, z) for scipy.integrate.solve_ivp.
+    ``mechanism``: the paper preset (camfollower.presets.paper), healthy."""
 
-    def __init__(self, model):
-        p = model.parameters
+    def __init__(self, mechanism):
+        if isinstance(mechanism, _core.CamFollowerModel):  # the legacy class, until it is removed
+            if mechanism.defects.eccentricity or mechanism.defects.backlash:
+                raise ValueError("the NumPy reference covers the paper preset without defects only")
+            mechanism = _core.paper_preset(mechanism.parameters)
+        if not isinstance(mechanism, _core.Mechanism) or list(mechanism.dof_names) != _DOFS:
+            raise ValueError("the NumPy reference covers the paper preset (camfollower.presets.paper) only")
+        b = mechanism.builder()
+        (c,) = b.contacts
+        follower = c["follower"]
         if (
-            p.contact_exponent != 1.0
-            or p.gravity != 0.0
-            or p.to_dict()["contact_damping"] != "none"
-            or model.defects.eccentricity
-            or model.defects.backlash
+            not isinstance(follower, _core.TranslatingRoller)
+            or any(c[k] != v for k, v in _ROLES.items())
+            or c["exponent"] != 1.0
+            or c["damping_factor"] != 0.0
+            or c["eccentricity"].radius != 0.0
+            or c["paper_backlash"][0] != 0.0
+            or b.clearances
+            or b.loads
+            or np.any(np.asarray(b.__getstate__()["gravity"]) != 0.0)
         ):
             raise ValueError(
                 "the NumPy reference covers the linear undamped contact law, without gravity or defects, only"
             )
-        p = model.parameters
-        self.M = np.array(model.mass_matrix)
-        self.C = np.array(model.damping_matrix)
-        self.K = np.array(model.stiffness_matrix)
+        self.M = np.array(mechanism.mass)
+        self.C = np.array(mechanism.damping)
+        self.K = np.array(mechanism.stiffness)
         self.Minv = np.diag(1.0 / np.diag(self.M))
         self.external = np.zeros(7)
-        self.external[3] = -model.spring_preload
-        self.omega = model.omega
-        self.kh = p.contact_stiffness
-        self.e = p.offset
-        self.s0 = np.sqrt((p.base_radius + p.roller_radius) ** 2 - p.offset**2)  # paper eq 2
-        self.program = model.cam.program
-        self.q0 = np.array(model.initial_state)
+        for s in b.springs:  # a preload pushes a towards negative q_a, b the other way (structure/network.hpp)
+            if s["preload"]:
+                self.external[_DOFS.index(s["a"])] -= s["preload"]
+                if s["b"] != "ground":
+                    self.external[_DOFS.index(s["b"])] += s["preload"]
+        self.omega = mechanism.omega
+        self.period = mechanism.period
+        self.kh = c["stiffness"]
+        self.e = follower.offset
+        self.s0 = np.sqrt((follower.base_radius + follower.roller_radius) ** 2 - self.e**2)  # paper eq 2
+        self.program = c["program"]
+        self.q0 = np.array(mechanism.initial_state)
 
     def contact(self, t, q):
         """Contact direction g (d delta / dq) and penetration delta at time t."""

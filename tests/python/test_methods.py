@@ -17,7 +17,7 @@ ROOT = Path(__file__).resolve().parents[2]
 
 @pytest.fixture(scope="module")
 def model():
-    return cf.CamFollowerModel()
+    return cf.presets.paper()
 
 
 @pytest.fixture(scope="module")
@@ -35,7 +35,7 @@ def force_error(model, reference, result):
     ref, sol = reference
     z = sol.sol(result["t"])
     forces = np.array([ref.kh * max(ref.contact(t, zi[:7])[1], 0.0) for t, zi in zip(result["t"], z.T)])
-    return np.max(np.abs(result["contact_force"] - forces)) / np.max(forces)
+    return np.max(np.abs(result["cam.force"] - forces)) / np.max(forces)
 
 
 # (method, force evaluations per step, tolerance, bounds of the contact force's error relative to its peak:
@@ -138,7 +138,7 @@ def test_dormand_prince_converges_to_newmark_at_fine_steps(model):
     nm = cf.simulate(model, revolutions=1, time_step=model.period / 65536, decimation=256)
     assert np.array_equal(dp["t"].shape, nm["t"].shape)
     np.testing.assert_allclose(dp["t"], nm["t"], rtol=0, atol=1e-12)
-    diff = np.max(np.abs(dp["contact_force"] - nm["contact_force"])) / np.max(np.abs(nm["contact_force"]))
+    diff = np.max(np.abs(dp["cam.force"] - nm["cam.force"])) / np.max(np.abs(nm["cam.force"]))
     assert diff < 2e-4
 
 
@@ -147,7 +147,7 @@ def test_fox_goodwin_is_newmark_with_beta_one_twelfth(model):
     nm = cf.simulate(model, revolutions=0.25, time_step=model.period / 16384, gamma=0.5, beta=1 / 12)
     # The same scheme by its name or by newmark's parameters; named as asked.
     assert fg.stats["method"] == "fox_goodwin" and nm.stats["method"] == "newmark"
-    np.testing.assert_array_equal(fg["contact_force"], nm["contact_force"])
+    np.testing.assert_array_equal(fg["cam.force"], nm["cam.force"])
     with pytest.raises(ValueError, match=r"exceeds the stability limit"):
         cf.simulate(model, revolutions=0.25, time_step=model.period / 1024, method="fox_goodwin")
 
