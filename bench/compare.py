@@ -61,7 +61,7 @@ def reference(model, ref_model, quick):
     """camfollower at a very fine step, checked against Radau at rtol 1e-12."""
     n = 2**18 if quick else 2**20
     r = camfollower_run(model, n)
-    out = {"t": r["t"], "y4": r["q"][:, 3].copy(), "force": r["contact_force"].copy(), "steps": n}
+    out = {"t": r["t"], "y4": r["q"][:, 3].copy(), "force": r["cam.force"].copy(), "steps": n}
     t0 = time.perf_counter()
     rtol = 1e-10 if quick else 1e-12
     atol = np.concatenate([np.full(7, rtol * 1e-3), np.full(7, rtol * 1e-1)])
@@ -113,7 +113,7 @@ def main(argv=None) -> int:
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
 
-    model = cf.CamFollowerModel()
+    model = cf.presets.paper()
     ref_model = NumpyCamFollower(model)
     print(
         f"machine: {platform.processor() or platform.machine()}, {platform.python_implementation()} "
@@ -145,14 +145,14 @@ def main(argv=None) -> int:
     for k in [12, 14, 16] if args.quick else [12, 13, 14, 15, 16, 17]:
         n = 2**k
         wall, r = timed(lambda: camfollower_run(model, n), repeat=5)
-        add("camfollower", f"dt=T/{n}", wall, r["stats"]["steps"], r["q"][:, 3], r["contact_force"])
+        add("camfollower", f"dt=T/{n}", wall, r["stats"]["steps"], r["q"][:, 3], r["cam.force"])
     # Newmark with beta = 1/12 (Fox-Goodwin): same cost per step, far smaller phase error, but only
     # conditionally stable (omega_max dt < 2.45: at least ~2500 steps per revolution here).
     print("camfollower, beta = 1/12", flush=True)
     for k in [12, 14] if args.quick else [12, 13, 14]:
         n = 2**k
         wall, r = timed(lambda: camfollower_run(model, n, beta=1.0 / 12.0), repeat=5)
-        add("camfollower b=1/12", f"dt=T/{n}", wall, r["stats"]["steps"], r["q"][:, 3], r["contact_force"])
+        add("camfollower b=1/12", f"dt=T/{n}", wall, r["stats"]["steps"], r["q"][:, 3], r["cam.force"])
 
     for method, rtols in [
         ("Radau", [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8]),
@@ -176,7 +176,7 @@ def main(argv=None) -> int:
             n = 2**k
             r = run_exudyn(model, model.period, model.period / n, record_every=max(1, n // GRID))
             y4 = np.interp(grid_t, r["t"], r["y4"])
-            force = np.interp(grid_t, r["t"], r["contact_force"])
+            force = np.interp(grid_t, r["t"], r["cam.force"])
             add("Exudyn", f"dt=T/{n}", r["wall_time_s"], r["steps"], y4, force)
 
     with open(out / "compare.csv", "w", newline="") as f:
