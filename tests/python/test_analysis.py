@@ -68,7 +68,7 @@ def test_contact_loss_intervals_from_flags():
 
 
 def test_last_revolutions_needs_a_step_dividing_the_period():
-    model = cf.CamFollowerModel()
+    model = cf.presets.paper()
     r = cf.simulate(model, revolutions=2, time_step=model.period / 4096, decimation=4)
     w = an.last_revolutions(r, model.period, 1)
     assert w.stop - w.start == 1024

@@ -25,7 +25,7 @@ ROOT = Path(__file__).resolve().parents[2]
 
 def _writers(tmp_path):
     """Every public way the package writes a file, as f(path)."""
-    result = cf.simulate(cf.CamFollowerModel(), duration=1e-3, time_step=1e-5)
+    result = cf.simulate(cf.presets.paper(), duration=1e-3, time_step=1e-5)
     follower, program = cf.TranslatingRoller(0.03, 0.01, 0.0), cf.MotionProgram.paper_default()
     return {
         "write_bytes": lambda p: _files.write_bytes(p, b"new"),
@@ -241,7 +241,7 @@ def test_contact_refuses_non_finite_states():
 def test_runs_beyond_ten_billion_steps_are_refused_at_once():
     start = time.monotonic()
     with pytest.raises(ValueError, match=r"steps is too many \(limit 1e\+?10\)"):
-        cf.simulate(cf.CamFollowerModel(), duration=9.9e6, time_step=1e-6, decimation=10**12)
+        cf.simulate(cf.presets.paper(), duration=9.9e6, time_step=1e-6, decimation=10**12)
     assert time.monotonic() - start < 10.0
 
 
@@ -258,7 +258,7 @@ def test_runs_beyond_ten_billion_steps_are_refused_at_once():
 )
 def test_simulate_names_a_bad_argument(name, value, error):
     with pytest.raises(error, match=name):
-        cf.simulate(cf.CamFollowerModel(), duration=1e-3, **{name: value})
+        cf.simulate(cf.presets.paper(), duration=1e-3, **{name: value})
 
 
 def test_point_counts_are_bounded_before_any_memory_is_taken(tmp_path):
@@ -375,7 +375,7 @@ def test_study_tables_echo_short_printable_values_with_file_and_line(tmp_path):
 def test_a_run_reports_its_step_against_the_shortest_natural_period():
     """highest_mode_hz from the stepper's tangent at the start equals the modal analysis' highest
     frequency (a separate code path), and a coarse step shows as few steps per shortest period."""
-    model = cf.CamFollowerModel()
+    model = cf.presets.paper()
     highest = float(np.max(model.modal_analysis(0.0)["frequencies_hz"]))
     fine = cf.simulate(model, duration=2e-4, time_step=1e-6)
     assert fine.stats["highest_mode_hz"] == pytest.approx(highest, rel=1e-6)
@@ -385,7 +385,7 @@ def test_a_run_reports_its_step_against_the_shortest_natural_period():
 
 
 def test_a_step_longer_than_the_run_or_a_twelfth_of_a_revolution_is_refused():
-    model = cf.CamFollowerModel()
+    model = cf.presets.paper()
     with pytest.raises(ValueError, match=r"time_step = 0.001 s is longer than the duration 0.0001 s"):
         cf.simulate(model, duration=1e-4, time_step=1e-3)
     with pytest.raises(ValueError, match="cannot resolve the cam's motion: it must be <="):
@@ -401,7 +401,7 @@ def test_no_error_message_carries_control_characters_or_megabytes():
     for call in (
         lambda: cf.Parameters().get(name),
         lambda: (builder.add_spring("spring", "tappet", name, stiffness=1e5), builder.build()),
-        lambda: cf.simulate(cf.CamFollowerModel(), duration=1e-4, linear_solver=name),
+        lambda: cf.simulate(cf.presets.paper(), duration=1e-4, linear_solver=name),
     ):
         with pytest.raises(ValueError) as e:
             call()
@@ -421,7 +421,7 @@ def test_geometry_beyond_a_kilometre_is_refused():
 
 def test_an_output_cap_beyond_memory_is_capped_and_named_not_a_memory_error():
     with pytest.raises(ValueError, match=r"max_output_bytes = 1e\+300 B was capped at this machine's memory"):
-        cf.simulate(cf.CamFollowerModel(), duration=4e3, time_step=1e-6, max_output_bytes=1e300)
+        cf.simulate(cf.presets.paper(), duration=4e3, time_step=1e-6, max_output_bytes=1e300)
 
 
 def test_a_config_speed_outside_the_models_range_names_the_file_and_line(tmp_path):
@@ -640,7 +640,7 @@ def test_the_json_writer_is_strict_and_fails_loudly_on_what_it_cannot_write():
 
 
 def test_a_saved_result_holds_strict_json_and_reads_back_nan(tmp_path):
-    result = cf.simulate(cf.CamFollowerModel(), duration=1e-3, time_step=1e-5)
+    result = cf.simulate(cf.presets.paper(), duration=1e-3, time_step=1e-5)
     result.settle = {"settled": False, "revolutions": 3, "change": math.nan, "history": [math.inf, 0.5]}
     path = result.save(tmp_path / "r.npz")
     with np.load(path) as z:
