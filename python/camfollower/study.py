@@ -35,10 +35,11 @@ import numpy as np
 
 from . import (
     CamEccentricity,
-    DiskCam,
     MotionProgram,
     Parameters,
+    TranslatingRoller,
     _files,
+    export,
     presets,
     simulate,
     simulate_many,
@@ -325,42 +326,51 @@ def write_csv(path: Path, header: list[str], columns) -> None:
     _files.write_text(path, table.getvalue())
 
 
-def plot_kinematics(cam: DiskCam, rpm: float, path: Path) -> None:
+def plot_kinematics(follower: TranslatingRoller, program: MotionProgram, rpm: float, path: Path) -> None:
     """SVAJ at the study's speed, pressure angle and surface curvature, and the cam profile, drawn by
-    camfollower.plot for the study's follower (a TranslatingRoller with the cam's geometry; its cam
-    frame is the x <-> y mirror of DiskCam's, docs/followers.md)."""
+    camfollower.plot for the study's follower."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from . import TranslatingRoller
     from . import plot as cfplot
 
-    follower = TranslatingRoller(cam.base_radius, cam.roller_radius, cam.offset)
     fig = plt.figure(figsize=(14, 8))
     grid = fig.add_gridspec(4, 3)
     svaj_axes = [fig.add_subplot(grid[0, 0])]
     svaj_axes += [fig.add_subplot(grid[i, 0], sharex=svaj_axes[0]) for i in (1, 2, 3)]
     geometry_axes = [fig.add_subplot(grid[0:2, 1])]
     geometry_axes.append(fig.add_subplot(grid[2:4, 1], sharex=geometry_axes[0]))
-    cfplot.svaj(cam.program, rpm=rpm, axes=svaj_axes)
-    cfplot.pressure_angle_and_curvature(follower, cam.program, axes=geometry_axes)
-    cfplot.profile(follower, cam.program, ax=fig.add_subplot(grid[:, 2]))
-    fig.suptitle(f"Paper cam kinematics at {rpm:g} rpm (modified trapezoid, e = {1e3 * cam.offset:g} mm)")
+    cfplot.svaj(program, rpm=rpm, axes=svaj_axes)
+    cfplot.pressure_angle_and_curvature(follower, program, axes=geometry_axes)
+    cfplot.profile(follower, program, ax=fig.add_subplot(grid[:, 2]))
+    fig.suptitle(f"Paper cam kinematics at {rpm:g} rpm (modified trapezoid, e = {1e3 * follower.offset:g} mm)")
     fig.tight_layout()
     _files.save_figure(fig, path)
 
 
-def kinematics_summary(cam: DiskCam, rpm: float) -> dict:
-    """Pressure-angle extremes, tightest cam-surface radius and peak follower acceleration."""
+def kinematics_summary(follower: TranslatingRoller, program: MotionProgram, rpm: float) -> dict:
+    """Pressure-angle extremes on the rises and on the returns (largest magnitude, sampled every
+    0.001 deg, segment ends included), the tightest cam-surface radius and the peak follower
+    acceleration."""
     omega = rpm * 2 * math.pi / 60
     theta = np.linspace(0, 2 * math.pi, 360001)
-    d2h = cam.program.evaluate(theta)["d2h"]
+    d2h = program.evaluate(theta)["d2h"]
     k = int(np.argmax(np.abs(d2h)))
-    t_rise, a_rise = cam.max_pressure_angle_rise()
-    t_ret, a_ret = cam.max_pressure_angle_return()
-    t_rho, rho = cam.min_surface_radius()
+    alpha = np.asarray(follower.profile(program, theta)["pressure_angle"])
+
+    def extreme(direction: float):
+        inside = np.zeros(theta.size, dtype=bool)
+        for seg in program.segments:
+            if np.sign(seg.h_end - seg.h_start) == direction:
+                inside |= (theta >= seg.theta_start) & (theta <= seg.theta_end)
+        i = np.flatnonzero(inside)[int(np.argmax(np.abs(alpha[inside])))]
+        return float(theta[i]), float(alpha[i])
+
+    t_rise, a_rise = extreme(1.0)
+    t_ret, a_ret = extreme(-1.0)
+    t_rho, rho = follower.min_surface_radius(program)
     return {
         "max_pressure_angle_rise_deg": math.degrees(a_rise),
         "max_pressure_angle_rise_at_deg": math.degrees(t_rise),
@@ -592,7 +602,7 @@ def run_study(cfg: StudyConfig, out: Path, figures: bool = True) -> dict:
     modal = healthy.model.modal_analysis(0.0)
     carrier = an.find_peaks(healthy.shaft_spectrum, 1, lo=50.0)[0][0]
     g = parameters(cfg, "offset")
-    cam = DiskCam(MotionProgram.paper_default(), g.base_radius, g.roller_radius, g.offset)
+    roller, program = TranslatingRoller(g.base_radius, g.roller_radius, g.offset), MotionProgram.paper_default()
     summary = {
         "rpm": cfg.rpm,
         "shaft_frequency_hz": cfg.rpm / 60.0,
@@ -604,7 +614,7 @@ def run_study(cfg: StudyConfig, out: Path, figures: bool = True) -> dict:
         "eccentricity_m": cfg.eccentricity,
         "clearance_m": cfg.clearance,
         "damping_ratio_physical": cfg.damping_ratio,
-        "kinematics": kinematics_summary(cam, cfg.rpm),
+        "kinematics": kinematics_summary(roller, program, cfg.rpm),
         "natural_frequencies_hz_dwell": [float(f) for f in modal["frequencies_hz"]],
         "paper_table3_hz": [2447, 2447, 5711, 12777, 13990, 17009, 17009],
         "carrier_hz": carrier,
@@ -621,9 +631,9 @@ def run_study(cfg: StudyConfig, out: Path, figures: bool = True) -> dict:
     progress.step("analysed")
 
     if figures:
-        plot_kinematics(cam, cfg.rpm, out / "kinematics.png")
+        plot_kinematics(roller, program, cfg.rpm, out / "kinematics.png")
         make_figures(cases, carrier, modal, bands, cfg, out, progress)
-    cam.write_surface_csv(str(out / "cam_surface.csv"))
+    export.write_csv(out / "cam_surface.csv", roller, program)
     _files.write_text(out / "summary.json", _files.json_text(summary))
     return summary
 

@@ -70,3 +70,26 @@ def test_bad_study_options(tmp_path, capsys, args, message):
     with pytest.raises(SystemExit):
         study.main(["--out", str(tmp_path)] + args)
     assert message in capsys.readouterr().err
+
+
+def test_kinematics_summary_against_the_papers_pressure_angle():
+    """The rise's and the return's largest pressure angle against alpha = atan((h' - e) / (s0 + h))
+    (paper eq 4) written here, every 0.0005 deg; the tightest surface radius is the base circle."""
+    import math
+
+    import camfollower as cf
+    import numpy as np
+
+    program = cf.MotionProgram.paper_default()
+    e, rb, rr = 0.010, 0.030, 0.008
+    k = study.kinematics_summary(cf.TranslatingRoller(rb, rr, e), program, 750.0)
+    theta = np.linspace(0, 2 * math.pi, 720001)
+    m = program.evaluate(theta)
+    alpha = np.arctan((np.asarray(m["dh"]) - e) / (math.sqrt((rb + rr) ** 2 - e**2) + np.asarray(m["h"])))
+    rise = (theta >= math.radians(30)) & (theta <= math.radians(180))
+    ret = theta >= math.radians(210)
+    for key, inside in (("rise", rise), ("return", ret)):
+        i = np.flatnonzero(inside)[np.argmax(np.abs(alpha[inside]))]
+        assert k[f"max_pressure_angle_{key}_deg"] == pytest.approx(math.degrees(alpha[i]), abs=1e-6), key
+        assert k[f"max_pressure_angle_{key}_at_deg"] == pytest.approx(math.degrees(theta[i]), abs=2e-3), key
+    assert k["min_surface_radius_m"] == pytest.approx(rb, rel=1e-12)
