@@ -7,7 +7,7 @@ Used by bench/compare.py (``run_exudyn``); run on its own, it integrates one rev
 step sizes and prints the error in the follower displacement y4 against camfollower.
 
 Construction, as an Exudyn user would write it (only the data come from camfollower:
-masses, spring and damper constants from ``model.parameters``, the preload, the cam lift h(theta),
+masses, spring and damper constants from the parameter card ``PARAMETERS``, the preload, the cam lift h(theta),
 the contact constants and the static equilibrium through ``camfollower.reference.NumpyCamFollower``):
 
 - one ``Node1D`` per DOF q = (y1, y2, y3, y4, x1, x2, x3), started at the static equilibrium
@@ -68,6 +68,7 @@ from exudyn.itemInterface import (
 Y1, Y2, Y3, Y4, X1, X2, X3 = range(7)
 CONTACT_DOFS = (Y1, Y2, X1, X2)  # the coordinates of the contact object, in this order
 
+PARAMETERS = cf.Parameters()  # the paper's card (Table 2): the preset and the springs below
 NEWTON_RELATIVE_TOLERANCE = 1e-10
 NEWTON_ABSOLUTE_TOLERANCE = 1e-8  # N
 
@@ -136,7 +137,7 @@ def build(model):
         nodes.append(node)
         markers.append(mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=node, coordinate=0)))
 
-    for a, b, stiffness, damping in springs(model.parameters):
+    for a, b, stiffness, damping in springs(PARAMETERS):
         other = ground_marker if b is None else markers[b]
         mbs.AddObject(CoordinateSpringDamper(markerNumbers=[other, markers[a]], stiffness=stiffness, damping=damping))
     mbs.AddLoad(LoadCoordinate(markerNumber=markers[Y4], load=ref.external[Y4]))
@@ -218,11 +219,11 @@ def run_exudyn(model, duration, time_step, record_every=1) -> dict:
 
 
 def main():
-    model = cf.CamFollowerModel()
+    model = cf.presets.paper(PARAMETERS)
     T = model.period
     ref_steps = 2**18
     ref = cf.simulate(model, revolutions=1, time_step=T / ref_steps)
-    ref_y4, ref_force = ref["q"][:, 3], ref["contact_force"]
+    ref_y4, ref_force = ref["q"][:, 3], ref["cam.force"]
     print(f"reference: camfollower, one revolution at T/{ref_steps}")
     print(
         f"{'time step':>12s} {'steps':>6s} {'Newton it':>9s} {'wall (s)':>9s} {'err y4':>9s} {'err force':>9s}"

@@ -17,7 +17,7 @@ import sys
 CASE = """
 import json, resource, time
 import camfollower as cf
-m = cf.CamFollowerModel()
+m = cf.presets.paper()
 t0 = time.perf_counter()
 r = cf.simulate(m, revolutions={revs}, time_step=m.period / {n}, decimation={dec})
 wall = time.perf_counter() - t0
