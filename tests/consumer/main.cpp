@@ -6,8 +6,10 @@
 
 int main() {
     namespace cf = camfollower;
-    const cf::DiskCam cam = cf::DiskCam::paper_default();
-    const double alpha = cam.kinematics(cf::degrees_to_radians(105.0)).pressure_angle();
+    const cf::MotionProgram program = cf::MotionProgram::paper_default();
+    const cf::TranslatingRoller roller(0.030, 0.008, 0.010);
+    const double theta = cf::degrees_to_radians(105.0);
+    const double alpha = roller.contact(theta, program.evaluate(theta)).pressure_angle();
 
     // The user's own mechanism: a flat-faced tappet on a rigid cam, a valve spring with its own mass.
     cf::MechanismBuilder b;
