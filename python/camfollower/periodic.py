@@ -20,7 +20,7 @@ import numpy as np
 
 from . import _core, _text
 from .results import Result
-from .simulation import SolverSettings, settings_and_options, simulate
+from .simulation import METHOD, SolverSettings, settings_and_options, simulate
 
 
 @dataclass(frozen=True)
@@ -222,9 +222,10 @@ def _settings_of(scheme: Dict[str, Any]) -> SolverSettings:
     """The SolverSettings of an orbit's ``scheme``; an orbit pickled before the settings were one object
     carries newmark's hht_alpha = 0 and default gamma, beta, which are dropped."""
     kw = dict(scheme)
-    if kw.get("method", "newmark") != "hht" and kw.get("hht_alpha") in (0, 0.0, None):
+    method = kw.get("method", SolverSettings().method)
+    if method != METHOD.hht and kw.get("hht_alpha") in (0, 0.0, None):
         kw.pop("hht_alpha", None)
-    if kw.get("method", "newmark") != "newmark" or (kw.get("gamma"), kw.get("beta")) in ((None, None), (0.5, 0.25)):
+    if method != METHOD.newmark or (kw.get("gamma"), kw.get("beta")) in ((None, None), (0.5, 0.25)):
         kw.pop("gamma", None), kw.pop("beta", None)
     return SolverSettings(**{k: v for k, v in kw.items() if v is not None})
 

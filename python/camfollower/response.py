@@ -19,6 +19,7 @@ from typing import Any, Dict, Optional, Sequence
 import numpy as np
 
 from .periodic import PeriodicOrbit, periodic_steady_state
+from .simulation import METHOD
 
 #: The studies' default accuracy: estimated error of the contact force and of the follower's
 #: acceleration over the revolution, relative to their peaks.
@@ -48,15 +49,15 @@ def study_scheme(system, steps: int) -> Dict[str, Any]:
     except (AttributeError, RuntimeError, ValueError):
         omega_max = math.inf
     if system.period / steps * omega_max <= _FOX_GOODWIN_MARGIN * math.sqrt(6.0):
-        return {"name": "fox_goodwin", "gamma": 0.5, "beta": 1.0 / 12.0}
-    return {"name": "newmark", "gamma": 0.5, "beta": 0.25}
+        return {"name": METHOD.fox_goodwin, "gamma": 0.5, "beta": 1.0 / 12.0}
+    return {"name": METHOD.newmark, "gamma": 0.5, "beta": 0.25}
 
 
 def _fox_goodwin_steps(system, steps: int, finest: int) -> int:
     """The first of steps, 2 steps, 4 steps, ... at which Fox-Goodwin is within its margin (else steps)."""
     n = steps
     while n <= finest:
-        if study_scheme(system, n)["name"] == "fox_goodwin":
+        if study_scheme(system, n)["name"] == METHOD.fox_goodwin:
             return n
         n *= 2
     return steps

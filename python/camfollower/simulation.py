@@ -8,6 +8,7 @@ import dataclasses
 import math
 import numbers
 from dataclasses import dataclass
+from types import SimpleNamespace
 from typing import Callable, List, Optional, Sequence, Tuple
 
 from . import _core
@@ -48,6 +49,9 @@ class RunOptions:
 
 
 _OPTION_FIELDS = frozenset(f.name for f in dataclasses.fields(RunOptions))
+# The method names as attributes (METHOD.fox_goodwin), from the C++ method table: modules that pick a
+# method name it through this, not a string of their own.
+METHOD = SimpleNamespace(**{name: name for name in _core.METHODS})
 _SETTINGS_FIELDS = frozenset(_core.SolverSettings.FIELDS)
 
 
@@ -63,19 +67,16 @@ def settings_and_options(settings=None, options=None, **overrides) -> Tuple[Solv
         )
     solver = {k: v for k, v in overrides.items() if k in _SETTINGS_FIELDS}
     run = {k: v for k, v in overrides.items() if k in _OPTION_FIELDS}
-    if settings is None:
-        settings = SolverSettings(**solver)
-    elif not isinstance(settings, SolverSettings):
-        raise TypeError(f"settings must be a camfollower.SolverSettings or None, got {type(settings).__name__}")
-    elif solver:
-        settings = settings.replace(**solver)
-    if options is None:
-        options = RunOptions(**run)
-    elif not isinstance(options, RunOptions):
-        raise TypeError(f"options must be a camfollower.RunOptions or None, got {type(options).__name__}")
-    elif run:
-        options = options.replace(**run)
-    return settings, options
+    return _changed(settings, SolverSettings, solver, "settings"), _changed(options, RunOptions, run, "options")
+
+
+def _changed(value, kind, changes: dict, what: str):
+    """``value`` (an instance of ``kind``, or None for its defaults) with ``changes`` applied."""
+    if value is None:
+        return kind(**changes)
+    if not isinstance(value, kind):
+        raise TypeError(f"{what} must be a camfollower.{kind.__name__} or None, got {type(value).__name__}")
+    return value.replace(**changes) if changes else value
 
 
 def simulate(
