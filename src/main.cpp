@@ -24,7 +24,7 @@
 #include "config/case_config.hpp"
 #include "config/force_closure.hpp"
 #include "output_file.hpp"
-#include "simulate_instances.hpp"  // simulate() for the library's systems, compiled once
+#include "camfollower/precompiled.hpp"  // simulate() for the library's mechanisms, compiled once
 
 namespace cf = camfollower;
 

@@ -5,9 +5,10 @@ SI units throughout (m, kg, s, N, rad). The compiled core lives in ``camfollower
 package re-exports it and adds the Python-side analysis and the paper study.
 
 >>> import camfollower as cf
->>> cam = cf.DiskCam()                       # the paper's cam (Table 1-2 defaults)
->>> round(cam.profile(0.1)["R"], 6)          # roller-centre distance on the base circle (m)
-0.036661
+>>> roller = cf.TranslatingRoller(base_radius=0.030, roller_radius=0.008, offset=0.010)  # the paper's
+>>> c = roller.contact(cf.MotionProgram.paper_default(), theta=0.1)     # on the base circle
+>>> round(c["pressure_angle"], 6)            # atan(-e / s0), rad
+-0.266294
 """
 
 import numpy as _numpy  # noqa: F401  (imported here, not lazily inside the first simulate call)
@@ -20,10 +21,7 @@ from ._core import (  # noqa: E402
     ArmTurn,
     BoundaryContinuity,
     CamEccentricity,
-    CamFollowerModel,
     ContinuityReport,
-    Defects,
-    DiskCam,
     Elastic,
     LineContact,
     Mechanism,
@@ -53,11 +51,8 @@ __all__ = [
     "ArmTurn",
     "BoundaryContinuity",
     "CamEccentricity",
-    "CamFollowerModel",
     "Config",
     "ContinuityReport",
-    "Defects",
-    "DiskCam",
     "Elastic",
     "LineContact",
     "Mechanism",

@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['ArmTurn', 'BoundaryContinuity', 'CamEccentricity', 'CamFollowerModel', 'ContinuityReport', 'Defects', 'DiskCam', 'Elastic', 'LineContact', 'MAX_CAMSHAFT_SPEED', 'MAX_PART_LENGTH', 'MAX_POINTS', 'METHODS', 'MIN_CAMSHAFT_SPEED', 'Mechanism', 'MechanismBuilder', 'MotionLaw', 'MotionProgram', 'OscillatingFlat', 'OscillatingRoller', 'Parameters', 'PeakCoefficients', 'ProfileError', 'RUNGE_KUTTA_DEFAULT_TOLERANCE', 'Segment', 'SolverSettings', 'TranslatingFlat', 'TranslatingRoller', 'cam_outline', 'check_output_target', 'length_units', 'paper_preset', 'realistic_damping_ratio', 'valve_train_parameter_units', 'valve_train_preset', 'write_cam_csv', 'write_file_atomically']
+__all__: list[str] = ['ArmTurn', 'BoundaryContinuity', 'CamEccentricity', 'ContinuityReport', 'Elastic', 'LineContact', 'MAX_CAMSHAFT_SPEED', 'MAX_PART_LENGTH', 'MAX_POINTS', 'METHODS', 'MIN_CAMSHAFT_SPEED', 'Mechanism', 'MechanismBuilder', 'MotionLaw', 'MotionProgram', 'OscillatingFlat', 'OscillatingRoller', 'Parameters', 'PeakCoefficients', 'ProfileError', 'RUNGE_KUTTA_DEFAULT_TOLERANCE', 'Segment', 'SolverSettings', 'TranslatingFlat', 'TranslatingRoller', 'cam_outline', 'check_output_target', 'length_units', 'paper_preset', 'realistic_damping_ratio', 'valve_train_parameter_units', 'valve_train_preset', 'write_cam_csv', 'write_file_atomically']
 class PeakCoefficients:
     """
     Peaks of |V|, |A|, |J| of a normalized law.
@@ -356,50 +356,9 @@ class MotionProgram:
     @property
     def segments(self) -> list[Segment]:
         ...
-class DiskCam:
-    """
-    Disk cam with an offset translating roller follower (lengths in m, angles in rad).
-    """
-    def __init__(self, program: MotionProgram | None = None, base_radius: typing.SupportsFloat | typing.SupportsIndex = 0.03, roller_radius: typing.SupportsFloat | typing.SupportsIndex = 0.008, offset: typing.SupportsFloat | typing.SupportsIndex = 0.01) -> None:
-        ...
-    def max_pressure_angle_return(self, offset: typing.SupportsFloat | typing.SupportsIndex | None = None) -> tuple[float, float]:
-        """
-        (theta, alpha) in rad of the largest |alpha| on the returns.
-        """
-    def max_pressure_angle_rise(self, offset: typing.SupportsFloat | typing.SupportsIndex | None = None) -> tuple[float, float]:
-        """
-        (theta, alpha) in rad of the largest |alpha| on the rises.
-        """
-    def min_surface_radius(self, offset: typing.SupportsFloat | typing.SupportsIndex | None = None, flanks_only: bool = False) -> tuple[float, float]:
-        """
-        (theta, radius) of the smallest convex cam-surface radius of curvature (m).
-        """
-    def profile(self, theta: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], offset: typing.SupportsFloat | typing.SupportsIndex | None = None) -> dict:
-        """
-        Profile quantities at theta (rad, scalar or array) for the nominal or a perturbed offset (m).
-        Keys: h, R, dR, d2R (m, per rad), pressure_angle, dalpha (rad), normal_x/y (unit, follower
-        frame: x lateral, y axial), pitch_x/y and surface_x/y (cam frame, m), pitch_curvature (1/m),
-        surface_radius (m, signed: > 0 convex).
-        """
-    def write_surface_csv(self, path: str, points: typing.SupportsInt | typing.SupportsIndex = 3600) -> None:
-        """
-        Write the closed cam surface as CSV (theta_rad,x_m,y_m; points + 1 rows, last = first).
-        """
-    @property
-    def base_radius(self) -> float:
-        ...
-    @property
-    def offset(self) -> float:
-        ...
-    @property
-    def program(self) -> MotionProgram:
-        ...
-    @property
-    def roller_radius(self) -> float:
-        ...
 class Parameters:
     """
-    Parameters of the 7-DOF model (SI units; paper Table 2 defaults). Override any by keyword:
+    The paper preset's parameters (SI units; paper Table 2 defaults; presets.paper(parameters)). Override any by keyword:
     Parameters(contact_stiffness=2e8, camshaft_speed_rpm=1000). Parameters.names() lists them.
     """
     @staticmethod
@@ -549,90 +508,6 @@ class Parameters:
         """
         spring_stiffness (N/m); read-only: use replace(spring_stiffness=...)
         """
-class Defects:
-    """
-    Camshaft eccentricity and follower backlash (m; phase and switch width in rad). Both off by default.
-    """
-    def __init__(self, eccentricity: typing.SupportsFloat | typing.SupportsIndex = 0.0, eccentricity_phase: typing.SupportsFloat | typing.SupportsIndex = 0.0, backlash: typing.SupportsFloat | typing.SupportsIndex = 0.0, backlash_switch_width: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
-        ...
-    def __repr__(self) -> str:
-        ...
-    @property
-    def backlash(self) -> float:
-        ...
-    @property
-    def backlash_switch_width(self) -> float:
-        ...
-    @property
-    def eccentricity(self) -> float:
-        ...
-    @property
-    def eccentricity_phase(self) -> float:
-        ...
-class CamFollowerModel:
-    """
-    The paper's 7-DOF flexible cam-follower model. q = (y1, y2, y3, y4, x1, x2, x3): y along the
-    follower axis, x across it; 1 camshaft, 2 roller, 3 follower rod, 4 follower top. Absolute
-    displacements from the unloaded touching configuration (y2..y4 carry the lift h).
-    """
-    dof_names: typing.ClassVar[list] = ['y1', 'y2', 'y3', 'y4', 'x1', 'x2', 'x3']
-    def __init__(self, parameters: Parameters | None = None, program: MotionProgram | None = None, defects: Defects | None = None) -> None:
-        ...
-    def contact(self, t: typing.SupportsFloat | typing.SupportsIndex, q: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[7, 1]"], v: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[7, 1]"]) -> dict:
-        """
-        Contact state at time t for displacements q and velocities v (diagnostics).
-        """
-    def modal_analysis(self, theta: typing.SupportsFloat | typing.SupportsIndex = 0.0, with_contact: bool = True) -> dict:
-        """
-        Undamped natural frequencies (Hz, ascending) and mass-normalized mode shapes (columns) of the
-        model linearized at the quasi-static equilibrium at cam angle theta (rad).
-        """
-    def static_equilibrium(self, theta: typing.SupportsFloat | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[7, 1]"]:
-        """
-        Quasi-static equilibrium at cam angle theta (rad).
-        """
-    def with_parameters(self, **kwargs) -> CamFollowerModel:
-        """
-        A new model with the given parameters changed (the model itself is immutable).
-        """
-    @property
-    def cam(self) -> DiskCam:
-        ...
-    @property
-    def damping_matrix(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[7, 7]"]:
-        ...
-    @property
-    def defects(self) -> Defects:
-        ...
-    @property
-    def initial_state(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[7, 1]"]:
-        """
-        static equilibrium at t = 0 (m)
-        """
-    @property
-    def mass_matrix(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[7, 7]"]:
-        ...
-    @property
-    def omega(self) -> float:
-        """
-        rad/s
-        """
-    @property
-    def parameters(self) -> Parameters:
-        ...
-    @property
-    def period(self) -> float:
-        """
-        one camshaft revolution, s
-        """
-    @property
-    def spring_preload(self) -> float:
-        """
-        P (N): return-spring force on y4 is -(P + K_rs y4)
-        """
-    @property
-    def stiffness_matrix(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[7, 7]"]:
-        ...
 class ArmTurn:
     """
     Sense in which an oscillating follower's arm turns to lift.
@@ -1295,12 +1170,6 @@ def _read_config(text: bytes, origin: str, base_dir: str) -> tuple:
     ...
 def _toml_line(text: bytes, path: list) -> int | None:
     ...
-@typing.overload
-def _run(system: CamFollowerModel, settings: SolverSettings, duration: typing.SupportsFloat | typing.SupportsIndex, decimation: typing.SupportsInt | typing.SupportsIndex, record_from: typing.SupportsFloat | typing.SupportsIndex, max_output_bytes: typing.SupportsFloat | typing.SupportsIndex, progress: typing.Any, progress_interval: typing.SupportsFloat | typing.SupportsIndex, settle_period: typing.SupportsFloat | typing.SupportsIndex | None = None, settle_dofs: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex] = [], settle_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, settle_min_revolutions: typing.SupportsInt | typing.SupportsIndex = 2, settle_max_revolutions: typing.SupportsInt | typing.SupportsIndex = 200, q0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"] | None = None, v0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"] | None = None) -> dict:
-    """
-    Internal: camfollower.simulate() calls this and wraps the output in a Result.
-    """
-@typing.overload
 def _run(system: Mechanism, settings: SolverSettings, duration: typing.SupportsFloat | typing.SupportsIndex, decimation: typing.SupportsInt | typing.SupportsIndex, record_from: typing.SupportsFloat | typing.SupportsIndex, max_output_bytes: typing.SupportsFloat | typing.SupportsIndex, progress: typing.Any, progress_interval: typing.SupportsFloat | typing.SupportsIndex, settle_period: typing.SupportsFloat | typing.SupportsIndex | None = None, settle_dofs: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex] = [], settle_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, settle_min_revolutions: typing.SupportsInt | typing.SupportsIndex = 2, settle_max_revolutions: typing.SupportsInt | typing.SupportsIndex = 200, q0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"] | None = None, v0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"] | None = None) -> dict:
     """
     Internal: camfollower.simulate() calls this and wraps the output in a Result.
@@ -1310,12 +1179,6 @@ def _run_many(cases: list, settings: SolverSettings, decimation: typing.Supports
     Internal: camfollower.simulate_many() calls this with (system, duration, record_from, settle_period,
     settle_dofs) per case and wraps each output in a Result.
     """
-@typing.overload
-def _shoot(system: CamFollowerModel, settings: SolverSettings, period: typing.SupportsFloat | typing.SupportsIndex | None, start_time: typing.SupportsFloat | typing.SupportsIndex, tolerance: typing.SupportsFloat | typing.SupportsIndex, shooting_max_iterations: typing.SupportsInt | typing.SupportsIndex, warmup_revolutions: typing.SupportsInt | typing.SupportsIndex, perturbation: typing.SupportsFloat | typing.SupportsIndex, multipliers: bool, monodromy: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"] | None, q0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"] | None, v0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"] | None) -> dict:
-    """
-    Internal: camfollower.periodic_steady_state() calls this and wraps the output in a PeriodicOrbit.
-    """
-@typing.overload
 def _shoot(system: Mechanism, settings: SolverSettings, period: typing.SupportsFloat | typing.SupportsIndex | None, start_time: typing.SupportsFloat | typing.SupportsIndex, tolerance: typing.SupportsFloat | typing.SupportsIndex, shooting_max_iterations: typing.SupportsInt | typing.SupportsIndex, warmup_revolutions: typing.SupportsInt | typing.SupportsIndex, perturbation: typing.SupportsFloat | typing.SupportsIndex, multipliers: bool, monodromy: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"] | None, q0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"] | None, v0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"] | None) -> dict:
     """
     Internal: camfollower.periodic_steady_state() calls this and wraps the output in a PeriodicOrbit.
@@ -1338,7 +1201,7 @@ def length_units() -> dict:
 def paper_preset(parameters: Parameters | None = None, program: MotionProgram | None = None, *, eccentricity: CamEccentricity | None = None, guide_clearance: typing.SupportsFloat | typing.SupportsIndex = 0.0, guide_wall_damping_factor: typing.SupportsFloat | typing.SupportsIndex = 0.0, guide_friction: typing.SupportsFloat | typing.SupportsIndex = 0.0, element_damping_ratio: typing.SupportsFloat | typing.SupportsIndex = 0.0, paper_backlash: typing.SupportsFloat | typing.SupportsIndex = 0.0, paper_backlash_switch_width: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> Mechanism:
     """
     The paper's 7-DOF model (Tounsi et al.) built from the mechanism parts; DOFs y1..y4, x1..x3,
-    contact 'cam'. Parameters as for CamFollowerModel (Table 2 defaults). Options: a CamEccentricity;
+    contact 'cam'. parameters: a Parameters (Table 2 defaults). Options: a CamEccentricity;
     guide_clearance (m, radial) > 0 puts the rod x3 in a gap with walls of stiffness K_rb (clearance
     'guide'; wall damping factor chi in s/m, Coulomb friction on y3); element_damping_ratio in (0, 1)
     puts a damper on every element (springs, contact, guide walls) at that ratio of its own critical

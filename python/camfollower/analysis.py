@@ -204,10 +204,6 @@ def _program_and_speed(model, contact: str | None):
             if c["name"] == contact:
                 return c["program"], model.omega
         raise ValueError(f"contact: no contact named {contact!r}; the mechanism has {names}")
-    if hasattr(model, "omega") and hasattr(model, "cam"):  # the legacy CamFollowerModel
-        if contact is not None:
-            raise ValueError("contact: a CamFollowerModel has one cam; leave contact out")
-        return model.cam.program, model.omega
     raise ValueError(f"model must be a Mechanism, got {type(model).__name__}")
 
 

@@ -126,8 +126,7 @@ def periodic_steady_state(
     transient_max_revolutions: int = 200,
     **scheme,
 ) -> PeriodicOrbit:
-    """The periodic steady state of ``system`` (a Mechanism or CamFollowerModel: anything with a
-    ``period``) by shooting on one revolution.
+    """The periodic steady state of ``system`` (a Mechanism) by shooting on one revolution.
 
     ``time_step`` must divide the period (e.g. ``system.period / 4096``); the orbit is the fixed point
     of the scheme with these settings (``settings``: a :class:`SolverSettings`, or its fields as

@@ -206,10 +206,9 @@ def contact_force(result, contact: str = "cam", ax=None):
     step, ``result.contact_loss``) shaded."""
     plt = _pyplot()
     t = np.asarray(result["t"])
-    name = f"{contact}.force" if f"{contact}.force" in result else "contact_force"
     if ax is None:
         fig, ax = plt.subplots(figsize=(9, 4.5))
-    ax.plot(t, np.asarray(result[name]), lw=0.8, label=f"{contact} force")
+    ax.plot(t, np.asarray(result[f"{contact}.force"]), lw=0.8, label=f"{contact} force")
     for i, (a, b) in enumerate(result.contact_loss.get(contact, [])):
         ax.axvspan(a, b, color="tab:red", alpha=0.25, lw=0, label="contact lost" if i == 0 else None)
     ax.set_xlabel("time (s)"), ax.set_ylabel("contact force (N)"), ax.legend(loc="best"), ax.grid(alpha=0.3)

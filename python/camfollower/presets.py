@@ -35,9 +35,9 @@ def paper(
     """The paper's 7-DOF cam-follower model (Tounsi et al.): camshaft on bearings (y1, x1), roller on
     its pin (y2, x2), follower rod in its guide (y3, x3), follower top on the preloaded return spring
     (y4); one contact named "cam" between a disk cam and the offset translating roller. ``parameters``
-    as for CamFollowerModel (Table 2 defaults), ``program`` the cam's lift (Table 1 default).
+    a :class:`Parameters` card (Table 2 defaults), ``program`` the cam's lift (Table 1 default).
 
-    Defects, from their mechanisms: ``eccentricity`` (a CamEccentricity: the cam's centre displaced,
+    The defects, from their mechanisms: ``eccentricity`` (a CamEccentricity: the cam's centre displaced,
     exact, or the paper's literal force as a named formulation); ``guide_clearance`` (m, radial) > 0
     puts the rod x3 in a gap whose walls have the guide stiffness K_rb (clearance "guide", wall damping
     factor ``guide_wall_damping_factor`` in s/m, Coulomb ``guide_friction`` on the rod's sliding y3).

@@ -29,10 +29,6 @@ class NumpyCamFollower:
     ``mechanism``: the paper preset (camfollower.presets.paper), healthy."""
 
     def __init__(self, mechanism):
-        if isinstance(mechanism, _core.CamFollowerModel):  # the legacy class, until it is removed
-            if mechanism.defects.eccentricity or mechanism.defects.backlash:
-                raise ValueError("the NumPy reference covers the paper preset without defects only")
-            mechanism = _core.paper_preset(mechanism.parameters)
         if not isinstance(mechanism, _core.Mechanism) or list(mechanism.dof_names) != _DOFS:
             raise ValueError("the NumPy reference covers the paper preset (camfollower.presets.paper) only")
         b = mechanism.builder()

@@ -53,13 +53,13 @@ class Result:
     """Time histories of one run.
 
     ``t`` (s), ``q``, ``v``, ``a`` (rows x DOFs, SI units of each DOF: m or rad) and every channel of the
-    system by name (``r["contact_force"]``, ``r.channel("contact_force")``; ``r.channels`` lists them).
+    system by name (``r["cam.force"]``, ``r.channel("cam.force")``; ``r.channels`` lists them).
     ``stats`` holds the solver statistics, ``contact_loss`` maps each contact's name to the (start, end)
     times in s of its intervals without contact (checked at every step, not only at recorded rows).
     ``events`` lists the contact losses and re-contacts located within the steps, in time order, as
     ``Event(time in s, name, "lost" | "made")`` tuples; the name is the contact's ``<contact>.contact`` (a
-    clearance's ``<clearance>.wall``; ``"contact"`` on a CamFollowerModel). Arrays are read-only views on
-    the run's buffer; ``save(path)`` / ``Result.load(path)`` round-trip through an NPZ file.
+    clearance's ``<clearance>.wall``). Arrays are read-only views on the run's buffer; ``save(path)`` /
+    ``Result.load(path)`` round-trip through an NPZ file.
     ``settle`` is None, or (after ``simulate(..., settle=True)``) a dict: ``settled`` (bool),
     ``revolutions`` simulated to settle, ``change`` (the last revolution-to-revolution change of the
     watched accelerations relative to their peak), ``change_absolute`` (m/s^2), ``tolerance``,

@@ -138,7 +138,7 @@ def simulate(
     ``rejected_steps`` and ``stiff_steps`` (steps bounded by stability rather than accuracy: an
     implicit method would be cheaper there).
 
-    ``system`` is a Mechanism (camfollower.MechanismBuilder, camfollower.presets) or a CamFollowerModel.
+    ``system`` is a Mechanism (camfollower.MechanismBuilder, camfollower.presets, a config's ``.mechanism``).
     ``progress(steps_done, steps_planned)`` is called about every ``progress_interval`` seconds;
     returning False stops the run (the Result then holds what was recorded, ``stats["cancelled"]``
     is True). Ctrl-C stops a run within about a second with KeyboardInterrupt. The GIL is released
@@ -263,10 +263,10 @@ def _result(raw, settle_dofs) -> Result:
 def _run_arguments(system, settings: SolverSettings, o: RunOptions, *, initial_state=None, progress=None):
     """simulate()'s arguments checked and turned into _core._run's (but for system and progress), and the
     watched DOFs' names (None without settle)."""
-    if not isinstance(system, (_core.Mechanism, _core.CamFollowerModel)):
+    if not isinstance(system, _core.Mechanism):
         raise TypeError(
             f"system must be a camfollower Mechanism (MechanismBuilder.build(), camfollower.presets, "
-            f"a config's .mechanism) or a CamFollowerModel, got {type(system).__name__}"
+            f"a config's .mechanism), got {type(system).__name__}"
         )
     if progress is not None and not callable(progress):
         raise TypeError(

@@ -61,10 +61,8 @@ inline double number_argument(const std::string& name, const py::handle& value) 
 Follower follower_from(const py::handle& f);
 
 void bind_motion(py::module_& m);
-void bind_geometry(py::module_& m);
-void bind_model(py::module_& m);
+void bind_parameters(py::module_& m);
 void bind_settings(py::module_& m);
-void bind_solver(py::module_& m);
 void bind_mechanism(py::module_& m);
 void bind_line_contact(py::module_& m);
 void bind_export(py::module_& m);

@@ -644,7 +644,7 @@ void bind_mechanism(py::module_& m) {
         py::arg("guide_friction") = 0.0, py::arg("element_damping_ratio") = 0.0, py::arg("paper_backlash") = 0.0,
         py::arg("paper_backlash_switch_width") = 0.0,
         "The paper's 7-DOF model (Tounsi et al.) built from the mechanism parts; DOFs y1..y4, x1..x3,\n"
-        "contact 'cam'. Parameters as for CamFollowerModel (Table 2 defaults). Options: a CamEccentricity;\n"
+        "contact 'cam'. parameters: a Parameters (Table 2 defaults). Options: a CamEccentricity;\n"
         "guide_clearance (m, radial) > 0 puts the rod x3 in a gap with walls of stiffness K_rb (clearance\n"
         "'guide'; wall damping factor chi in s/m, Coulomb friction on y3); element_damping_ratio in (0, 1)\n"
         "puts a damper on every element (springs, contact, guide walls) at that ratio of its own critical\n"
@@ -708,11 +708,8 @@ void bind_mechanism(py::module_& m) {
                     job.run = [a, s, settle](const RunOptions& o) {
                         return a->visit([&](const auto& mech) { return output_of(mech, simulate(mech, s, o), settle); });
                     };
-                } else if (py::isinstance<CamFollowerModel>(c[0])) {
-                    const CamFollowerModel* model = &c[0].cast<const CamFollowerModel&>();
-                    job.run = [model, s, settle](const RunOptions& o) { return output_of(*model, simulate(*model, s, o), settle); };
                 } else {
-                    throw py::type_error(detail::concat("systems[", i, "] must be a Mechanism or a CamFollowerModel, got ",
+                    throw py::type_error(detail::concat("systems[", i, "] must be a Mechanism, got ",
                                                         std::string(py::str(py::type::of(c[0]).attr("__name__")))));
                 }
                 jobs.push_back(std::move(job));

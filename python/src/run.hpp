@@ -20,7 +20,6 @@
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
-#include "camfollower/model/cam_follower_model.hpp"
 #include "camfollower/model/mechanism.hpp"
 #include "camfollower/solver/simulate.hpp"
 #include "camfollower/solver/simulate_many.hpp"
@@ -37,9 +36,6 @@ inline SolverSettings as_run(SolverSettings s) {
 
 // Contact-loss intervals per contact, (name, [(start, end), ...]), for systems that track them.
 using ContactLosses = std::vector<std::pair<std::string, std::vector<std::pair<double, double>>>>;
-inline ContactLosses losses_of(const CamFollowerModel&, const State<CamFollowerModel>& s) {
-    return {{"cam", CamFollowerModel::contact_loss(s.workspace, s.t)}};
-}
 template <int N>
 ContactLosses losses_of(const Mechanism<N>& m, const State<Mechanism<N>>& s) {
     ContactLosses out;
@@ -89,13 +85,13 @@ std::shared_ptr<RunOutput> output_of(const System& system, RunResult<System>&& r
     return out;
 }
 
-// An initial q or v from Python, checked for size and finiteness.
+// An initial q or v from Python as the system's vector; its size and entries are checked by simulate()
+// and periodic_orbit() (check_initial, solver/state.hpp).
 template <class System>
 std::optional<typename System::Vector> initial_vector(const System& system, const std::optional<Eigen::VectorXd>& x,
                                                       const char* name) {
     if (!x) return std::nullopt;
     if (x->size() != system.size()) detail::fail(name, " must have ", system.size(), " entries (one per DOF), got ", x->size());
-    if (!x->allFinite()) detail::fail(name, " must be finite");
     return typename System::Vector(*x);
 }
 

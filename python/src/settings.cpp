@@ -97,6 +97,11 @@ py::dict fields_of(const SolverSettings& s) {
 }  // namespace
 
 void bind_settings(py::module_& m) {
+    // The integration methods from the one table (solver/settings.hpp): name -> (order, summary).
+    py::dict methods;
+    for (const MethodTraits& t : method_table) methods[py::str(t.name)] = py::make_tuple(t.order, t.summary);
+    m.attr("METHODS") = methods;
+    m.attr("RUNGE_KUTTA_DEFAULT_TOLERANCE") = runge_kutta_default_tolerance;
     const SolverSettings d;
     py::class_<SolverSettings> cls(m, "SolverSettings", R"doc(
 The integration settings of simulate(), simulate_many() and periodic_steady_state(), immutable.

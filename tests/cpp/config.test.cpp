@@ -9,7 +9,7 @@
 
 #include "camfollower/camfollower.hpp"
 #include "config/case_config.hpp"
-#include "simulate_instances.hpp"  // simulate() for the library's systems, compiled once
+#include "camfollower/precompiled.hpp"  // simulate() for the library's mechanisms, compiled once
 
 namespace cf = camfollower;
 using cf::config::parse_case;

@@ -11,7 +11,7 @@
 #include "camfollower/model/presets/paper.hpp"
 #include "camfollower/solver/simulate.hpp"
 #include "bouncer.hpp"
-#include "simulate_instances.hpp"  // simulate() for the library's systems, compiled once
+#include "camfollower/precompiled.hpp"  // simulate() for the library's mechanisms, compiled once
 
 using namespace camfollower;
 

@@ -5,16 +5,22 @@
 //   bisection), for the contact point, the normal (from the envelope's tangent) and the radius of
 //   curvature (from three envelope points);
 // - central finite differences in theta for dnormal, dlever, dlift, and in s for the lever;
-// - textbook limits (flat face g = 0, DiskCam, a very long arm, dwells), bad input and undercut.
+// - textbook limits (flat face g = 0, the roller's closed form of paper eqs 2-5 written out here, a
+//   very long arm, dwells), bad input and undercut.
 // Every type runs through the same checks from one list (for_each_follower): a new type joins with a
-// line there.
+// line there. The translating roller's own checks follow (base circle, the paper cam's extremes, a
+// perturbed offset, closure and CSV, a dent narrower than the search's sampling step).
 #include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <fstream>
 #include <limits>
+#include <optional>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -23,7 +29,7 @@
 #include "camfollower/follower/profile.hpp"
 #include "camfollower/follower/translating_flat.hpp"
 #include "camfollower/follower/translating_roller.hpp"
-#include "camfollower/geometry/disk_cam.hpp"
+#include "camfollower/geometry/export.hpp"
 #include "camfollower/motion/program.hpp"
 
 using namespace camfollower;
@@ -303,6 +309,11 @@ const MotionProgram fast({{MotionLaw::cycloidal(), 0, 60 * deg, 0, 0.01},
                           {MotionLaw::polynomial_345(), 120 * deg, 2 * pi, 0.01, 0.0}});
 const MotionProgram whip({{MotionLaw::cycloidal(), 0, 60 * deg, 0, 1.0},
                           {MotionLaw::cycloidal(), 60 * deg, 2 * pi, 1.0, 0.0}});
+// A 20 mm cycloidal rise over 100 deg for a roller on a small base circle (25 mm, roller 6 mm): strong
+// curvature and concave flanks, where the paper cam has neither.
+const MotionProgram aggressive({{MotionLaw::cycloidal(), 0, 100 * deg, 0, 0.02},
+                                {MotionLaw::dwell(), 100 * deg, 160 * deg, 0.02, 0.02},
+                                {MotionLaw::polynomial_345(), 160 * deg, 2 * pi, 0.02, 0.0}});
 
 // ---- every follower type, one list ------------------------------------------------------------------
 // Each type with a few geometries: the follower, its truth written from its definition (above), the
@@ -314,6 +325,10 @@ void for_each_follower(Visit&& visit) {
     for (double e : {0.010, 0.0, -0.006})
         visit("translating roller, offset " + std::to_string(e), TranslatingRoller(0.030, 0.008, e),
               TranslatingRollerTruth{0.030, 0.008, e, linear_program}, linear_program, translate, 0.030,
+              TranslatingRoller(0.010, 0.012, 0.0), steep);
+    for (double e : {0.008, -0.005})
+        visit("translating roller on the aggressive cam, offset " + std::to_string(e), TranslatingRoller(0.025, 0.006, e),
+              TranslatingRollerTruth{0.025, 0.006, e, aggressive}, aggressive, translate, 0.025,
               TranslatingRoller(0.010, 0.012, 0.0), steep);
     for (double g : {0.0, 10 * deg, -25 * deg})
         visit("translating flat, face angle " + std::to_string(g / deg), TranslatingFlat(0.035, g, 0.005),
@@ -455,31 +470,50 @@ TEST_CASE("textbook: flat face with g = 0 touches at x = h' and rho = r_b + h + 
     CHECK(tightest.theta == Approx(at).margin(2e-3 * deg));
 }
 
-TEST_CASE("textbook: the translating roller is DiskCam at the same geometry") {
+TEST_CASE("textbook: the translating roller is the paper's closed form (eqs 2-5)") {
+    const double rb = 0.030, rr = 0.008;
     for (double e : {0.010, 0.0, -0.007}) {
-        const DiskCam cam({0.030, 0.008, e}, linear_program);
-        const TranslatingRoller follower(0.030, 0.008, e);
-        CHECK(follower.pitch_base() == cam.pitch_base(e));
+        INFO("offset " << e);
+        const TranslatingRoller follower(rb, rr, e);
+        // eq 2: the roller centre's height on the base circle.
+        const double s0 = std::sqrt((rb + rr) * (rb + rr) - e * e);
+        CHECK(follower.pitch_base() == Approx(s0).epsilon(1e-15));
         for (int k = 0; k < 3600; ++k) {
             const double theta = k * 0.1 * deg;
-            const ContactKinematics ref = cam.kinematics(theta);
             const FollowerMotion m = linear_program.evaluate(theta);
+            // eqs 3-4: R = s0 + h, alpha = atan((R' - e) / R) and its theta-derivative; the pitch
+            // curve's curvature (> 0 convex).
+            const double R = s0 + m.h, p = m.dh - e, norm2 = R * R + p * p;
+            const double alpha = std::atan2(p, R);
+            const double dalpha = (m.d2h * R - p * m.dh) / norm2;
+            const double kappa = (R * R + p * (2 * m.dh - e) - R * m.d2h) / (norm2 * std::sqrt(norm2));
             const ContactGeometry c = follower.contact(theta, m);
-            CHECK(std::abs(c.pressure_angle() - ref.pressure_angle()) <= 1e-14);
-            CHECK((c.normal - ref.normal()).norm() <= 1e-14);
-            CHECK(std::abs(c.lever - ref.cos_alpha) <= 1e-15);
-            CHECK((c.dnormal - ref.dalpha * Vec(-ref.cos_alpha, -ref.sin_alpha)).norm() <= 1e-15);
-            CHECK(std::abs(c.dlever + ref.sin_alpha * ref.dalpha) <= 1e-15);
-            // Same cam, drawn in DiskCam's mirrored (axial, lateral) frame: x <-> y.
-            const ProfilePoint q = cam.profile(theta);
-            const FollowerProfilePoint p = follower.profile(theta, m);
-            CHECK((p.surface - Vec(q.surface.y(), q.surface.x())).norm() <= 1e-15);
-            CHECK(p.surface_radius == Approx(q.surface_radius).epsilon(1e-13));
+            CHECK(std::abs(c.pressure_angle() - alpha) <= 1e-14);
+            CHECK((c.normal - Vec(-std::sin(alpha), std::cos(alpha))).norm() <= 1e-14);
+            CHECK(std::abs(c.lever - std::cos(alpha)) <= 1e-15);
+            CHECK((c.dnormal + dalpha * Vec(std::cos(alpha), std::sin(alpha))).norm() <= 1e-15);
+            CHECK(std::abs(c.dlever + std::sin(alpha) * dalpha) <= 1e-15);
+            // eq 5, in the cam frame X_cam = Rot(-theta) X_ground: the roller centre (e, R) and the
+            // surface point r_r from it against the normal.
+            const Vec pitch(R * std::sin(theta) + e * std::cos(theta), R * std::cos(theta) - e * std::sin(theta));
+            const Vec surface = pitch - rr * Vec(std::sin(theta - alpha), std::cos(theta - alpha));
+            const FollowerProfilePoint q = follower.profile(theta, m);
+            CHECK((q.reference - pitch).norm() <= 1e-15);
+            CHECK((q.surface - surface).norm() <= 1e-15);
+            CHECK(q.surface_radius == Approx(1.0 / kappa - rr).epsilon(1e-13));
         }
-        const AngleExtremum ours = max_pressure_angle(linear_program, follower);
-        const AngleExtremum rise = cam.max_pressure_angle_rise(), ret = cam.max_pressure_angle_return();
-        CHECK(std::abs(ours.value) == Approx(std::max(std::abs(rise.value), std::abs(ret.value))).epsilon(1e-12));
-        CHECK(min_surface_radius(linear_program, follower).value == Approx(cam.min_surface_radius().value).epsilon(1e-12));
+        // The checks' extremes against the same closed form sampled every 1e-3 deg: the steepest
+        // pressure angle, and the tightest convex spot (largest pitch curvature: the effective radius
+        // r_r (1 - r_r kappa) is least there).
+        double alpha_max = 0, kappa_max = -std::numeric_limits<double>::infinity();
+        for (int k = 0; k < 360000; ++k) {
+            const FollowerMotion m = linear_program.evaluate(k * 1e-3 * deg);
+            const double R = s0 + m.h, p = m.dh - e, norm2 = R * R + p * p;
+            alpha_max = std::max(alpha_max, std::abs(std::atan2(p, R)));
+            kappa_max = std::max(kappa_max, (R * R + p * (2 * m.dh - e) - R * m.d2h) / (norm2 * std::sqrt(norm2)));
+        }
+        CHECK(std::abs(max_pressure_angle(linear_program, follower).value) == Approx(alpha_max).epsilon(1e-9));
+        CHECK(min_surface_radius(linear_program, follower).value == Approx(1.0 / kappa_max - rr).epsilon(1e-7));
     }
 }
 
@@ -545,6 +579,160 @@ TEST_CASE("dwells: pressure angles") {
     CHECK(std::abs(max_pressure_angle(angular_program, through_pivot).value) < 1e-15);
 }
 
+// ---- the translating roller beyond the shared checks -----------------------------------------------
+TEST_CASE("translating roller: on the dwell the surface is the base circle and alpha = atan(-e/s0)") {
+    const TranslatingRoller roller(0.030, 0.008, 0.010);
+    const double s0 = std::sqrt(0.038 * 0.038 - 0.01 * 0.01);
+    for (double t : {5 * deg, 20 * deg}) {
+        const FollowerMotion m = linear_program.evaluate(t);
+        const FollowerProfilePoint p = roller.profile(t, m);
+        CHECK(roller.kinematics(m).R == Approx(s0).epsilon(1e-15));
+        CHECK(p.surface.norm() == Approx(0.030).epsilon(1e-14));
+        CHECK(p.reference.norm() == Approx(0.038).epsilon(1e-14));
+        CHECK(p.pressure_angle == Approx(std::atan(-0.01 / s0)).epsilon(1e-14));
+        CHECK(p.surface_radius == Approx(0.030).epsilon(1e-12));
+    }
+}
+
+TEST_CASE("translating roller: the paper cam's steepest pressure angle lies on the right segment") {
+    // The paper's return (210-360 deg) mirrors its rise (30-180 deg). A positive offset raises the
+    // return's magnitude: with e = +10 mm the steepest angle is on the return, negative; mirrored,
+    // e = -10 mm puts it on the rise, positive, with the same magnitude.
+    const double rb = 0.030, rr = 0.008, e = 0.010, s0 = std::sqrt(0.038 * 0.038 - e * e);
+    const TranslatingRoller plus(rb, rr, e), minus(rb, rr, -e);
+    const AngleExtremum ret = max_pressure_angle(linear_program, plus);
+    const AngleExtremum rise = max_pressure_angle(linear_program, minus);
+    CHECK(ret.theta >= 210 * deg);
+    CHECK(ret.value < 0.0);
+    CHECK(rise.theta >= 30 * deg);
+    CHECK(rise.theta <= 180 * deg);
+    CHECK(rise.value > 0.0);
+    CHECK(rise.value == Approx(-ret.value).epsilon(1e-12));
+    // Sampled every 1e-3 deg over each segment.
+    double sampled_rise = 0, sampled_ret = 0, plus_on_rise = 0;
+    bool negative_on_rise = true;
+    for (int k = 0; k <= 360000; ++k) {
+        const double t = k * 1e-3 * deg;
+        const FollowerMotion m = linear_program.evaluate(t);
+        const double a_plus = plus.profile(t, m).pressure_angle, a_minus = minus.profile(t, m).pressure_angle;
+        if (t >= 30 * deg && t <= 180 * deg) {
+            sampled_rise = std::max(sampled_rise, std::abs(a_minus));
+            plus_on_rise = std::max(plus_on_rise, std::abs(a_plus));
+            negative_on_rise = negative_on_rise && a_plus < 0.0;
+        }
+        if (t >= 210 * deg) sampled_ret = std::max(sampled_ret, std::abs(a_plus));
+    }
+    CHECK(rise.value == Approx(sampled_rise).epsilon(1e-9));
+    CHECK(-ret.value == Approx(sampled_ret).epsilon(1e-9));
+    // e = 10 mm exceeds the peak R' = 2 h_max / beta = 7.6 mm/rad: with e = +10 mm alpha < 0 all along
+    // the rise, its magnitude largest where the rise leaves the base circle, atan(e / s0).
+    CHECK(negative_on_rise);
+    CHECK(plus_on_rise == Approx(std::atan(e / s0)).epsilon(1e-12));
+    // The base circle is the tightest convex spot of this cam.
+    CHECK(min_surface_radius(linear_program, plus).value == Approx(0.030).epsilon(1e-12));
+}
+
+TEST_CASE("translating roller: a perturbed offset e* is a roller built with that offset, base circle unchanged") {
+    // The paper's perturbed offset (eqs 8-18) enters through kinematics_from(m, s0*, e*),
+    // s0* = sqrt((r_b + r_r)^2 - e*^2).
+    const double rb = 0.030, rr = 0.008, rp = rb + rr, de = 10e-6;
+    for (double e_star : {0.010 + de, 0.010 - de}) {
+        INFO("e* = " << e_star);
+        const double s0_star = std::sqrt(rp * rp - e_star * e_star);
+        const TranslatingRoller shifted(rb, rr, e_star);
+        CHECK(shifted.pitch_base() == Approx(s0_star).epsilon(1e-15));
+        for (double t : {10 * deg, 70 * deg, 250 * deg}) {
+            const FollowerMotion m = linear_program.evaluate(t);
+            const ContactKinematics k = TranslatingRoller::kinematics_from(m, s0_star, e_star);
+            CHECK(k.pressure_angle() == Approx(shifted.contact(t, m).pressure_angle()).epsilon(1e-15));
+            // The surface point: r_r from the roller centre (e*, R) against the normal, in the cam frame.
+            const Vec surface = turn(-t, Vec(e_star, k.R) - rr * Vec(-k.sin_alpha, k.cos_alpha));
+            CHECK((shifted.profile(t, m).surface - surface).norm() < 1e-15);
+            CHECK(TranslatingRoller::curvature(k, e_star) == Approx(shifted.pitch_curvature(m)).epsilon(1e-14));
+        }
+        // On the dwell the roller centre stays r_b + r_r from the cam centre, the contact on r_b.
+        const FollowerMotion dwell = linear_program.evaluate(10 * deg);
+        CHECK(std::hypot(e_star, TranslatingRoller::kinematics_from(dwell, s0_star, e_star).R) == Approx(rp).epsilon(1e-15));
+        CHECK(shifted.profile(10 * deg, dwell).surface.norm() == Approx(rb).epsilon(1e-14));
+    }
+    // A larger offset steepens the return.
+    CHECK(std::abs(max_pressure_angle(linear_program, TranslatingRoller(rb, rr, 0.010 + de)).value) >
+          std::abs(max_pressure_angle(linear_program, TranslatingRoller(rb, rr, 0.010)).value));
+}
+
+TEST_CASE("translating roller: the profile closes after a revolution; its CSV in metres starts on the base circle") {
+    const TranslatingRoller roller(0.030, 0.008, 0.010);
+    const FollowerProfilePoint first = roller.profile(0.0, linear_program.evaluate(0.0));
+    const FollowerProfilePoint last = roller.profile(2 * pi, linear_program.evaluate(2 * pi));
+    CHECK((first.surface - last.surface).norm() < 1e-15);
+    CHECK((first.reference - last.reference).norm() < 1e-15);
+    const std::string path = "followers_test_cam.csv";
+    write_cam_csv(path, roller, linear_program, 360, std::nullopt, LengthUnit::m);
+    std::ifstream in(path);
+    std::string line, header;
+    std::vector<Vec> rows;
+    while (std::getline(in, line)) {
+        if (line.rfind("#", 0) == 0) continue;
+        if (header.empty()) {
+            header = line;
+            continue;
+        }
+        double t, x, y;
+        REQUIRE(std::sscanf(line.c_str(), "%lf,%lf,%lf", &t, &x, &y) == 3);
+        rows.emplace_back(x, y);
+    }
+    in.close();
+    std::remove(path.c_str());
+    CHECK(header == "theta_rad,surface_x_m,surface_y_m");
+    REQUIRE(rows.size() == 360);
+    // The first row is the contact on the base circle at theta = 0, which theta = 2 pi returns to.
+    CHECK(rows.front().norm() == Approx(0.030).epsilon(1e-12));
+    CHECK((rows.front() - last.surface).norm() < 1e-15);
+    CHECK((rows.back() - roller.profile(2 * pi * 359 / 360, linear_program.evaluate(2 * pi * 359 / 360)).surface).norm() < 1e-15);
+}
+
+TEST_CASE("translating roller: a dent narrower than a segment's sampling step sets the pressure angle and surface radius") {
+    // A dent 0.1 deg wide centred at 100.125 deg on the 150 deg rise of the paper program: a search with
+    // 600 samples per segment looks every 0.25 deg (100.0, 100.25 deg), on both sides of the dent. (A
+    // deep one that undercuts is refused: profile_error.test.cpp.) 0.2 um deep under a 1 mm roller: no
+    // undercut, but the dent's flank steepens the pressure angle and its convex edge is the tightest
+    // spot of the cam.
+    const MotionProgram healthy = MotionProgram::paper_default();
+    const double c = 100.125 * deg, w = 0.1 * deg;
+    const double rr = 0.001, rp = 0.040 + rr;
+    // Zero-offset roller: pitch curve (R cos t, R sin t), R = r_b + r_r + h, written out here:
+    // kappa = (R^2 + 2 R'^2 - R R'') / (R^2 + R'^2)^(3/2), alpha = atan(R' / R).
+    const auto kappa_at = [&](const MotionProgram& p, double t) {
+        const FollowerMotion m = p.evaluate(t);
+        const double R = rp + m.h, dR = m.dh, d2R = m.d2h;
+        return (R * R + 2 * dR * dR - R * d2R) / std::pow(R * R + dR * dR, 1.5);
+    };
+    const auto alpha_at = [&](const MotionProgram& p, double t) {
+        const FollowerMotion m = p.evaluate(t);
+        return std::atan2(m.dh, rp + m.h);
+    };
+    const MotionProgram shallow = healthy.with_profile_error(ProfileError::dent(c, w, 0.2e-6));
+    const TranslatingRoller roller(0.040, rr, 0.0);
+    // Truth: dense sampling of the formulas, 1e-3 deg over the revolution and 5e-7 deg across the dent.
+    double alpha = 0, alpha_healthy = 0, kappa = 0;
+    const auto visit = [&](double t) {
+        alpha = std::max(alpha, std::abs(alpha_at(shallow, t)));
+        alpha_healthy = std::max(alpha_healthy, std::abs(alpha_at(healthy, t)));
+        kappa = std::max(kappa, kappa_at(shallow, t));
+    };
+    for (int k = 0; k < 360000; ++k) visit(k * 1e-3 * deg);
+    for (int k = 0; k <= 220000; ++k) visit(c - 0.055 * deg + k * 5e-7 * deg);
+    REQUIRE(alpha > alpha_healthy + 0.005);  // the dent matters
+    REQUIRE(1.0 / kappa > rr);               // and does not undercut
+    CHECK_NOTHROW(check_undercut(shallow, roller));
+    const AngleExtremum steepest = max_pressure_angle(shallow, roller);
+    CHECK(std::abs(steepest.value) == Approx(alpha).epsilon(1e-9));
+    CHECK(std::abs(steepest.theta - c) < w / 2);
+    const AngleExtremum tight = min_surface_radius(shallow, roller);
+    CHECK(tight.value == Approx(1.0 / kappa - rr).epsilon(1e-6));
+    CHECK(std::abs(tight.theta - c) < w / 2);
+}
+
 // ---------------------------------------------------------------------------------------------------
 TEST_CASE("bad parameters are refused with the parameter named") {
     using Catch::Contains;
@@ -582,9 +770,22 @@ TEST_CASE("check_undercut: an undercutting roller and a cusped flat face are ref
     const TranslatingRoller big_roller(0.010, 0.012, 0.0);
     const std::string undercut = message_of([&] { check_undercut(steep, big_roller); });
     CHECK_THAT(undercut, Catch::Contains("undercuts at theta = ") && Catch::Contains("roller_radius = 0.012 m"));
-    // The named angle is where the pitch curve is tightest (DiskCam's own search, independent code).
-    const AngleExtremum tightest = DiskCam({0.022 - 1e-6, 1e-6, 0.0}, steep).max_pitch_curvature();
-    CHECK(theta_in(undercut) == Approx(tightest.theta / deg).margin(1e-5));
+    // The named angle is where the pitch curve is tightest: its curvature in closed form (paper eqs
+    // 2-5 with e = 0, R = r_b + r_r + h), sampled every 1e-3 deg, then every 1e-7 deg around the best.
+    const auto kappa = [](double theta) {
+        const FollowerMotion m = steep.evaluate(theta);
+        const double R = 0.022 + m.h;
+        return (R * R + 2 * m.dh * m.dh - R * m.d2h) / std::pow(R * R + m.dh * m.dh, 1.5);
+    };
+    double tightest = -std::numeric_limits<double>::infinity(), tightest_at = 0;
+    for (int k = 0; k < 360000; ++k)
+        if (kappa(k * 1e-3 * deg) > tightest) tightest = kappa(k * 1e-3 * deg), tightest_at = k * 1e-3 * deg;
+    const double coarse = tightest_at;
+    for (int k = -10000; k <= 10000; ++k)
+        if (kappa(coarse + k * 1e-7 * deg) > tightest)
+            tightest = kappa(coarse + k * 1e-7 * deg), tightest_at = coarse + k * 1e-7 * deg;
+    REQUIRE(1.0 / tightest < 0.012);  // the roller cannot trace it
+    CHECK(theta_in(undercut) == Approx(tightest_at / deg).margin(1e-5));
     // The same small cam with a 50 mm arm swinging 0.5 rad (25 mm at the roller) in 40 deg.
     CHECK_THROWS_WITH(check_undercut(steep_swing, OscillatingRoller(0.010, 0.012, Vec(0.05, 0.03), 0.05)),
                       Catch::Contains("undercuts at theta = "));

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "camfollower/solver/simulate.hpp"
-#include "simulate_instances.hpp"  // simulate() for the library's systems, compiled once
+#include "camfollower/precompiled.hpp"  // simulate() for the library's mechanisms, compiled once
 
 template <class System>
 struct Histories {

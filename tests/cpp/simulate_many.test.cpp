@@ -9,7 +9,7 @@
 
 #include "camfollower/model/presets/paper.hpp"
 #include "camfollower/solver/simulate_many.hpp"
-#include "simulate_instances.hpp"  // simulate() for the library's systems, compiled once
+#include "camfollower/precompiled.hpp"  // simulate() for the library's mechanisms, compiled once
 
 using namespace camfollower;
 using Paper = Mechanism<presets::paper_dofs>;

@@ -165,9 +165,13 @@ def test_every_listed_parameter_round_trips_through_get_and_replace():
         assert p.replace(**{name: value}).get(name) == value
     q = p.replace(contact_damping="hunt_crossley")
     assert q.get("contact_damping") == "hunt_crossley" == q.contact_damping
-    assert cf.CamFollowerModel(q).parameters.contact_damping == "hunt_crossley"
-    model = cf.CamFollowerModel().with_parameters(contact_damping="lankarani_nikravesh")
-    assert model.parameters.contact_damping == "lankarani_nikravesh"
+    # The model reaches the preset's contact: chi = 3 (1 - c_e) / (2 v_ref) (Hunt-Crossley) or
+    # 3 (1 - c_e^2) / (4 v_ref) (Lankarani-Nikravesh), docs/model.md.
+    q = q.replace(restitution=0.8, reference_speed=2.0)
+    (contact,) = cf.presets.paper(q).builder().contacts
+    assert contact["damping_factor"] == pytest.approx(3 * (1 - 0.8) / (2 * 2.0), rel=1e-14)
+    (contact,) = cf.presets.paper(q.replace(contact_damping="lankarani_nikravesh")).builder().contacts
+    assert contact["damping_factor"] == pytest.approx(3 * (1 - 0.8**2) / (4 * 2.0), rel=1e-14)
 
 
 @pytest.mark.parametrize(
@@ -175,7 +179,6 @@ def test_every_listed_parameter_round_trips_through_get_and_replace():
     [
         lambda v: cf.Parameters(contact_stiffness=v),
         lambda v: cf.Parameters().replace(contact_stiffness=v),
-        lambda v: cf.CamFollowerModel().with_parameters(contact_stiffness=v),
     ],
 )
 @pytest.mark.parametrize("value", ["1e8", b"1e8", True, None, [1e8]])
@@ -202,11 +205,11 @@ def test_an_overflowing_speed_names_the_speed_and_its_range():
     with pytest.raises(
         ValueError, match=r"camshaft_speed_rpm must be in \[9.5\d*e-06, 954\d+\.?\d*\] rpm, got 1e\+308"
     ):
-        cf.CamFollowerModel(cf.Parameters(camshaft_speed_rpm=1e308))
+        cf.presets.paper(cf.Parameters(camshaft_speed_rpm=1e308))
     with pytest.raises(ValueError, match="camshaft_speed_rpm must be in"):
         cf.presets.paper().with_camshaft_speed_rpm(1e308)
     with pytest.raises(ValueError, match=r"camshaft_speed_rpm must be in .* got 4.94\d*e-324"):  # infinite period
-        cf.CamFollowerModel(cf.Parameters(camshaft_speed_rpm=5e-324))
+        cf.presets.paper(cf.Parameters(camshaft_speed_rpm=5e-324))
 
 
 @pytest.mark.parametrize("stiffness,exponent", [(10.0, 1.5), (1.0, 1.0), (1e13, 1.0), (1e14, 1.5)])
@@ -215,27 +218,44 @@ def test_preload_calibration_holds_from_soft_to_rigid_contacts(stiffness, expone
     guide takes the lateral part), so the contact force's axial component F cos(pressure angle) at
     the static equilibrium equals the spring force, which calibration sets to K_rs delta_rs."""
     p = cf.Parameters(contact_stiffness=stiffness, contact_exponent=exponent, gravity=0.0)
-    model = cf.CamFollowerModel(p)
-    q0 = model.initial_state
+    model = cf.presets.paper(p)
+    q0 = np.array(model.initial_state)
     assert np.all(np.isfinite(q0))
-    c = model.contact(0.0, q0, np.zeros(7))
     target = p.spring_stiffness * p.spring_preload_deflection
-    assert c["force"] * math.cos(c["pressure_angle"]) == pytest.approx(target, rel=1e-6)
+    # The contact force at the initial state as the run records it (first row: t = 0, at rest) ...
+    r = cf.simulate(model, duration=1e-6, time_step=1e-6)
+    assert r["t"][0] == 0.0
+    force, alpha = r["cam.force"][0], r["cam.pressure_angle"][0]
+    assert force * math.cos(alpha) == pytest.approx(target, rel=1e-6)
+    # ... and from the paper's contact written out (docs/model.md): on the dwell h = h' = 0, so
+    # alpha = atan(-e / s0) and delta = cos(alpha) (y1 - y2) - sin(alpha) (x1 - x2), F = K_h delta^n.
+    y1, y2, x1, x2 = q0[0], q0[1], q0[4], q0[5]
+    s0 = math.sqrt((p.base_radius + p.roller_radius) ** 2 - p.offset**2)
+    a = math.atan(-p.offset / s0)
+    assert alpha == pytest.approx(a, rel=1e-12)
+    delta = math.cos(a) * (y1 - y2) - math.sin(a) * (x1 - x2)
+    assert stiffness * delta**exponent * math.cos(a) == pytest.approx(target, rel=1e-6)
 
 
-def test_contact_refuses_non_finite_states():
-    model = cf.CamFollowerModel()
-    q, v = model.initial_state, np.zeros(7)
-    bad = q.copy()
-    bad[1] = np.nan
-    with pytest.raises(ValueError, match=r"q\[1\] \(y2\) must be in"):
-        model.contact(0.0, bad, v)
-    bad[1] = 1e300
-    with pytest.raises(ValueError, match=r"q\[1\]"):
-        model.contact(0.0, bad, v)
+def _run_from(model, q, v):
+    return cf.simulate(model, duration=1e-5, time_step=1e-6, initial_state=(q, v))
+
+
+def test_non_finite_or_huge_initial_states_are_refused_naming_the_dof():
+    model = cf.presets.paper()
+    q, v = np.array(model.initial_state), np.zeros(7)
+    for value in (np.nan, 1e300, -2e3):
+        bad = q.copy()
+        bad[1] = value
+        with pytest.raises(ValueError, match=r"initial q\[1\] \(y2\) must be in \[-1000, 1000\]"):
+            _run_from(model, bad, v)
     v[4] = np.inf
-    with pytest.raises(ValueError, match=r"v\[4\] \(x1\) must be finite"):
-        model.contact(0.0, q, v)
+    with pytest.raises(ValueError, match=r"initial v\[4\] \(x1\) must be finite"):
+        _run_from(model, q, v)
+    # A start far off but within the bounds runs.
+    near = q.copy()
+    near[6] += 1e-7
+    assert _run_from(model, near, np.zeros(7)).rows > 0
 
 
 def test_runs_beyond_ten_billion_steps_are_refused_at_once():
@@ -268,8 +288,8 @@ def test_point_counts_are_bounded_before_any_memory_is_taken(tmp_path):
         cf.export.profile_points(follower, program, points=10**12)
     with pytest.raises(ValueError, match="points must be an integer in"):
         cf.export.write_csv(tmp_path / "a.csv", follower, program, points=limit + 1)
-    with pytest.raises(ValueError, match="points must be an integer in"):
-        cf.DiskCam().write_surface_csv(str(tmp_path / "b.csv"), 10**12)
+    with pytest.raises(ValueError, match="points must be an integer in"):  # the core's own bound
+        cf._core.write_cam_csv(str(tmp_path / "b.csv"), follower, program, 10**12, None, "mm")
     with pytest.raises(ValueError, match="points must be an integer in"):
         cf.motion.from_callable(lambda t: 0.0 * t, 0.0, 1.0, points=10**12)
     assert not list(tmp_path.iterdir())
@@ -412,7 +432,7 @@ def test_no_error_message_carries_control_characters_or_megabytes():
 
 def test_geometry_beyond_a_kilometre_is_refused():
     with pytest.raises(ValueError, match=r"base_radius must be finite and > 0 \(m\), in \[1e-06, 1000\] m"):
-        cf.DiskCam(cf.MotionProgram.paper_default(), 5.6e102, 0.125, 0.0)
+        cf.TranslatingRoller(5.6e102, 0.125, 0.0)
     with pytest.raises(ValueError, match="sample_rate = .* gives no usable frequency axis"):
         from camfollower import analysis
 

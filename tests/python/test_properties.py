@@ -256,19 +256,58 @@ def test_every_follower_type_is_checked_or_refused(kind, base, size, offset, lif
 NUMERIC = [n for n in cf.Parameters.names() if n != "contact_damping"]
 
 
+def paper_from_card(values, damping):
+    """The paper preset on a parameter card: built with finite matrices and preload, or refused naming
+    the parameter (or what the calibration could not do)."""
+    names = tuple(values) + ("contact_damping", "static equilibrium", "calibration", "offset", "radius")
+
+    def build():
+        return cf.presets.paper(parameters=cf.Parameters(contact_damping=damping, **values))
+
+    model = raises_naming(build, *names)
+    if model is not None:
+        (spring,) = [s for s in model.builder().springs if s["name"] == "K_rs"]
+        assert finite(model.initial_state) and finite(model.stiffness) and math.isfinite(spring["preload"])
+
+
 @given(
     values=st.dictionaries(st.sampled_from(NUMERIC), anything, min_size=1, max_size=3),
     damping=st.sampled_from(["none", "hunt_crossley", "lankarani_nikravesh", "viscous"]),
 )
 def test_parameters_build_a_model_or_are_refused_by_name(values, damping):
-    names = tuple(values) + ("contact_damping", "static equilibrium", "calibration", "offset", "radius")
+    paper_from_card(values, damping)
 
-    def build():
-        return cf.CamFollowerModel(cf.Parameters(contact_damping=damping, **values))
 
-    model = raises_naming(build, *names)
-    if model is not None:
-        assert finite(model.initial_state) and finite(model.stiffness_matrix) and math.isfinite(model.spring_preload)
+@pytest.mark.parametrize(
+    "values",
+    [
+        {"contact_stiffness": 1e-9},  # a preload of -1.2e14 N
+        {"roller_pin_stiffness_vertical": 1e-9},  # -2.1e14 N
+        {"rod_stiffness": 1e-9},  # 2.5e15 N
+        {"bearing_stiffness_vertical": 1e-9},  # -6.1e13 N
+        {"spring_stiffness": 1e12},  # 1.3e10 N
+        {"spring_stiffness": 1923794551.0},  # the spring about as stiff as the chain under it
+    ],
+)
+def test_a_spring_that_cannot_be_balanced_is_refused_by_name(values):
+    paper_from_card(values, "none")
+
+
+@pytest.mark.parametrize(
+    "values",
+    [
+        {"guide_stiffness": 1e-9},  # through the pressure angle the contact loads the lateral parts too
+        {"roller_pin_stiffness_horizontal": 1e-9},
+        {"bearing_stiffness_horizontal": 1e-9},
+    ],
+)
+def test_a_too_soft_lateral_part_is_refused_by_name(values):
+    paper_from_card(values, "none")
+
+
+@pytest.mark.parametrize("damping", ["hunt_crossley", "lankarani_nikravesh"])
+def test_an_overflowing_contact_damping_is_refused_by_name(damping):
+    paper_from_card({"restitution": 0.0, "reference_speed": 5e-324}, damping)
 
 
 @given(

@@ -37,6 +37,12 @@
 //                                                     changes sign the force stops being smooth (a
 //                                                     contact's penetration, a clearance's wall gap), and
 //                                                     the integrators locate that instant (solver/events.hpp)
+//              void event_located(Workspace&, int index, double time, int direction) const;
+//                                                     each crossing a stepper located (event `index` at
+//                                                     `time`, direction +1 rose through zero, -1 fell),
+//                                                     before accepted() at the end of its step: path
+//                                                     memory that records switching instants (contact-
+//                                                     loss intervals) takes them from here
 //
 // A system the sparse backend (solver/sparse_newmark.hpp) can run also has
 //              const Eigen::SparseMatrix<double>& sparse_mass() const;   (and sparse_damping, sparse_stiffness)
@@ -141,6 +147,8 @@ CAMFOLLOWER_DETECT(has_tangent,
 CAMFOLLOWER_DETECT(has_accepted, std::declval<const S&>().accepted(std::declval<typename S::Workspace&>(),
                                                                    std::declval<const vector_t<S>&>(),
                                                                    std::declval<const vector_t<S>&>()))
+CAMFOLLOWER_DETECT(has_event_located,
+                   std::declval<const S&>().event_located(std::declval<typename S::Workspace&>(), 0, 0.0, 0))
 CAMFOLLOWER_DETECT(has_channels,
                    std::declval<std::vector<std::string>&>() = std::declval<const S&>().channel_names())
 CAMFOLLOWER_DETECT(has_dof_names,
@@ -268,6 +276,12 @@ template <class S, class V>
 void accepted(const S& s, workspace_t<S>& ws, const V& q, const V& v) {
     if constexpr (detail::has_accepted<S>::value) s.accepted(ws, q, v);
     else (void)s, (void)ws, (void)q, (void)v;
+}
+
+template <class S>
+void event_located(const S& s, workspace_t<S>& ws, int index, double time, int direction) {
+    if constexpr (detail::has_event_located<S>::value) s.event_located(ws, index, time, direction);
+    else (void)s, (void)ws, (void)index, (void)time, (void)direction;
 }
 
 template <class S>

@@ -20,11 +20,16 @@
 
 #include "camfollower/detail/extremum.hpp"
 #include "camfollower/error.hpp"
-#include "camfollower/geometry/disk_cam.hpp"  // AngleExtremum
 #include "camfollower/motion/laws.hpp"  // pi
 #include "camfollower/motion/program.hpp"
 
 namespace camfollower {
+
+// Where a checked quantity is worst over the revolution, and its value there.
+struct AngleExtremum {
+    double theta;  // rad, where it occurs
+    double value;  // rad or m
+};
 
 struct FollowerProfilePoint {
     double theta;                    // cam angle, rad

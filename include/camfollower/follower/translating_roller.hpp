@@ -1,13 +1,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Translating roller follower with offset: the roller centre runs along the axis x = e at height
-// R(theta) = s0 + h(theta), s0 = sqrt((r_b + r_r)^2 - e^2). The kinematics are DiskCam's (paper
-// eqs 2-5), reused so that both give bit-identical normals and pressure angles.
+// Translating roller follower with offset (paper section 1.2, eqs 2-5): the roller centre runs along
+// the axis x = e at height R(theta) = s0 + h(theta), s0 = sqrt((r_b + r_r)^2 - e^2).
 //
 // Ground frame (contact_geometry.hpp): C = (e, R), n = (e - R', R)/|.| = (-sin a, cos a),
-// a = atan((R' - e)/R), lever = n . (0, 1) = cos a.
-// Note: DiskCam::profile draws the cam in a mirrored cam frame (axial, lateral) turned by +theta;
-// profile() here uses X_cam = Rot(-theta) X_ground, the x <-> y mirror image of DiskCam's points.
-// Radii of curvature and pressure angles do not depend on that choice.
+// a = atan((R' - e)/R) (paper eq 4, I12I24 = dR/dtheta), lever = n . (0, 1) = cos a. A positive
+// offset lowers the pressure angle on the rise (R' > 0) and raises its magnitude on the return.
+// Pitch-curve curvature (positive where convex):
+//   kappa = (R^2 + (R' - e)(2R' - e) - R R'') / (R^2 + (R' - e)^2)^(3/2); surface radius
+//   rho_s = 1/kappa - r_r. A convex stretch with 1/kappa <= r_r undercuts (the roller cannot follow).
+// profile() draws the cam in the frame X_cam = Rot(-theta) X_ground.
 #pragma once
 
 #include <cmath>
@@ -19,10 +20,21 @@
 #include "camfollower/follower/plane.hpp"
 #include "camfollower/follower/profile.hpp"
 #include "camfollower/follower/roller_pitch.hpp"
-#include "camfollower/geometry/disk_cam.hpp"
 #include "camfollower/motion/program.hpp"
 
 namespace camfollower {
+
+// What the contact needs at one cam angle: cheap, no trigonometry beyond the motion law.
+struct ContactKinematics {
+    double h, dh, d2h;            // lift and its theta-derivatives
+    double R, dR, d2R;            // roller-centre distance along the axis and theta-derivatives
+    double cos_alpha, sin_alpha;  // pressure angle
+    double dalpha;                // d alpha / d theta
+
+    double pressure_angle() const { return std::atan2(sin_alpha, cos_alpha); }
+    // Unit normal from cam to roller, follower frame (x lateral, y axial).
+    Eigen::Vector2d normal() const { return {-sin_alpha, cos_alpha}; }
+};
 
 class TranslatingRoller {
 public:
@@ -46,9 +58,23 @@ public:
     // s0: roller-centre height on the base circle, m.
     double pitch_base() const { return pitch_base_; }
 
-    // The same numbers as DiskCam::kinematics_from(m, s0, e), in the follower-generic form.
-    ContactKinematics kinematics(const FollowerMotion& m) const {
-        return DiskCam::kinematics_from(m, pitch_base_, offset_);
+    ContactKinematics kinematics(const FollowerMotion& m) const { return kinematics_from(m, pitch_base_, offset_); }
+
+    // The same at any offset and s0 (the paper's perturbed offset e*, eqs 8-18, and its backlash).
+    static ContactKinematics kinematics_from(const FollowerMotion& m, double s0, double offset) {
+        const double R = s0 + m.h, dR = m.dh, d2R = m.d2h;
+        const double p = dR - offset;  // R' - e
+        const double norm2 = R * R + p * p;
+        const double inv = 1.0 / std::sqrt(norm2);
+        // d/dtheta atan(p / R) = (p' R - p R') / (R^2 + p^2), p' = R''
+        return {m.h, m.dh, m.d2h, R, dR, d2R, R * inv, p * inv, (d2R * R - p * dR) / norm2};
+    }
+
+    // Pitch-curve curvature kappa (1/m, > 0 convex) from the kinematics at offset e.
+    static double curvature(const ContactKinematics& k, double offset) {
+        const double p = k.dR - offset;
+        const double norm2 = k.R * k.R + p * p;
+        return (k.R * k.R + p * (2.0 * k.dR - offset) - k.R * k.d2R) / (norm2 * std::sqrt(norm2));
     }
 
     // theta is not needed: a translating follower's contact depends on the lift only.
@@ -62,7 +88,7 @@ public:
         const ContactKinematics k = kinematics(m);
         const Eigen::Vector2d centre(offset_, k.R);
         const Eigen::Vector2d contact_point = centre - roller_radius_ * k.normal();
-        const double kappa = DiskCam::curvature(k, offset_);
+        const double kappa = curvature(k, offset_);
         return {theta,
                 planar::to_cam_frame(theta, contact_point),
                 planar::to_cam_frame(theta, centre),
@@ -74,7 +100,7 @@ public:
 
     // Signed curvature of the pitch curve (roller-centre path in the cam frame), 1/m, > 0 convex.
     double pitch_curvature(const FollowerMotion& m) const {
-        return DiskCam::curvature(kinematics(m), offset_);
+        return curvature(kinematics(m), offset_);
     }
 
 private:

@@ -22,6 +22,10 @@
 //   double* observe(double t, const State&, q, v, double* out) const;
 //   void add_event_names(std::vector<std::string>&) const;    then event_values() writes as many
 //   double* event_values(const State&, double* g) const;      from the response add_force cached
+//   static constexpr int event_count;              how many names add_event_names adds
+//   void event_located(State&, int which, double time, int direction) const;   a stepper located
+//                                                  its event `which` (0-based) at `time` (path memory
+//                                                  that records switching instants takes them here)
 //   -- statics (at rest: no rates) --
 //   void add_static(double t, q, State&, Vector& r, Matrix& Kt) const;       r += F, Kt += dF/dq
 //   void add_active_set_guess(const State&, q, Vector& r, Matrix& Kt) const; as if closed, where open
@@ -34,6 +38,7 @@
 
 #include <cstddef>
 #include <tuple>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -61,6 +66,17 @@ public:
         States s;
         (std::get<std::vector<typename Kinds::State>>(s).resize(of<Kinds>().size()), ...);
         return s;
+    }
+
+    // e.event_located(...) for the element whose events include the mechanism's event `index`.
+    template <class... A>
+    void event_located(States& states, int index, A... args) const {
+        int first = 0;
+        for_each(states, [&](const auto& e, auto& s) {
+            constexpr int count = std::decay_t<decltype(e)>::event_count;
+            if (index >= first && index < first + count) e.event_located(s, index - first, args...);
+            first += count;
+        });
     }
 
     // f(element) for every element, kinds in the order listed.

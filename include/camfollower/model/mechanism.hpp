@@ -143,6 +143,9 @@ public:
     void accepted(Workspace& w, const Vector&, const Vector&) const {
         elements_.for_each(w.states, [&](const auto& e, auto& s) { e.accepted(w.t, s); });
     }
+    void event_located(Workspace& w, int index, double time, int direction) const {
+        elements_.event_located(w.states, index, time, direction);
+    }
     std::vector<std::string> dof_names() const {
         std::vector<std::string> names;
         for (const DofSpec& d : spec_.structure.dofs()) names.push_back(d.name);

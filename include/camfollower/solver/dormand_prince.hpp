@@ -325,8 +325,8 @@ private:
                 h_ = first.beyond - t_;
                 return true;
             }
-            events_.record(first);
-            while (const Crossing c = events_.earliest(t_, t_ + h, path)) events_.record(c);
+            events_.record(first, ws_);
+            while (const Crossing c = events_.earliest(t_, t_ + h, path)) events_.record(c, ws_);
         }
         if (event_retake_) h_new = std::max(h_new, h_before_event_), rejected_last_ = false;
         event_retake_ = false;

@@ -89,11 +89,13 @@ public:
         return first;
     }
 
-    // Records the crossing as an event and moves its function to the new side.
-    void record(const Crossing& c) {
+    // Records the crossing as an event, moves its function to the new side and tells the system
+    // (event_located: the step's workspace `ws` keeps the instant in its path memory).
+    void record(const Crossing& c, workspace_t<System>& ws) {
         const std::size_t k = std::size_t(c.index);
         side_[k] = -side_[k];
         events_.push_back({c.time, c.index, side_[k]});
+        event_located(system_, ws, c.index, c.time, side_[k]);
     }
 
 

@@ -259,9 +259,9 @@ private:
 
     // The crossings in the step from s to (t1, q_, v_), in time order, located on the cubic through
     // both ends (rare: out of line).
-    CAMFOLLOWER_NOINLINE void record_crossings(const StateType& s, double t1) {
+    CAMFOLLOWER_NOINLINE void record_crossings(StateType& s, double t1) {
         auto path = [&](double t, Vector& q, Vector& v) { EventWatch<System>::hermite(t, s.t, t1, s.q, s.v, q_, v_, q, v); };
-        while (const Crossing c = events_.earliest(s.t, t1, path)) events_.record(c);
+        while (const Crossing c = events_.earliest(s.t, t1, path)) events_.record(c, s.workspace);
     }
 
     // A failed attempt leaves the state as it was, but for the force at the old state (HHT needs it)

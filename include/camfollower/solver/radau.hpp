@@ -396,8 +396,8 @@ private:
             h_ = first.beyond - t_;
             return true;
         }
-        events_.record(first);
-        while (const Crossing c = events_.earliest(t_, t_ + h, path)) events_.record(c);
+        events_.record(first, ws_);
+        while (const Crossing c = events_.earliest(t_, t_ + h, path)) events_.record(c, ws_);
         return false;
     }
 

@@ -49,8 +49,8 @@ struct RunResult {
     // switching function in event_names(system) (solver/events.hpp).
     std::vector<Event> events;
     const char* backend = "dense";  // the Newton algebra used: "dense" or "sparse"
-    const char* method = "newmark";  // method_name(settings) of the method that ran
-    const char* requested_method = "newmark";  // as asked: "auto" when choose_method picked `method`
+    const char* method = method_name(SolverSettings{}.method);  // the method that ran
+    const char* requested_method = method;  // as asked: "auto" when choose_method picked `method`
     std::string method_choice;  // with "auto": what choose_method picked and why, in words; else empty
     // Highest natural frequency at the start (Hz, contacts linearized), for reading the step against
     // the shortest period: dense backend up to 200 DOFs only, else NaN (an eigen solve too costly).
@@ -157,12 +157,14 @@ RunResult<System> simulate(const System& system, const SolverSettings& requested
                            const std::optional<typename System::Vector>& q0 = std::nullopt,
                            const std::optional<typename System::Vector>& v0 = std::nullopt) {
     if (options.progress && options.progress_every < 1) detail::fail("progress_every must be >= 1");
+    check_initial(system, q0, "initial q", true);
+    check_initial(system, v0, "initial v", false);
     check_time_step(system, requested, options.duration);
     if (is_automatic(requested.method)) {
         MethodChoice choice = concrete_settings(system, requested, q0, v0);
         RunResult<System> r = simulate(system, choice.settings, options, q0, v0);
-        r.requested_method = "auto";
-        r.method_choice = std::move(choice.reason) + (r.method_choice.empty() ? "" : "; " + r.method_choice);
+        r.requested_method = method_name(requested.method);
+        r.method_choice = std::move(choice.reason);
         return r;
     }
     return with_stepper(system, requested, [&](auto stepper) {
@@ -190,6 +192,8 @@ PeriodicOrbit periodic_orbit(const System& system, const SolverSettings& request
     if constexpr (detail::has_period<System>::value) {
         if (options.period == 0.0) options.period = system.period();
     }
+    check_initial(system, q0, "initial q", true);
+    check_initial(system, v0, "initial v", false);
     check_time_step(system, requested, options.period);
     const SolverSettings settings = concrete_settings(system, requested, q0, v0).settings;
     const Eigen::VectorXd q = q0 ? Eigen::VectorXd(*q0) : Eigen::VectorXd(initial_displacement(system));

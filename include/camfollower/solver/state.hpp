@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
+#include <string>
 
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
@@ -42,6 +44,23 @@ struct State {
     Vector q, v, a, f;
     workspace_t<System> workspace;
 };
+
+// A user's initial displacement or velocity (`name`: "initial q" or "initial v"), refused entry by
+// entry naming the DOF: finite, and a displacement within +-max_part_length (m, or rad for a twist).
+template <class System>
+void check_initial(const System& system, const std::optional<typename System::Vector>& x, const char* name,
+                   bool displacement) {
+    if (!x) return;
+    if (x->size() != system.size())
+        detail::fail(name, " must have ", system.size(), " entries (one per DOF), got ", x->size());
+    const double bound = displacement ? detail::max_part_length : std::numeric_limits<double>::infinity();
+    for (int k = 0; k < x->size(); ++k)
+        if (!std::isfinite((*x)[k]) || std::abs((*x)[k]) > bound)
+            detail::fail(name, "[", k, "] (", dof_names(system)[std::size_t(k)], ") must be ",
+                         displacement ? detail::concat("in [", -bound, ", ", bound, "] (m, or rad for a twist)")
+                                      : std::string("finite (m/s, or rad/s for a twist)"),
+                         ", got ", (*x)[k]);
+}
 
 // A state at (t, q, v) with a fresh workspace prepared at t and the nonlinear force there; the
 // acceleration is the stepper's to set. Refuses a non-finite time or state and a wrong size.

@@ -35,7 +35,7 @@
 
 #include "camfollower/detail/secant.hpp"
 #include "camfollower/model/mechanism.hpp"
-#include "camfollower/model/parameters.hpp"
+#include "camfollower/model/presets/paper_parameters.hpp"
 
 namespace camfollower::presets {
 
@@ -203,10 +203,25 @@ inline PaperDampers fit_dampers(const Mechanism<paper_dofs>& m, double zeta) {
 inline Mechanism<paper_dofs> paper(const CamFollowerParameters& p = {},
                                    const MotionProgram& program = MotionProgram::paper_default(),
                                    const PaperOptions& options = {}) {
+    p.validate();
     const double target = p.spring_stiffness * p.spring_preload_deflection;
     const int y4 = 3;
-    double terms = target;  // the residual's rounding follows its terms (see CamFollowerModel)
+    // P = K_rs delta_rs / (1 - K_rs / K_chain) for the series stiffness K_chain of the parts between the
+    // spring and the ground along the contact normal (affine case; with the offset the normal leans, so
+    // the lateral parts count too): no positive, bounded preload when that chain is about as soft as
+    // the spring.
+    const auto unbalanced = [&](double P) {
+        detail::fail("the return spring cannot be balanced on the dwell: spring_stiffness = ", p.spring_stiffness,
+                     " N/m at spring_preload_deflection = ", p.spring_preload_deflection, " m needs a preload of ", P,
+                     " N (allowed: (0, ", detail::max_force, "] N); the parts that hold the roller against the cam "
+                     "(contact_stiffness, rod_stiffness, roller_pin_stiffness_vertical, roller_pin_stiffness_horizontal, "
+                     "guide_stiffness, bearing_stiffness_vertical, bearing_stiffness_horizontal: in series along the "
+                     "contact normal) are about as soft as the spring or softer: stiffen them or soften "
+                     "spring_stiffness");
+    };
+    double terms = target;  // the residual's rounding follows its terms
     auto residual = [&](double P) {
+        if (!(std::abs(P) <= detail::max_force)) unbalanced(P);
         const double spring = p.spring_stiffness *
                               Mechanism<paper_dofs>(paper_spec(p, program, P, {}, &undamped_dampers)).initial_displacement()[y4];
         terms = std::abs(P) + std::abs(spring) + target;
@@ -216,6 +231,7 @@ inline Mechanism<paper_dofs> paper(const CamFollowerParameters& p = {},
     if (!(std::abs(root.residual) <= 1e-9 * terms))
         throw ConvergenceError(detail::concat("spring preload calibration did not converge: spring force ",
                                               target + root.residual, " N against K_rs delta_rs = ", target, " N"));
+    if (!(root.x > 0.0)) unbalanced(root.x);
     if (options.element_damping_ratio == 0.0) return Mechanism<paper_dofs>(paper_spec(p, program, root.x, options));
     const PaperDampers fitted = fit_dampers(Mechanism<paper_dofs>(paper_spec(p, program, root.x, {}, &undamped_dampers)),
                                             options.element_damping_ratio);

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Parameters of the 7-DOF cam-follower model: paper Table 2 defaults, settable by name, validated.
+// The paper preset's parameter card (presets/paper.hpp): Table 2 defaults, settable by name, validated.
 #pragma once
 
 #include <array>
@@ -7,9 +7,16 @@
 #include <string>
 
 #include "camfollower/error.hpp"
-#include "camfollower/geometry/disk_cam.hpp"
+#include "camfollower/motion/program.hpp"  // two_pi
 
 namespace camfollower {
+
+// The paper's cam and roller (Table 1): base radius, roller radius and follower offset, m.
+struct PaperCamGeometry {
+    double base_radius = 0.030;    // r_b (paper: 2 R_a = 60 mm)
+    double roller_radius = 0.008;  // r_r (paper: 2 R_1 = 16 mm)
+    double offset = 0.010;         // e
+};
 
 enum class ContactDampingModel { none, hunt_crossley, lankarani_nikravesh };
 
@@ -43,7 +50,7 @@ struct CamFollowerParameters {
     double reference_speed = 1.0;                 // m/s
     // Kinematics.
     double camshaft_speed_rpm = 750.0;
-    DiskCamGeometry geometry{};
+    PaperCamGeometry geometry{};
 
     double omega() const { return camshaft_speed_rpm * two_pi / 60.0; }
 
@@ -143,6 +150,12 @@ struct CamFollowerParameters {
         detail::require_in_range(contact_exponent, 1.0, 3.0, "contact_exponent");
         detail::require_in_range(restitution, 0.0, 1.0, "restitution");
         require_positive(reference_speed, "reference_speed", "(m/s)");
+        // chi (1 - c_e) / v_ref: above 1e6 s/m the damping would match the elastic force at penetration
+        // rates of um/s, a reference speed far below any impact's.
+        if (!(contact_damping_factor() <= 1e6))
+            detail::fail("reference_speed = ", reference_speed, " m/s gives the contact damping factor chi = ",
+                         contact_damping_factor(), " s/m (allowed: <= 1e6; chi grows as (1 - restitution) / "
+                         "reference_speed): give the contact's typical impact speed, of the order of 0.01 to 1 m/s");
         require_non_negative(gravity, "gravity", "(m/s^2)");
         detail::require_camshaft_speed_rpm(camshaft_speed_rpm, "camshaft_speed_rpm");
         detail::require_length(geometry.base_radius, "base_radius");
