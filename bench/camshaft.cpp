@@ -59,7 +59,8 @@ void BM_CamshaftSteps(benchmark::State& state) {
     const int cams = int(state.range(0));
     const cf::Mechanism<> model(cf::presets::valve_train(with_cams(cams)));
     // Fewer steps per iteration for the dense backend at large sizes: it is the cost per step that counts.
-    if (state.range(1) == 0) steps_of<cf::Newmark<cf::Mechanism<>>>(state, model, std::max<std::int64_t>(10, 400 / cams));
+    if (state.range(1) == 0)
+        steps_of<cf::Newmark<cf::Mechanism<>>>(state, model, std::max<std::int64_t>(10, 400 / cams));
     else steps_of<cf::SparseNewmark<cf::Mechanism<>>>(state, model, 200);
     state.SetLabel(std::string(state.range(1) ? "sparse" : "dense") + ", " + std::to_string(cams) + " cams");
 }

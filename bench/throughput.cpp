@@ -45,7 +45,9 @@ void BM_Steps(benchmark::State& state) {
     state.counters["iterations_per_step"] = stats.mean_iterations();
     state.counters["ns_per_step"] = benchmark::Counter(double(state.iterations() * steps),
                                                        benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
-    state.SetLabel(std::string(state.range(0) == 0 ? "healthy" : state.range(0) == 1 ? "eccentricity" : "backlash") +
+    state.SetLabel(std::string(state.range(0) == 0   ? "healthy"
+                               : state.range(0) == 1 ? "eccentricity"
+                                                     : "backlash") +
                    (state.range(1) ? ", dense LU" : ", Sherman-Morrison"));
 }
 BENCHMARK(BM_Steps)->ArgsProduct({{0, 1, 2}, {0, 1}})->Unit(benchmark::kMillisecond);
@@ -135,7 +137,8 @@ void BM_LiftTable(benchmark::State& state) {
     std::vector<double> theta(n), h(n);
     for (int i = 0; i < n; ++i) {
         theta[std::size_t(i)] = 2.0 * cf::pi * i / n;
-        h[std::size_t(i)] = 0.004 * (1.0 - std::cos(theta[std::size_t(i)])) + 0.001 * std::sin(2.0 * theta[std::size_t(i)]);
+        h[std::size_t(i)] =
+            0.004 * (1.0 - std::cos(theta[std::size_t(i)])) + 0.001 * std::sin(2.0 * theta[std::size_t(i)]);
     }
     for (auto _ : state) {
         const cf::MotionProgram p = state.range(0) ? cf::MotionProgram::from_table(theta, h, {5, 1e-12})

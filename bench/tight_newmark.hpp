@@ -27,8 +27,14 @@ public:
     using Matrix = typename System::Matrix;
 
     TightNewmark(const System& system, double dt, double beta, double gamma = 0.5, double tolerance = 1e-10)
-        : system_(system), dt_(dt), beta_(beta), gamma_(gamma), ws_(system.workspace()), uv_(system.size(), system.max_rank()) {
-        const Matrix A0 = system.mass() / (beta * dt * dt) + gamma / (beta * dt) * system.damping() + system.stiffness();
+        : system_(system),
+          dt_(dt),
+          beta_(beta),
+          gamma_(gamma),
+          ws_(system.workspace()),
+          uv_(system.size(), system.max_rank()) {
+        const Matrix A0 =
+            system.mass() / (beta * dt * dt) + gamma / (beta * dt) * system.damping() + system.stiffness();
         A0_inv_ = A0.partialPivLu().inverse();
         Aa_ = (beta * dt * dt) * A0;
         inverse_bound_ = 1.0 / Eigen::SelfAdjointEigenSolver<Matrix>(A0, Eigen::EigenvaluesOnly).eigenvalues()[0];

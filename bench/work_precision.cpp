@@ -187,11 +187,13 @@ Histories run_odeint(const Model& m, const std::string& method, double tol) {
     const double t0 = cpu_seconds();
     const double atol = peer_atol(tol);
     if (method == "dopri5") {
-        h.steps = odeint::integrate_times(odeint::make_dense_output(atol, tol, odeint::runge_kutta_dopri5<Y>()),
-                                          std::ref(rhs), y, times.begin(), times.end(), m.period() / grid, std::ref(obs));
+        h.steps =
+            odeint::integrate_times(odeint::make_dense_output(atol, tol, odeint::runge_kutta_dopri5<Y>()),
+                                    std::ref(rhs), y, times.begin(), times.end(), m.period() / grid, std::ref(obs));
     } else {
-        h.steps = odeint::integrate_times(odeint::make_controlled(atol, tol, odeint::runge_kutta_fehlberg78<Y>()),
-                                          std::ref(rhs), y, times.begin(), times.end(), m.period() / grid, std::ref(obs));
+        h.steps =
+            odeint::integrate_times(odeint::make_controlled(atol, tol, odeint::runge_kutta_fehlberg78<Y>()),
+                                    std::ref(rhs), y, times.begin(), times.end(), m.period() / grid, std::ref(obs));
     }
     h.cpu_ms = 1e3 * (cpu_seconds() - t0);
     h.evaluations = rhs.evaluations;
@@ -240,8 +242,8 @@ Histories run_reference(const Model& m, double tol, const std::vector<double>& b
         start = end;
     }
     if (!breaks.empty())
-        std::printf("# reference: %zu restarts at contact events, largest |penetration| there %.2e m\n",
-                    breaks.size(), worst_gap);
+        std::printf("# reference: %zu restarts at contact events, largest |penetration| there %.2e m\n", breaks.size(),
+                    worst_gap);
     h.evaluations = rhs.evaluations;
     return h;
 }
@@ -365,9 +367,11 @@ int main(int argc, char** argv) {
         else if (!std::strcmp(argv[i], "--repeats") && i + 1 < argc) repeats = std::atoi(argv[++i]);
         else if (!std::strcmp(argv[i], "--only") && i + 1 < argc) only = argv[++i];
         else {
-            std::fprintf(stderr, "usage: %s [--stiff] [--rpm N] [--repeats N] [--only TEXT]\n"
-                                 "  --only TEXT: run the rows whose label contains TEXT, or any of its comma-separated parts\n"
-                                 "               (e.g. dop853, or \"radau,fox_goodwin T/2^15\")\n", argv[0]);
+            std::fprintf(stderr,
+                         "usage: %s [--stiff] [--rpm N] [--repeats N] [--only TEXT]\n"
+                         "  --only TEXT: run the rows whose label contains TEXT, or any of its comma-separated parts\n"
+                         "               (e.g. dop853, or \"radau,fox_goodwin T/2^15\")\n",
+                         argv[0]);
             return 2;
         }
     }
@@ -397,11 +401,15 @@ int main(int argc, char** argv) {
                 } catch (const std::exception&) {
                     continue;  // beyond the stability limit
                 }
-                settings.push_back({std::string(method) + " " + per, [&m, s] { return run_camfollower(m, s); }, {}, {}});
+                settings.push_back(
+                    {std::string(method) + " " + per, [&m, s] { return run_camfollower(m, s); }, {}, {}});
                 // (not on the stiff variant: without camfollower's rounding floor of the residual its
                 // Newton iteration stalls there at the tolerance)
                 if (s.method == cf::Method::fox_goodwin && !stiff)
-                    settings.push_back({"hand tight_newmark fox_goodwin " + per, [&m, steps] { return run_tight(m, steps, 1.0 / 12.0); }, {}, {}});
+                    settings.push_back({"hand tight_newmark fox_goodwin " + per,
+                                        [&m, steps] { return run_tight(m, steps, 1.0 / 12.0); },
+                                        {},
+                                        {}});
             }
         }
     }
@@ -462,7 +470,8 @@ int main(int argc, char** argv) {
                                       // Any of the comma-separated parts of TEXT.
                                       for (std::size_t from = 0; from <= only.size();) {
                                           const std::size_t comma = std::min(only.find(',', from), only.size());
-                                          if (s.label.find(only.substr(from, comma - from)) != std::string::npos) return false;
+                                          if (s.label.find(only.substr(from, comma - from)) != std::string::npos)
+                                              return false;
                                           from = comma + 1;
                                       }
                                       return true;
@@ -485,8 +494,9 @@ int main(int argc, char** argv) {
     const Histories ref_check = run_reference(m, 1e-15, breaks);
     std::printf("# the reference against itself at rtol 1e-15: force %.1e, follower acceleration %.1e\n",
                 relative_error(ref.force, ref_check.force), relative_error(ref.accel, ref_check.accel));
-    const char* ref_name = breaks.empty() ? "odeint fehlberg78 in long double at rtol 1e-13"
-                                          : "odeint fehlberg78 in long double at rtol 1e-13, restarted at each contact event";
+    const char* ref_name = breaks.empty()
+                               ? "odeint fehlberg78 in long double at rtol 1e-13"
+                               : "odeint fehlberg78 in long double at rtol 1e-13, restarted at each contact event";
 #else
     cf::SolverSettings rs;
     rs.method = cf::method_from_name("dormand_prince");
@@ -500,11 +510,13 @@ int main(int argc, char** argv) {
             s.last = s.run();
             s.times.push_back(s.last.cpu_ms);
         }
-    std::printf("# paper preset%s, %.0f rpm, one revolution, %d output rows; reference: %s (%ld contact losses and "
-                "re-contacts on its grid); median CPU time of %d\n",
-                stiff ? " with contact stiffness x100" : "", rpm, grid, ref_name, sign_changes(ref.gap), repeats);
-    std::printf("| method | CPU ms | force error | follower accel. error | steps | force evaluations | events located |\n"
-                "|---|---|---|---|---|---|---|\n");
+    std::printf(
+        "# paper preset%s, %.0f rpm, one revolution, %d output rows; reference: %s (%ld contact losses and "
+        "re-contacts on its grid); median CPU time of %d\n",
+        stiff ? " with contact stiffness x100" : "", rpm, grid, ref_name, sign_changes(ref.gap), repeats);
+    std::printf(
+        "| method | CPU ms | force error | follower accel. error | steps | force evaluations | events located |\n"
+        "|---|---|---|---|---|---|---|\n");
     for (Setting& s : settings) {
         std::sort(s.times.begin(), s.times.end());
         const std::string events = s.last.events < 0 ? "-" : std::to_string(s.last.events);
@@ -515,13 +527,16 @@ int main(int argc, char** argv) {
     }
     // The fastest run reaching each target in both channels: camfollower's (any setting), `auto`'s
     // under a tolerance, and the peers'; and the ratios.
-    std::printf("\n| target (force and accel.) | camfollower | auto | fastest peer | peer / camfollower | peer / auto |\n"
-                "|---|---|---|---|---|---|\n");
+    std::printf(
+        "\n| target (force and accel.) | camfollower | auto | fastest peer | peer / camfollower | peer / auto |\n"
+        "|---|---|---|---|---|---|\n");
     for (double target : {1e-4, 1e-6, 1e-8}) {
         const Setting* best[3] = {nullptr, nullptr, nullptr};  // camfollower, auto, peer
         double best_ms[3] = {INFINITY, INFINITY, INFINITY};
         for (const Setting& s : settings) {
-            if (!(relative_error(s.last.force, ref.force) <= target && relative_error(s.last.accel, ref.accel) <= target)) continue;
+            if (!(relative_error(s.last.force, ref.force) <= target &&
+                  relative_error(s.last.accel, ref.accel) <= target))
+                continue;
             if (s.label.rfind("hand", 0) == 0) continue;  // the yardstick, neither camfollower nor a peer
             const bool peer = s.label.rfind("odeint", 0) == 0 || s.label.rfind("SUNDIALS", 0) == 0;
             const double ms = s.times[s.times.size() / 2];
@@ -537,7 +552,8 @@ int main(int argc, char** argv) {
             if (best[k] && best[2]) std::snprintf(ratios[k], sizeof ratios[k], "%.2f", best_ms[2] / best_ms[k]);
             else std::snprintf(ratios[k], sizeof ratios[k], "-");
         }
-        std::printf("| <= %.0e | %s | %s | %s | %s | %s |\n", target, cells[0], cells[1], cells[2], ratios[0], ratios[1]);
+        std::printf("| <= %.0e | %s | %s | %s | %s | %s |\n", target, cells[0], cells[1], cells[2], ratios[0],
+                    ratios[1]);
     }
     return 0;
 }

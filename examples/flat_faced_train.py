@@ -26,30 +26,31 @@ the vibration left by the first.
 Run it: python examples/flat_faced_train.py
 """
 
+import camfollower as cf
 import numpy as np
 
-import camfollower as cf
-
-TAPPET_MASS, SPRING_MASS = 0.1, 0.04        # kg: m_f and the spring's own mass m_s
-MID_MASS = SPRING_MASS / 2                   # kg: m_m, half the spring lumped at its middle
-SPRING, PRELOAD = 3.0e4, 250.0               # N/m (k_s, the whole spring), N (P)
-CONTACT = 2.0e8                              # N/m: the cam/tappet contact (linear)
-GRAVITY = 9.81                               # m/s^2, along -y
-BASE_RADIUS, LIFT = 0.020, 0.008             # m
-RPM = 1500.0                                 # operating camshaft speed
-TIME_STEP = 1e-6                             # s: about 140 steps per period of the contact mode (7.1 kHz)
+TAPPET_MASS, SPRING_MASS = 0.1, 0.04  # kg: m_f and the spring's own mass m_s
+MID_MASS = SPRING_MASS / 2  # kg: m_m, half the spring lumped at its middle
+SPRING, PRELOAD = 3.0e4, 250.0  # N/m (k_s, the whole spring), N (P)
+CONTACT = 2.0e8  # N/m: the cam/tappet contact (linear)
+GRAVITY = 9.81  # m/s^2, along -y
+BASE_RADIUS, LIFT = 0.020, 0.008  # m
+RPM = 1500.0  # operating camshaft speed
+TIME_STEP = 1e-6  # s: about 140 steps per period of the contact mode (7.1 kHz)
 
 
 def program():
     """Dwell, cycloidal rise of 8 mm over 120 deg, dwell, cycloidal return over 120 deg, dwell."""
     rise, dwell, d = cf.MotionLaw.cycloidal(), cf.MotionLaw.dwell(), np.radians
-    return cf.MotionProgram([
-        cf.Segment(dwell, 0.0, d(60), 0.0, 0.0),
-        cf.Segment(rise, d(60), d(180), 0.0, LIFT),
-        cf.Segment(dwell, d(180), d(200), LIFT, LIFT),
-        cf.Segment(rise, d(200), d(320), LIFT, 0.0),
-        cf.Segment(dwell, d(320), 2 * np.pi, 0.0, 0.0),
-    ])
+    return cf.MotionProgram(
+        [
+            cf.Segment(dwell, 0.0, d(60), 0.0, 0.0),
+            cf.Segment(rise, d(60), d(180), 0.0, LIFT),
+            cf.Segment(dwell, d(180), d(200), LIFT, LIFT),
+            cf.Segment(rise, d(200), d(320), LIFT, 0.0),
+            cf.Segment(dwell, d(320), 2 * np.pi, 0.0, 0.0),
+        ]
+    )
 
 
 def follower():
@@ -72,8 +73,7 @@ def mechanism(rpm=RPM):
 
 def run(rpm=RPM, revolutions=1.0, time_step=TIME_STEP, **options):
     """One run from rest on the base circle (the static equilibrium at theta = 0)."""
-    return cf.simulate(mechanism(rpm), revolutions=revolutions, time_step=time_step,
-                       **options)
+    return cf.simulate(mechanism(rpm), revolutions=revolutions, time_step=time_step, **options)
 
 
 def loses_contact(rpm, revolutions=1.0):
@@ -97,8 +97,12 @@ def quasi_static_force(theta, rpm):
     """The closed form above (N), at cam angle theta (rad)."""
     m = program().evaluate(theta)
     omega = rpm * 2 * np.pi / 60
-    return (PRELOAD + SPRING * m["h"] + (TAPPET_MASS + MID_MASS / 2) * GRAVITY
-            + (TAPPET_MASS + MID_MASS / 4) * omega**2 * m["d2h"]) / (1 + SPRING / CONTACT)
+    return (
+        PRELOAD
+        + SPRING * m["h"]
+        + (TAPPET_MASS + MID_MASS / 2) * GRAVITY
+        + (TAPPET_MASS + MID_MASS / 4) * omega**2 * m["d2h"]
+    ) / (1 + SPRING / CONTACT)
 
 
 def separation_bounds():
@@ -118,9 +122,13 @@ if __name__ == "__main__":
     print(f"{'rpm':>6} {'min F simulated (N)':>20} {'min F quasi-static (N)':>23} {'contact lost':>13}")
     for rpm in (10, RPM, 3000, 4500, 5500, 6000):
         r = run(rpm, time_step=1e-4 if rpm < 100 else TIME_STEP)  # slow: nothing to resolve but the lift
-        print(f"{rpm:6.0f} {r['cam.force'].min():20.3f} {quasi_static_force(theta, rpm).min():23.3f} "
-              f"{str(bool(r.contact_loss['cam'])):>13}")
+        print(
+            f"{rpm:6.0f} {r['cam.force'].min():20.3f} {quasi_static_force(theta, rpm).min():23.3f} "
+            f"{str(bool(r.contact_loss['cam'])):>13}"
+        )
     lower, upper = separation_bounds()
     holds, loses, runs = separation_speed()
-    print(f"separation (first revolution from rest): between {holds:.0f} and {loses:.0f} rpm ({runs} runs); "
-          f"bounds from F_spring_min = m |h''|max omega^2: {lower:.0f} .. {upper:.0f} rpm")
+    print(
+        f"separation (first revolution from rest): between {holds:.0f} and {loses:.0f} rpm ({runs} runs); "
+        f"bounds from F_spring_min = m |h''|max omega^2: {lower:.0f} .. {upper:.0f} rpm"
+    )

@@ -12,22 +12,23 @@ follows statically, is the textbook closed form
 Run it: python examples/one_dof_follower.py
 """
 
+import camfollower as cf
 import numpy as np
 
-import camfollower as cf
-
 MASS, ROD, SPRING, PRELOAD = 0.5, 2.0e6, 2.0e4, 3000.0  # kg, N/m, N/m, N (enough to keep contact)
-LIFT, RISE = 0.001, np.radians(90.0)                     # m, rad of cam angle
+LIFT, RISE = 0.001, np.radians(90.0)  # m, rad of cam angle
 
 
 def program():
     law = cf.MotionLaw.cycloidal()
-    return cf.MotionProgram([
-        cf.Segment(cf.MotionLaw.dwell(), 0.0, np.radians(30), 0.0, 0.0),
-        cf.Segment(law, np.radians(30), np.radians(30) + RISE, 0.0, LIFT),
-        cf.Segment(cf.MotionLaw.dwell(), np.radians(30) + RISE, np.radians(240), LIFT, LIFT),
-        cf.Segment(law, np.radians(240), 2 * np.pi, LIFT, 0.0),
-    ])
+    return cf.MotionProgram(
+        [
+            cf.Segment(cf.MotionLaw.dwell(), 0.0, np.radians(30), 0.0, 0.0),
+            cf.Segment(law, np.radians(30), np.radians(30) + RISE, 0.0, LIFT),
+            cf.Segment(cf.MotionLaw.dwell(), np.radians(30) + RISE, np.radians(240), LIFT, LIFT),
+            cf.Segment(law, np.radians(240), 2 * np.pi, LIFT, 0.0),
+        ]
+    )
 
 
 def natural_frequency():

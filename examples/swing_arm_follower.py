@@ -23,34 +23,36 @@ SI units: m, kg, kg m^2, N, N m, rad, s; camshaft speed in rpm.
 Run it: python examples/swing_arm_follower.py
 """
 
+import camfollower as cf
 import numpy as np
 
-import camfollower as cf
-
-INERTIA = 2.0e-4                             # kg m^2: J of the arm about its pivot
-TORSION, PRELOAD_TORQUE = 20.0, 3.0          # N m/rad (k_t), N m (T0)
-CONTACT = 1.0e8                              # N/m: roller/cam contact (linear)
-BASE_RADIUS, ROLLER_RADIUS = 0.030, 0.008    # m
-PIVOT, ARM_LENGTH = (0.06, 0.05), 0.060      # m (ground frame), m
-SWING = np.radians(15.0)                     # rad: the arm's total rotation
-RPM = 600.0                                  # operating camshaft speed
-TIME_STEP = 2e-6                             # s: about 75 steps per period of the arm on the cam (6.6 kHz)
+INERTIA = 2.0e-4  # kg m^2: J of the arm about its pivot
+TORSION, PRELOAD_TORQUE = 20.0, 3.0  # N m/rad (k_t), N m (T0)
+CONTACT = 1.0e8  # N/m: roller/cam contact (linear)
+BASE_RADIUS, ROLLER_RADIUS = 0.030, 0.008  # m
+PIVOT, ARM_LENGTH = (0.06, 0.05), 0.060  # m (ground frame), m
+SWING = np.radians(15.0)  # rad: the arm's total rotation
+RPM = 600.0  # operating camshaft speed
+TIME_STEP = 2e-6  # s: about 75 steps per period of the arm on the cam (6.6 kHz)
 
 
 def program():
     rise, dwell, d = cf.MotionLaw.cycloidal(), cf.MotionLaw.dwell(), np.radians
-    return cf.MotionProgram([
-        cf.Segment(dwell, 0.0, d(60), 0.0, 0.0),
-        cf.Segment(rise, d(60), d(150), 0.0, SWING),
-        cf.Segment(dwell, d(150), d(210), SWING, SWING),
-        cf.Segment(rise, d(210), d(300), SWING, 0.0),
-        cf.Segment(dwell, d(300), 2 * np.pi, 0.0, 0.0),
-    ])
+    return cf.MotionProgram(
+        [
+            cf.Segment(dwell, 0.0, d(60), 0.0, 0.0),
+            cf.Segment(rise, d(60), d(150), 0.0, SWING),
+            cf.Segment(dwell, d(150), d(210), SWING, SWING),
+            cf.Segment(rise, d(210), d(300), SWING, 0.0),
+            cf.Segment(dwell, d(300), 2 * np.pi, 0.0, 0.0),
+        ]
+    )
 
 
 def follower():
-    return cf.OscillatingRoller(base_radius=BASE_RADIUS, roller_radius=ROLLER_RADIUS, pivot=PIVOT,
-                                arm_length=ARM_LENGTH)
+    return cf.OscillatingRoller(
+        base_radius=BASE_RADIUS, roller_radius=ROLLER_RADIUS, pivot=PIVOT, arm_length=ARM_LENGTH
+    )
 
 
 def mechanism(rpm=RPM, phase=0.0):
@@ -79,19 +81,27 @@ def rest_on_cam(theta):
 if __name__ == "__main__":
     follower().check(program())
     theta_a, alpha_max = follower().max_pressure_angle(program())
-    print(f"arm on the base circle at {np.degrees(follower().start_angle):.2f} deg; "
-          f"largest pressure angle {np.degrees(alpha_max):.2f} deg at theta = {np.degrees(theta_a):.1f} deg")
-    print(f"{'dwell':>8} {'s (deg)':>8} {'q (deg)':>10} {'F (N)':>9} {'F lever (N m)':>14} "
-          f"{'T0 + k_t q':>11} {'f_n (Hz)':>9}")
+    print(
+        f"arm on the base circle at {np.degrees(follower().start_angle):.2f} deg; "
+        f"largest pressure angle {np.degrees(alpha_max):.2f} deg at theta = {np.degrees(theta_a):.1f} deg"
+    )
+    print(
+        f"{'dwell':>8} {'s (deg)':>8} {'q (deg)':>10} {'F (N)':>9} {'F lever (N m)':>14} "
+        f"{'T0 + k_t q':>11} {'f_n (Hz)':>9}"
+    )
     for name, theta in (("base", np.radians(30)), ("top", np.radians(180))):
         q, force = rest_on_cam(theta)
         lever = follower().contact(program(), theta)["lever"]
         f_n = mechanism().modal_analysis(theta)["frequencies_hz"][0]
         s = program().evaluate(theta)["h"]
-        print(f"{name:>8} {np.degrees(s):8.3f} {np.degrees(q):10.5f} {force:9.3f} {force * lever:14.6f} "
-              f"{PRELOAD_TORQUE + TORSION * q:11.6f} {f_n:9.1f}")
+        print(
+            f"{name:>8} {np.degrees(s):8.3f} {np.degrees(q):10.5f} {force:9.3f} {force * lever:14.6f} "
+            f"{PRELOAD_TORQUE + TORSION * q:11.6f} {f_n:9.1f}"
+        )
     for rpm in (1.0, RPM):
         r = run(rpm, time_step=1e-3 if rpm < 10 else TIME_STEP)  # slow: nothing to resolve but the lift
         lag = program().evaluate(r["theta"])["h"] - r.q[:, 0]
-        print(f"{rpm:6.0f} rpm: contact force {r['cam.force'].min():.2f} .. {r['cam.force'].max():.2f} N, "
-              f"s - q {lag.min():.3e} .. {lag.max():.3e} rad, contact lost: {bool(r.contact_loss['cam'])}")
+        print(
+            f"{rpm:6.0f} rpm: contact force {r['cam.force'].min():.2f} .. {r['cam.force'].max():.2f} N, "
+            f"s - q {lag.min():.3e} .. {lag.max():.3e} rad, contact lost: {bool(r.contact_loss['cam'])}"
+        )

@@ -44,8 +44,8 @@ std::string shown(double v) {
 // print DBL_MAX in full. A text that is not a number is left to CLI11's conversion, which names the
 // option too.
 CLI::Validator finite_in(double lo, double hi, const std::string& what, const std::string& unit = "") {
-    const std::string range = std::isinf(hi) ? ">= " + shown(lo) + unit + " (finite)"
-                                             : "in [" + shown(lo) + ", " + shown(hi) + "]" + unit;
+    const std::string range =
+        std::isinf(hi) ? ">= " + shown(lo) + unit + " (finite)" : "in [" + shown(lo) + ", " + shown(hi) + "]" + unit;
     return CLI::Validator(
         [=](std::string& input) -> std::string {
             double v = 0.0;
@@ -61,7 +61,9 @@ cf::config::CaseConfig paper_case() {
     return cf::config::parse_case("[camshaft]\nspeed = 750\n[preset]\nname = \"paper\"\n", "<paper preset>");
 }
 
-cf::config::CaseConfig case_from(const std::string& path) { return path.empty() ? paper_case() : cf::config::load_case(path); }
+cf::config::CaseConfig case_from(const std::string& path) {
+    return path.empty() ? paper_case() : cf::config::load_case(path);
+}
 
 // Run f on the built mechanism: the fixed-size path for the preset's 7 DOFs (as the Python module does,
 // so both give the same numbers), dynamic otherwise.
@@ -79,13 +81,16 @@ int kinematics(const std::string& config, double rpm) {
     std::printf("%s at %.6g rpm\n", c.origin.c_str(), rpm);
     for (const cf::ContactPairSpec& p : c.mechanism.contacts) {
         std::printf("contact '%s': %s follower\n", p.name.c_str(), cf::follower_type_name(p.follower));
-        std::visit([&](const auto& f) {
-            const cf::AngleExtremum alpha = cf::max_pressure_angle(p.program, f);
-            const cf::AngleExtremum rho = cf::min_surface_radius(p.program, f);
-            std::printf("  max |pressure angle|:                %.4f deg at theta = %.3f deg\n", std::abs(deg(alpha.value)),
-                        deg(alpha.theta));
-            std::printf("  min convex cam-surface radius:       %.4f mm at theta = %.3f deg\n", 1e3 * rho.value, deg(rho.theta));
-        }, p.follower);
+        std::visit(
+            [&](const auto& f) {
+                const cf::AngleExtremum alpha = cf::max_pressure_angle(p.program, f);
+                const cf::AngleExtremum rho = cf::min_surface_radius(p.program, f);
+                std::printf("  max |pressure angle|:                %.4f deg at theta = %.3f deg\n",
+                            std::abs(deg(alpha.value)), deg(alpha.theta));
+                std::printf("  min convex cam-surface radius:       %.4f mm at theta = %.3f deg\n", 1e3 * rho.value,
+                            deg(rho.theta));
+            },
+            p.follower);
         const auto acc = cf::detail::maximize_piecewise([&](double t) { return std::abs(p.program.evaluate(t).d2h); },
                                                         p.program.breakpoints(), 600, p.program.sampling_step());
         const auto vel = cf::detail::maximize_piecewise([&](double t) { return std::abs(p.program.evaluate(t).dh); },
@@ -112,7 +117,9 @@ int modes(const std::string& config, double theta_deg, int count) {
         const cf::MechanismModes r = cf::lowest_modes(m, theta, std::min(count, m.size()));
         std::printf("%s: natural frequencies (Hz), contacts linearized at the static equilibrium, theta = %g deg%s\n",
                     c.origin.c_str(), theta_deg,
-                    r.frequencies_hz.size() < m.size() ? cf::detail::concat(" (lowest ", r.frequencies_hz.size(), " of ", m.size(), ")").c_str() : "");
+                    r.frequencies_hz.size() < m.size()
+                        ? cf::detail::concat(" (lowest ", r.frequencies_hz.size(), " of ", m.size(), ")").c_str()
+                        : "");
         const std::vector<std::string> names = m.dof_names();
         for (Eigen::Index k = 0; k < r.frequencies_hz.size(); ++k) {
             Eigen::Index dominant = 0;
@@ -139,7 +146,8 @@ int run(const std::string& config, std::string output) {
         cf::RunOptions options;
         options.duration = c.solver.duration_for(period);
         options.record.decimation = std::size_t(c.output.decimation);
-        if (c.output.record_last_revolutions > 0.0) options.record.from_time = options.duration - c.output.record_last_revolutions * period;
+        if (c.output.record_last_revolutions > 0.0)
+            options.record.from_time = options.duration - c.output.record_last_revolutions * period;
         if (c.solver.settle) {
             options.settle.enabled = true;
             options.settle.period = period;
@@ -162,20 +170,22 @@ int run(const std::string& config, std::string output) {
         // Newmark under a tolerance (named: auto does not take it).
         const std::string ran = result.method;
         if (settings.tolerance && cf::is_newmark_family(cf::method_from_name(ran)))
-            std::printf("%zu rows, %zu channels (%s under tolerance %.3g: %llu steps, %llu rejected, %.3f Newton "
-                        "iterations/step, output every %.4g s)",
-                        result.recording.rows, result.recording.names.size(), result.method, *settings.tolerance,
-                        static_cast<unsigned long long>(stats.steps), static_cast<unsigned long long>(stats.rejected_steps),
-                        stats.mean_iterations(), settings.time_step);
+            std::printf(
+                "%zu rows, %zu channels (%s under tolerance %.3g: %llu steps, %llu rejected, %.3f Newton "
+                "iterations/step, output every %.4g s)",
+                result.recording.rows, result.recording.names.size(), result.method, *settings.tolerance,
+                static_cast<unsigned long long>(stats.steps), static_cast<unsigned long long>(stats.rejected_steps),
+                stats.mean_iterations(), settings.time_step);
         else if (settings.tolerance)
-            std::printf("%zu rows, %zu channels (%s%s: %llu steps, %llu rejected, %llu force evaluations, output every %.4g s)",
-                        result.recording.rows, result.recording.names.size(), result.method,
-                        cf::is_automatic(settings.method) ? ", chosen by auto" : "", static_cast<unsigned long long>(stats.steps),
-                        static_cast<unsigned long long>(stats.rejected_steps), static_cast<unsigned long long>(stats.evaluations),
-                        settings.time_step);
+            std::printf(
+                "%zu rows, %zu channels (%s%s: %llu steps, %llu rejected, %llu force evaluations, output every %.4g s)",
+                result.recording.rows, result.recording.names.size(), result.method,
+                cf::is_automatic(settings.method) ? ", chosen by auto" : "",
+                static_cast<unsigned long long>(stats.steps), static_cast<unsigned long long>(stats.rejected_steps),
+                static_cast<unsigned long long>(stats.evaluations), settings.time_step);
         else
-            std::printf("%zu rows, %zu channels (%s%s: %llu steps, dt = %.4g s, %.3f Newton iterations/step)", result.recording.rows,
-                        result.recording.names.size(), result.method,
+            std::printf("%zu rows, %zu channels (%s%s: %llu steps, dt = %.4g s, %.3f Newton iterations/step)",
+                        result.recording.rows, result.recording.names.size(), result.method,
                         cf::is_automatic(settings.method) ? ", chosen by auto" : "",
                         static_cast<unsigned long long>(stats.steps), settings.time_step, stats.mean_iterations());
         if (c.solver.settle)
@@ -183,7 +193,9 @@ int run(const std::string& config, std::string output) {
                         result.settle.revolutions, result.settle.change);
         for (std::size_t i = 0; i < m.contacts().size(); ++i) {
             double lost = 0.0;
-            for (const auto& [a, b] : std::decay_t<decltype(m)>::contact_loss(result.final_state.workspace, i, result.final_state.t)) lost += b - a;
+            for (const auto& [a, b] :
+                 std::decay_t<decltype(m)>::contact_loss(result.final_state.workspace, i, result.final_state.t))
+                lost += b - a;
             std::printf(", '%s' lost contact %.4g s", m.contacts()[i].name().c_str(), lost);
         }
         std::printf(", %zu contact losses and re-contacts located", result.events.size());
@@ -210,7 +222,8 @@ int export_cam(const std::string& config, const std::string& output, std::string
                     cutter ? " and the cutter-centre path" : "", unit_name.c_str(), output.c_str());
         return 0;
     }
-    cf::detail::fail("--contact: no contact named '", contact, "'; the config defines: ", known.empty() ? "none" : known);
+    cf::detail::fail("--contact: no contact named '", contact,
+                     "'; the config defines: ", known.empty() ? "none" : known);
 }
 
 }  // namespace
@@ -224,12 +237,15 @@ int main(int argc, char** argv) {
     std::string config, output;
     double rpm = 0.0, theta_deg = 0.0;
 
-    CLI::App* kin = app.add_subcommand("kinematics", "Per contact: largest pressure angle, smallest cam-surface radius, lift range, rigid velocity and acceleration");
+    CLI::App* kin = app.add_subcommand("kinematics",
+                                       "Per contact: largest pressure angle, smallest cam-surface radius, lift range, "
+                                       "rigid velocity and acceleration");
     kin->add_option("config", config, "config file (default: the paper's mechanism)")->check(CLI::ExistingFile);
     kin->add_option("--rpm", rpm, "camshaft speed for the velocity and acceleration (default: the config's)")
         ->check(finite_in(min_rpm, max_rpm, "a camshaft speed", " rpm"));
 
-    CLI::App* mod = app.add_subcommand("modes", "Natural frequencies of the mechanism, contacts linearized at a cam angle");
+    CLI::App* mod =
+        app.add_subcommand("modes", "Natural frequencies of the mechanism, contacts linearized at a cam angle");
     mod->add_option("config", config, "config file (default: the paper's mechanism)")->check(CLI::ExistingFile);
     mod->add_option("--theta", theta_deg, "camshaft angle of the linearization, deg")
         ->check(finite_in(-1e6, 1e6, "a cam angle", " deg"));
@@ -237,20 +253,26 @@ int main(int argc, char** argv) {
     mod->add_option("--count", mode_count, "how many of the lowest modes (default: all; 20 above 200 DOFs)")
         ->check(finite_in(1, 100000, "a number of modes"));
 
-    CLI::App* runc = app.add_subcommand("run", "Simulate the case the config describes; write every recorded channel as CSV");
+    CLI::App* runc =
+        app.add_subcommand("run", "Simulate the case the config describes; write every recorded channel as CSV");
     runc->add_option("config", config, "config file")->required()->check(CLI::ExistingFile);
     CLI::Option* run_output = runc->add_option("-o,--output", output, "CSV file (default: the config's [output] file)");
 
-    CLI::App* exp = app.add_subcommand("export", "Cam surface (and cutter-centre path) of one contact's cam for manufacturing, as CSV "
-                                                  "with units, rotation direction and zero mark in its header");
+    CLI::App* exp =
+        app.add_subcommand("export",
+                           "Cam surface (and cutter-centre path) of one contact's cam for manufacturing, as CSV "
+                           "with units, rotation direction and zero mark in its header");
     std::string contact, unit = "mm";
     double cutter_radius = 0.0;
     std::size_t points = 3600;
     exp->add_option("config", config, "config file")->required()->check(CLI::ExistingFile);
     CLI::Option* export_output = exp->add_option("-o,--output", output, "CSV file")->required();
     exp->add_option("--contact", contact, "contact whose cam to export (default: the first)");
-    exp->add_option("--unit", unit, "length unit of the file")->check(CLI::IsMember({"m", "mm", "um", "inch"}))->capture_default_str();
-    exp->add_option("--cutter-radius", cutter_radius, "radius of the milling cutter or grinding wheel, in --unit (0: no cutter path)")
+    exp->add_option("--unit", unit, "length unit of the file")
+        ->check(CLI::IsMember({"m", "mm", "um", "inch"}))
+        ->capture_default_str();
+    exp->add_option("--cutter-radius", cutter_radius,
+                    "radius of the milling cutter or grinding wheel, in --unit (0: no cutter path)")
         ->check(finite_in(0.0, std::numeric_limits<double>::infinity(), "a radius"));
     exp->add_option("--points", points, "points round the cam")
         ->check(finite_in(8, double(cf::detail::max_points), "a number of points"))
@@ -268,15 +290,16 @@ int main(int argc, char** argv) {
             std::string ext = output.substr(output.size() - 4);
             for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
             if (ext == ".dxf")
-                throw CLI::ValidationError("-o/--output", "this program writes the cam as CSV; for DXF use the Python "
-                                                          "command (pip install camfollower[dxf]): camfollower export");
+                throw CLI::ValidationError("-o/--output",
+                                           "this program writes the cam as CSV; for DXF use the Python "
+                                           "command (pip install camfollower[dxf]): camfollower export");
         }
         if (*exp && cutter_radius > 0.0) {
             const double metres = cf::length_unit_spec(cf::length_unit_from_name(unit)).metres;
             const double most = cf::detail::max_part_length / metres;
             if (cutter_radius > most)
-                throw CLI::ValidationError("--cutter-radius", shown(cutter_radius) + " is not a radius in [0, " +
-                                                                  shown(most) + "] " + unit);
+                throw CLI::ValidationError(
+                    "--cutter-radius", shown(cutter_radius) + " is not a radius in [0, " + shown(most) + "] " + unit);
         }
     } catch (const CLI::CallForHelp& e) {
         return app.exit(e);

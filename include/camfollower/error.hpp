@@ -56,8 +56,7 @@ std::string concat(const Parts&... parts) {
 inline std::string message_text(std::string_view s) {
     constexpr std::size_t max = 1000;
     std::string out;
-    for (char c : s.substr(0, max))
-        out += (c != '\n' && (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)) ? '?' : c;
+    for (char c : s.substr(0, max)) out += (c != '\n' && (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)) ? '?' : c;
     if (s.size() > max) out += "... (" + std::to_string(s.size()) + " bytes)";
     return out;
 }
@@ -79,13 +78,11 @@ inline void require_finite(double value, const char* name) {
 }
 
 inline void require_positive(double value, const char* name, const char* unit = "") {
-    if (!(std::isfinite(value) && value > 0.0))
-        fail(name, " must be finite and > 0 ", unit, ", got ", value);
+    if (!(std::isfinite(value) && value > 0.0)) fail(name, " must be finite and > 0 ", unit, ", got ", value);
 }
 
 inline void require_non_negative(double value, const char* name, const char* unit = "") {
-    if (!(std::isfinite(value) && value >= 0.0))
-        fail(name, " must be finite and >= 0 ", unit, ", got ", value);
+    if (!(std::isfinite(value) && value >= 0.0)) fail(name, " must be finite and >= 0 ", unit, ", got ", value);
 }
 
 inline void require_in_range(double value, double lo, double hi, const char* name) {

@@ -23,12 +23,12 @@
 
 // CAMFOLLOWER_SIMULATE_INSTANCES(extern, S) declares the instantiations for system type S;
 // CAMFOLLOWER_SIMULATE_INSTANCES(, S) defines them (in exactly one unit).
-#define CAMFOLLOWER_SIMULATE_INSTANCES(PREFIX, SYSTEM)                                                           \
-    PREFIX template camfollower::RunResult<SYSTEM> camfollower::simulate<SYSTEM>(                                \
-        const SYSTEM&, const camfollower::SolverSettings&, const camfollower::RunOptions&,                      \
-        const std::optional<SYSTEM::Vector>&, const std::optional<SYSTEM::Vector>&);                             \
-    PREFIX template camfollower::PeriodicOrbit camfollower::periodic_orbit<SYSTEM>(                              \
-        const SYSTEM&, const camfollower::SolverSettings&, camfollower::ShootingOptions,                        \
+#define CAMFOLLOWER_SIMULATE_INSTANCES(PREFIX, SYSTEM)                                     \
+    PREFIX template camfollower::RunResult<SYSTEM> camfollower::simulate<SYSTEM>(          \
+        const SYSTEM&, const camfollower::SolverSettings&, const camfollower::RunOptions&, \
+        const std::optional<SYSTEM::Vector>&, const std::optional<SYSTEM::Vector>&);       \
+    PREFIX template camfollower::PeriodicOrbit camfollower::periodic_orbit<SYSTEM>(        \
+        const SYSTEM&, const camfollower::SolverSettings&, camfollower::ShootingOptions,   \
         const std::optional<SYSTEM::Vector>&, const std::optional<SYSTEM::Vector>&, const std::function<bool()>&);
 
 #define CAMFOLLOWER_PRECOMPILED_CAT2(a, b) a##b

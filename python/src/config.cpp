@@ -76,12 +76,16 @@ private:
         toml::table& t;
         const std::string& key;
         template <class X>
-        void operator()(X&& x) const { t.insert_or_assign(key, std::forward<X>(x)); }
+        void operator()(X&& x) const {
+            t.insert_or_assign(key, std::forward<X>(x));
+        }
     };
     struct IntoArray {
         toml::array& a;
         template <class X>
-        void operator()(X&& x) const { a.push_back(std::forward<X>(x)); }
+        void operator()(X&& x) const {
+            a.push_back(std::forward<X>(x));
+        }
     };
 
     template <class Add>
@@ -122,11 +126,12 @@ private:
                             type_name(v)));
     }
     static toml::date date(const py::handle& v) {
-        return {uint16_t(v.attr("year").cast<int>()), uint8_t(v.attr("month").cast<int>()), uint8_t(v.attr("day").cast<int>())};
+        return {uint16_t(v.attr("year").cast<int>()), uint8_t(v.attr("month").cast<int>()),
+                uint8_t(v.attr("day").cast<int>())};
     }
     static toml::time time(const py::handle& v) {
-        return {uint8_t(v.attr("hour").cast<int>()), uint8_t(v.attr("minute").cast<int>()), uint8_t(v.attr("second").cast<int>()),
-                uint32_t(v.attr("microsecond").cast<int>()) * 1000u};
+        return {uint8_t(v.attr("hour").cast<int>()), uint8_t(v.attr("minute").cast<int>()),
+                uint8_t(v.attr("second").cast<int>()), uint32_t(v.attr("microsecond").cast<int>()) * 1000u};
     }
 
     std::string origin_;
@@ -321,13 +326,15 @@ void bind_config(py::module_& m) {
         },
         py::arg("text"), py::arg("origin"), py::arg("base_dir"));
     m.def(
-        "_parse_toml", [](const py::bytes& text, const std::string& origin) {
+        "_parse_toml",
+        [](const py::bytes& text, const std::string& origin) {
             return ToPython(origin).convert(config::parse_toml(std::string(text), origin));
         },
         py::arg("text"), py::arg("origin"));
     m.def("_force_closure", &force_closure, py::arg("builder"), py::arg("rpm") = 0.0);
-    m.def("_toml_line", [](const py::bytes& text, const py::list& path) { return toml_line(std::string(text), path); },
-          py::arg("text"), py::arg("path"));
+    m.def(
+        "_toml_line", [](const py::bytes& text, const py::list& path) { return toml_line(std::string(text), path); },
+        py::arg("text"), py::arg("path"));
     m.def(
         "_case_from_dict",
         [](const py::dict& data, const std::string& origin, const std::string& base_dir) {

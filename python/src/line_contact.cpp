@@ -104,7 +104,8 @@ void bind_line_contact(py::module_& m) {
         .def_static("effective_modulus", &effective_modulus, py::arg("a"), py::arg("b"),
                     "Contact modulus E* (Pa): 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2.")
         .def("__repr__", [](const Elastic& e) {
-            return detail::concat("Elastic(youngs_modulus=", e.youngs_modulus, ", poisson_ratio=", e.poisson_ratio, ")");
+            return detail::concat("Elastic(youngs_modulus=", e.youngs_modulus, ", poisson_ratio=", e.poisson_ratio,
+                                  ")");
         });
 
     py::class_<LineContact>(m, "LineContact",
@@ -123,9 +124,9 @@ void bind_line_contact(py::module_& m) {
         .def_readonly("cam", &LineContact::cam)
         .def_readonly("crown_radius", &LineContact::crown_radius, "crown radius (m); inf: straight roller")
         .def_property_readonly("crowned", &LineContact::crowned)
-        .def_property_readonly("effective_modulus",
-                               [](const LineContact& c) { return effective_modulus(c.roller, c.cam); },
-                               "contact modulus E* (Pa)")
+        .def_property_readonly(
+            "effective_modulus", [](const LineContact& c) { return effective_modulus(c.roller, c.cam); },
+            "contact modulus E* (Pa)")
         .def(
             "stress",
             [](const LineContact& c, double force, double radius, double cam_radius) {
@@ -141,8 +142,8 @@ void bind_line_contact(py::module_& m) {
             "small roller) they drift (a +6.9 % at 200, +15 % at 1000) and a UserWarning says so.")
         .def(
             "profile_stress",
-            [](const LineContact& c, const py::object& follower, const MotionProgram& program,
-               const DoubleArray& force, const DoubleArray& theta) {
+            [](const LineContact& c, const py::object& follower, const MotionProgram& program, const DoubleArray& force,
+               const DoubleArray& theta) {
                 if (py::isinstance<TranslatingRoller>(follower))
                     return profile_stress_dict(c, follower.cast<TranslatingRoller>(), program, force, theta);
                 if (py::isinstance<TranslatingFlat>(follower))
@@ -151,8 +152,10 @@ void bind_line_contact(py::module_& m) {
                     return profile_stress_dict(c, follower.cast<OscillatingRoller>(), program, force, theta);
                 if (py::isinstance<OscillatingFlat>(follower))
                     return profile_stress_dict(c, follower.cast<OscillatingFlat>(), program, force, theta);
-                detail::fail("follower must be a TranslatingRoller, TranslatingFlat, OscillatingRoller or "
-                             "OscillatingFlat, got ", std::string(py::str(py::type::of(follower))));
+                detail::fail(
+                    "follower must be a TranslatingRoller, TranslatingFlat, OscillatingRoller or "
+                    "OscillatingFlat, got ",
+                    std::string(py::str(py::type::of(follower))));
             },
             py::arg("follower"), py::arg("program"), py::arg("force"), py::arg("theta"),
             "Contact stress along the cam at theta (rad, scalar or array) for force (N, scalar or one per\n"

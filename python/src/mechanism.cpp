@@ -38,7 +38,7 @@ public:
     // its description, integrates bit for bit as the original).
     static AnyMechanism build(const MechanismBuilder& b) {
         AnyMechanism a = b.structure.size() == presets::paper_dofs ? AnyMechanism(Mechanism<presets::paper_dofs>(b))
-                                                                    : AnyMechanism(Mechanism<Eigen::Dynamic>(b));
+                                                                   : AnyMechanism(Mechanism<Eigen::Dynamic>(b));
         a.warn();
         return a;
     }
@@ -86,10 +86,10 @@ py::class_<F> bind_follower(py::module_& m, const char* name, const char* doc) {
                                        "surface_radius", "pressure_angle"},
                                       [&](double t) {
                                           const FollowerProfilePoint p = f.profile(t, program.evaluate(t));
-                                          return std::array<double, 8>{p.surface.x(), p.surface.y(), p.reference.x(),
-                                                                       p.reference.y(), p.contact_ground.x(),
-                                                                       p.contact_ground.y(), p.surface_radius,
-                                                                       p.pressure_angle};
+                                          return std::array<double, 8>{p.surface.x(),        p.surface.y(),
+                                                                       p.reference.x(),      p.reference.y(),
+                                                                       p.contact_ground.x(), p.contact_ground.y(),
+                                                                       p.surface_radius,     p.pressure_angle};
                                       });
             },
             py::arg("program"), py::arg("theta"),
@@ -111,7 +111,8 @@ py::class_<F> bind_follower(py::module_& m, const char* name, const char* doc) {
             py::arg("program"), "(theta, radius) of the smallest convex cam-surface radius of curvature (m).")
         .def(
             "check", [](const F& f, const MotionProgram& program) { check_undercut(program, f); }, py::arg("program"),
-            "Raise ValueError naming the cam angle if the cam undercuts, has a cusp or the pressure angle reaches 90 deg.");
+            "Raise ValueError naming the cam angle if the cam undercuts, has a cusp or the pressure angle reaches 90 "
+            "deg.");
     return c;
 }
 
@@ -145,41 +146,45 @@ py::dict builder_state(const MechanismBuilder& b) {
         if (shaft) {
             const ShaftSpec& sp = shaft->spec;
             const BeamSection& sec = sp.section;
-            dofs.append(py::dict(py::arg("shaft") = sp.name, py::arg("length") = sp.length,
-                                 py::arg("max_element_length") = sp.max_element_length, py::arg("stations") = sp.stations,
-                                 py::arg("axial") = sp.axial, py::arg("damping") = sp.damping,
-                                 py::arg("section") = std::vector<double>{sec.youngs_modulus, sec.shear_modulus, sec.density, sec.area,
-                                                                          sec.second_moment_y, sec.second_moment_z, sec.polar_moment,
-                                                                          sec.shear_coefficient_y, sec.shear_coefficient_z}));
+            dofs.append(py::dict(
+                py::arg("shaft") = sp.name, py::arg("length") = sp.length,
+                py::arg("max_element_length") = sp.max_element_length, py::arg("stations") = sp.stations,
+                py::arg("axial") = sp.axial, py::arg("damping") = sp.damping,
+                py::arg("section") = std::vector<double>{sec.youngs_modulus, sec.shear_modulus, sec.density, sec.area,
+                                                         sec.second_moment_y, sec.second_moment_z, sec.polar_moment,
+                                                         sec.shear_coefficient_y, sec.shear_coefficient_z}));
             k += std::size_t(shaft->nodes.size()) * std::size_t(shaft->dofs_per_node()) - 1;
             continue;
         }
         const DofSpec& d = all[k];
-        dofs.append(py::dict(py::arg("name") = d.name, py::arg("mass") = d.mass, py::arg("direction") = Eigen::Vector3d(d.direction)));
+        dofs.append(py::dict(py::arg("name") = d.name, py::arg("mass") = d.mass,
+                             py::arg("direction") = Eigen::Vector3d(d.direction)));
     }
     for (const PointMassSpec& pm : b.structure.masses()) masses.append(py::make_tuple(pm.dof, pm.mass));
     for (const SpringSpec& s : b.structure.springs())
         springs.append(py::dict(py::arg("name") = s.name, py::arg("a") = s.a, py::arg("b") = s.b,
                                 py::arg("stiffness") = s.stiffness, py::arg("damping") = s.damping,
                                 py::arg("preload") = s.preload));
-    for (const LoadSpec& l : b.structure.loads()) loads.append(py::dict(py::arg("dof") = l.dof, py::arg("force") = l.force));
+    for (const LoadSpec& l : b.structure.loads())
+        loads.append(py::dict(py::arg("dof") = l.dof, py::arg("force") = l.force));
     for (const ContactPairSpec& c : b.contacts)
-        contacts.append(py::dict(py::arg("name") = c.name, py::arg("program") = c.program,
-                                 py::arg("follower") = follower_to_python(c.follower), py::arg("stiffness") = c.law.stiffness,
-                                 py::arg("exponent") = c.law.exponent, py::arg("damping_factor") = c.law.damping_factor,
-                                 py::arg("phase") = c.phase, py::arg("cam_x") = c.cam_x, py::arg("cam_y") = c.cam_y,
-                                 py::arg("follower_dof") = c.follower_dof, py::arg("lateral") = c.lateral,
-                                 py::arg("eccentricity") = c.eccentricity, py::arg("cam_twist") = c.cam_twist,
-                                 py::arg("paper_backlash") = py::make_tuple(c.paper_backlash.backlash, c.paper_backlash.switch_width,
-                                                                            c.paper_backlash.guide_dof,
-                                                                            c.paper_backlash.guide_stiffness)));
+        contacts.append(py::dict(
+            py::arg("name") = c.name, py::arg("program") = c.program,
+            py::arg("follower") = follower_to_python(c.follower), py::arg("stiffness") = c.law.stiffness,
+            py::arg("exponent") = c.law.exponent, py::arg("damping_factor") = c.law.damping_factor,
+            py::arg("phase") = c.phase, py::arg("cam_x") = c.cam_x, py::arg("cam_y") = c.cam_y,
+            py::arg("follower_dof") = c.follower_dof, py::arg("lateral") = c.lateral,
+            py::arg("eccentricity") = c.eccentricity, py::arg("cam_twist") = c.cam_twist,
+            py::arg("paper_backlash") = py::make_tuple(c.paper_backlash.backlash, c.paper_backlash.switch_width,
+                                                       c.paper_backlash.guide_dof, c.paper_backlash.guide_stiffness)));
     py::list clearances;
     for (const ClearanceSpec& c : b.clearances)
         clearances.append(py::dict(py::arg("name") = c.name, py::arg("gap") = c.gap, py::arg("clearance") = c.clearance,
                                    py::arg("stiffness") = c.wall.stiffness, py::arg("exponent") = c.wall.exponent,
                                    py::arg("damping_factor") = c.wall.damping_factor, py::arg("friction") = c.friction,
                                    py::arg("sliding_dof") = c.sliding_dof, py::arg("slip_velocity") = c.slip_velocity));
-    return py::dict(py::arg("masses") = masses, py::arg("clearances") = clearances, py::arg("dofs") = dofs, py::arg("springs") = springs, py::arg("loads") = loads,
+    return py::dict(py::arg("masses") = masses, py::arg("clearances") = clearances, py::arg("dofs") = dofs,
+                    py::arg("springs") = springs, py::arg("loads") = loads,
                     py::arg("gravity") = Eigen::Vector3d(b.structure.gravity()),
                     py::arg("rayleigh_alpha") = b.structure.rayleigh_alpha(),
                     py::arg("rayleigh_beta") = b.structure.rayleigh_beta(),
@@ -194,10 +199,10 @@ MechanismBuilder builder_from(const py::dict& t) {
         if (d.contains("shaft")) {
             const std::vector<double> v = d["section"].cast<std::vector<double>>();
             if (v.size() != 9) detail::fail("shaft section: 9 values expected");
-            b.add_shaft({d["shaft"].cast<std::string>(), BeamSection{v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8]},
-                         d["length"].cast<double>(), d["max_element_length"].cast<double>(),
-                         d["stations"].cast<std::vector<double>>(), d["axial"].cast<bool>(),
-                         d.contains("damping") ? d["damping"].cast<double>() : 0.0});
+            b.add_shaft({d["shaft"].cast<std::string>(),
+                         BeamSection{v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8]}, d["length"].cast<double>(),
+                         d["max_element_length"].cast<double>(), d["stations"].cast<std::vector<double>>(),
+                         d["axial"].cast<bool>(), d.contains("damping") ? d["damping"].cast<double>() : 0.0});
             continue;
         }
         b.add_dof(d["name"].cast<std::string>(), d["mass"].cast<double>(), d["direction"].cast<Eigen::Vector3d>());
@@ -221,24 +226,33 @@ MechanismBuilder builder_from(const py::dict& t) {
     b.set_modal_damping(t["modal_ratios"].cast<std::vector<double>>());
     for (const auto& item : t["contacts"].cast<py::list>()) {
         const auto c = item.cast<py::dict>();
-        ContactPairSpec spec{c["name"].cast<std::string>(), c["program"].cast<MotionProgram>(), follower_from(c["follower"]),
+        ContactPairSpec spec{c["name"].cast<std::string>(),
+                             c["program"].cast<MotionProgram>(),
+                             follower_from(c["follower"]),
                              HertzContact{c["stiffness"].cast<double>(), c["exponent"].cast<double>(),
                                           c["damping_factor"].cast<double>()},
-                             c["phase"].cast<double>(), c["cam_x"].cast<std::string>(), c["cam_y"].cast<std::string>(),
-                             c["follower_dof"].cast<std::string>(), c["lateral"].cast<std::string>(),
+                             c["phase"].cast<double>(),
+                             c["cam_x"].cast<std::string>(),
+                             c["cam_y"].cast<std::string>(),
+                             c["follower_dof"].cast<std::string>(),
+                             c["lateral"].cast<std::string>(),
                              c.contains("eccentricity") ? c["eccentricity"].cast<CamEccentricity>() : CamEccentricity{},
                              c.contains("cam_twist") ? c["cam_twist"].cast<std::string>() : std::string(ground_name)};
         if (c.contains("paper_backlash")) {
             const auto pb = c["paper_backlash"].cast<py::tuple>();
-            if (pb.size() != 4) detail::fail("contact paper_backlash: 4 values expected (backlash, switch_width, guide_dof, guide_stiffness)");
-            spec.paper_backlash = {pb[0].cast<double>(), pb[1].cast<double>(), pb[2].cast<std::string>(), pb[3].cast<double>()};
+            if (pb.size() != 4)
+                detail::fail(
+                    "contact paper_backlash: 4 values expected (backlash, switch_width, guide_dof, guide_stiffness)");
+            spec.paper_backlash = {pb[0].cast<double>(), pb[1].cast<double>(), pb[2].cast<std::string>(),
+                                   pb[3].cast<double>()};
         }
         b.add_contact(spec);
     }
     if (t.contains("clearances"))
         for (const auto& item : t["clearances"].cast<py::list>()) {
             const auto c = item.cast<py::dict>();
-            b.add_clearance({c["name"].cast<std::string>(), c["gap"].cast<std::vector<std::pair<std::string, double>>>(),
+            b.add_clearance({c["name"].cast<std::string>(),
+                             c["gap"].cast<std::vector<std::pair<std::string, double>>>(),
                              c["clearance"].cast<double>(),
                              HertzContact{c["stiffness"].cast<double>(), c["exponent"].cast<double>(),
                                           c["damping_factor"].cast<double>()},
@@ -269,35 +283,41 @@ void bind_mechanism(py::module_& m) {
 
     bind_follower<TranslatingRoller>(m, "TranslatingRoller",
                                      "Translating roller follower with offset (m): the paper's follower.")
-        .def(py::init<double, double, double>(), py::arg("base_radius"), py::arg("roller_radius"), py::arg("offset") = 0.0)
+        .def(py::init<double, double, double>(), py::arg("base_radius"), py::arg("roller_radius"),
+             py::arg("offset") = 0.0)
         .def_property_readonly("base_radius", &TranslatingRoller::base_radius)
         .def_property_readonly("roller_radius", &TranslatingRoller::roller_radius)
         .def_property_readonly("offset", &TranslatingRoller::offset)
-        .def(py::pickle([](const TranslatingRoller& f) { return py::make_tuple(f.base_radius(), f.roller_radius(), f.offset()); },
-                        [](const py::tuple& t) {
-                            return TranslatingRoller(t[0].cast<double>(), t[1].cast<double>(), t[2].cast<double>());
-                        }))
+        .def(py::pickle(
+            [](const TranslatingRoller& f) { return py::make_tuple(f.base_radius(), f.roller_radius(), f.offset()); },
+            [](const py::tuple& t) {
+                return TranslatingRoller(t[0].cast<double>(), t[1].cast<double>(), t[2].cast<double>());
+            }))
         .def("__repr__", [](const TranslatingRoller& f) {
-            return detail::concat("TranslatingRoller(base_radius=", f.base_radius(), ", roller_radius=", f.roller_radius(),
-                                  ", offset=", f.offset(), ")");
+            return detail::concat("TranslatingRoller(base_radius=", f.base_radius(),
+                                  ", roller_radius=", f.roller_radius(), ", offset=", f.offset(), ")");
         });
-    bind_follower<TranslatingFlat>(m, "TranslatingFlat",
-                                   "Translating flat-faced follower: face angle (rad) from the normal to the axis, offset (m).")
-        .def(py::init<double, double, double>(), py::arg("base_radius"), py::arg("face_angle") = 0.0, py::arg("offset") = 0.0)
+    bind_follower<TranslatingFlat>(
+        m, "TranslatingFlat",
+        "Translating flat-faced follower: face angle (rad) from the normal to the axis, offset (m).")
+        .def(py::init<double, double, double>(), py::arg("base_radius"), py::arg("face_angle") = 0.0,
+             py::arg("offset") = 0.0)
         .def_property_readonly("base_radius", &TranslatingFlat::base_radius)
         .def_property_readonly("face_angle", &TranslatingFlat::face_angle)
         .def_property_readonly("offset", &TranslatingFlat::offset)
-        .def(py::pickle([](const TranslatingFlat& f) { return py::make_tuple(f.base_radius(), f.face_angle(), f.offset()); },
-                        [](const py::tuple& t) {
-                            return TranslatingFlat(t[0].cast<double>(), t[1].cast<double>(), t[2].cast<double>());
-                        }))
+        .def(py::pickle(
+            [](const TranslatingFlat& f) { return py::make_tuple(f.base_radius(), f.face_angle(), f.offset()); },
+            [](const py::tuple& t) {
+                return TranslatingFlat(t[0].cast<double>(), t[1].cast<double>(), t[2].cast<double>());
+            }))
         .def("__repr__", [](const TranslatingFlat& f) {
             return detail::concat("TranslatingFlat(base_radius=", f.base_radius(), ", face_angle=", f.face_angle(),
                                   ", offset=", f.offset(), ")");
         });
-    bind_follower<OscillatingRoller>(m, "OscillatingRoller",
-                                     "Oscillating (swing-arm) roller follower: pivot (x, y) in m in the ground frame, arm "
-                                     "length (m); its lift program is the arm rotation in rad.")
+    bind_follower<OscillatingRoller>(
+        m, "OscillatingRoller",
+        "Oscillating (swing-arm) roller follower: pivot (x, y) in m in the ground frame, arm "
+        "length (m); its lift program is the arm rotation in rad.")
         .def(py::init([](double rb, double rr, const Eigen::Vector2d& pivot, double arm, const py::object& turn) {
                  return OscillatingRoller(rb, rr, pivot, arm, turn_argument(turn));
              }),
@@ -318,21 +338,25 @@ void bind_mechanism(py::module_& m) {
                 return OscillatingRoller(t[0].cast<double>(), t[1].cast<double>(), t[2].cast<Eigen::Vector2d>(),
                                          t[3].cast<double>(), turn_from(t[4].cast<std::string>()));
             }));
-    bind_follower<OscillatingFlat>(m, "OscillatingFlat",
-                                   "Oscillating flat-faced follower: pivot (x, y) in m, face offset from the pivot (m); its "
-                                   "lift program is the arm rotation in rad.")
+    bind_follower<OscillatingFlat>(
+        m, "OscillatingFlat",
+        "Oscillating flat-faced follower: pivot (x, y) in m, face offset from the pivot (m); its "
+        "lift program is the arm rotation in rad.")
         .def(py::init([](double rb, const Eigen::Vector2d& pivot, double face_offset, const py::object& turn) {
                  return OscillatingFlat(rb, pivot, face_offset, turn_argument(turn));
              }),
-             py::arg("base_radius"), py::arg("pivot"), py::arg("face_offset") = 0.0, py::arg("turn") = "counter_clockwise")
+             py::arg("base_radius"), py::arg("pivot"), py::arg("face_offset") = 0.0,
+             py::arg("turn") = "counter_clockwise")
         .def_property_readonly("base_radius", &OscillatingFlat::base_radius)
         .def_property_readonly("pivot", [](const OscillatingFlat& f) { return Eigen::Vector2d(f.pivot()); })
         .def_property_readonly("face_offset", &OscillatingFlat::face_offset)
         .def_property_readonly("turn", [](const OscillatingFlat& f) { return turn_name(f.turn()); })
-        .def_property_readonly("start_angle", &OscillatingFlat::start_angle, "face-normal angle on the base circle, rad")
+        .def_property_readonly("start_angle", &OscillatingFlat::start_angle,
+                               "face-normal angle on the base circle, rad")
         .def(py::pickle(
             [](const OscillatingFlat& f) {
-                return py::make_tuple(f.base_radius(), Eigen::Vector2d(f.pivot()), f.face_offset(), turn_name(f.turn()));
+                return py::make_tuple(f.base_radius(), Eigen::Vector2d(f.pivot()), f.face_offset(),
+                                      turn_name(f.turn()));
             },
             [](const py::tuple& t) {
                 return OscillatingFlat(t[0].cast<double>(), t[1].cast<Eigen::Vector2d>(), t[2].cast<double>(),
@@ -352,14 +376,18 @@ void bind_mechanism(py::module_& m) {
                  e.validate("CamEccentricity");
                  return e;
              }),
-             py::arg("radius"), py::arg("phase") = 0.0, py::arg("formulation") = "exact", py::arg("unbalance_mass") = 0.0)
+             py::arg("radius"), py::arg("phase") = 0.0, py::arg("formulation") = "exact",
+             py::arg("unbalance_mass") = 0.0)
         .def_readonly("radius", &CamEccentricity::radius, "m")
         .def_readonly("phase", &CamEccentricity::phase, "rad")
-        .def_property_readonly("formulation", [](const CamEccentricity& e) { return std::string(eccentricity_formulation_name(e.formulation)); })
+        .def_property_readonly(
+            "formulation",
+            [](const CamEccentricity& e) { return std::string(eccentricity_formulation_name(e.formulation)); })
         .def_readonly("unbalance_mass", &CamEccentricity::unbalance_mass, "kg")
         .def(py::pickle(
             [](const CamEccentricity& e) {
-                return py::make_tuple(e.radius, e.phase, std::string(eccentricity_formulation_name(e.formulation)), e.unbalance_mass);
+                return py::make_tuple(e.radius, e.phase, std::string(eccentricity_formulation_name(e.formulation)),
+                                      e.unbalance_mass);
             },
             [](const py::tuple& t) {
                 return CamEccentricity{t[0].cast<double>(), t[1].cast<double>(),
@@ -367,7 +395,8 @@ void bind_mechanism(py::module_& m) {
             }))
         .def("__repr__", [](const CamEccentricity& e) {
             return detail::concat("CamEccentricity(radius=", e.radius, ", phase=", e.phase, ", formulation='",
-                                  eccentricity_formulation_name(e.formulation), "', unbalance_mass=", e.unbalance_mass, ")");
+                                  eccentricity_formulation_name(e.formulation), "', unbalance_mass=", e.unbalance_mass,
+                                  ")");
         });
 
     py::class_<MechanismBuilder> builder(
@@ -380,9 +409,10 @@ void bind_mechanism(py::module_& m) {
              py::arg("direction") = Eigen::Vector3d::Zero(),
              "A DOF: mass (kg, or kg m^2 for a rotation) and, for a translation, its unit direction in space (for "
              "gravity).")
-        .def("add_spring", &MechanismBuilder::add_spring, py::arg("name"), py::arg("a"), py::arg("b") = ground_name,
-             py::kw_only(), py::arg("stiffness"), py::arg("damping") = 0.0, py::arg("preload") = 0.0,
-             "Spring-damper between DOFs a and b (or 'ground'); force on a: -(preload + k (q_a - q_b) + c (v_a - v_b)).")
+        .def(
+            "add_spring", &MechanismBuilder::add_spring, py::arg("name"), py::arg("a"), py::arg("b") = ground_name,
+            py::kw_only(), py::arg("stiffness"), py::arg("damping") = 0.0, py::arg("preload") = 0.0,
+            "Spring-damper between DOFs a and b (or 'ground'); force on a: -(preload + k (q_a - q_b) + c (v_a - v_b)).")
         .def("add_damper", &MechanismBuilder::add_damper, py::arg("name"), py::arg("a"), py::arg("b") = ground_name,
              py::kw_only(), py::arg("damping"))
         .def("add_load", &MechanismBuilder::add_load, py::arg("dof"), py::arg("force"), "Constant load along +q (N).")
@@ -398,29 +428,34 @@ void bind_mechanism(py::module_& m) {
                const std::string& follower_dof, double stiffness, double exponent, double damping_factor, double phase,
                const std::string& cam_x, const std::string& cam_y, const std::string& lateral,
                const std::optional<CamEccentricity>& eccentricity, const std::string& cam_twist) {
-                b.add_contact({name, program, follower_from(follower), HertzContact{stiffness, exponent, damping_factor}, phase, cam_x,
-                               cam_y, follower_dof, lateral, eccentricity.value_or(CamEccentricity{}), cam_twist});
+                b.add_contact({name, program, follower_from(follower),
+                               HertzContact{stiffness, exponent, damping_factor}, phase, cam_x, cam_y, follower_dof,
+                               lateral, eccentricity.value_or(CamEccentricity{}), cam_twist});
             },
             py::arg("name"), py::arg("program"), py::arg("follower"), py::kw_only(), py::arg("follower_dof"),
             py::arg("stiffness"), py::arg("exponent") = 1.0, py::arg("damping_factor") = 0.0, py::arg("phase") = 0.0,
             py::arg("cam_x") = ground_name, py::arg("cam_y") = ground_name, py::arg("lateral") = ground_name,
             py::arg("eccentricity") = py::none(), py::arg("cam_twist") = ground_name,
-            "A cam-follower contact pair: the cam's lift program (m, or rad for an oscillating follower), the follower\n"
+            "A cam-follower contact pair: the cam's lift program (m, or rad for an oscillating follower), the "
+            "follower\n"
             "type, the DOF of the follower's coordinate, a Hertz law F = k delta^n (1 + chi delta'), the cam's\n"
             "phase on the shaft (rad), the cam centre's DOFs, a translating follower's lateral DOF, an optional\n"
             "CamEccentricity, and the camshaft's twist DOF at the cam (rad; the cam angle is then omega t + phase +\n"
             "twist, a state, and the contact's moment loads the twist: channel <name>.cam_torque).")
         .def(
             "add_shaft",
-            [](MechanismBuilder& b, const std::string& name, double length, double outer_diameter, double inner_diameter,
-               const std::vector<double>& stations, double max_element_length, double youngs_modulus, double poisson_ratio,
-               double density, bool axial, double damping) {
-                b.add_shaft({name, BeamSection::hollow_circle(outer_diameter, inner_diameter, youngs_modulus, poisson_ratio, density),
-                             length, max_element_length, stations, axial, damping});
+            [](MechanismBuilder& b, const std::string& name, double length, double outer_diameter,
+               double inner_diameter, const std::vector<double>& stations, double max_element_length,
+               double youngs_modulus, double poisson_ratio, double density, bool axial, double damping) {
+                b.add_shaft(
+                    {name,
+                     BeamSection::hollow_circle(outer_diameter, inner_diameter, youngs_modulus, poisson_ratio, density),
+                     length, max_element_length, stations, axial, damping});
             },
-            py::arg("name"), py::kw_only(), py::arg("length"), py::arg("outer_diameter"), py::arg("inner_diameter") = 0.0,
-            py::arg("stations") = std::vector<double>{}, py::arg("max_element_length") = 0.0, py::arg("youngs_modulus") = 210e9,
-            py::arg("poisson_ratio") = 0.3, py::arg("density") = 7850.0, py::arg("axial") = false, py::arg("damping") = 0.0,
+            py::arg("name"), py::kw_only(), py::arg("length"), py::arg("outer_diameter"),
+            py::arg("inner_diameter") = 0.0, py::arg("stations") = std::vector<double>{},
+            py::arg("max_element_length") = 0.0, py::arg("youngs_modulus") = 210e9, py::arg("poisson_ratio") = 0.3,
+            py::arg("density") = 7850.0, py::arg("axial") = false, py::arg("damping") = 0.0,
             "A flexible shaft along x from 0 to `length` (m): Timoshenko beam elements (bending in two planes with\n"
             "shear and rotary inertia, torsion; axial if asked) of a solid or hollow circular steel section (SI\n"
             "units). Every station (m) where a cam, bearing, drive or mass will sit must be listed; no element is\n"
@@ -436,15 +471,16 @@ void bind_mechanism(py::module_& m) {
                 detail::fail("dof must be one of 'ux', 'uy', 'uz', 'rx', 'ry', 'rz', got '", dof, "'");
             },
             py::arg("shaft"), py::arg("at"), py::arg("dof"), "The DOF name of a shaft's node at station `at` (m).")
-        .def("add_bearing", &MechanismBuilder::add_bearing, py::arg("name"), py::arg("shaft"), py::arg("at"), py::kw_only(),
-             py::arg("stiffness"), py::arg("damping") = 0.0,
+        .def("add_bearing", &MechanismBuilder::add_bearing, py::arg("name"), py::arg("shaft"), py::arg("at"),
+             py::kw_only(), py::arg("stiffness"), py::arg("damping") = 0.0,
              "A radial bearing at station `at` (m): spring-dampers (N/m, N s/m) from u_y and u_z to ground.")
-        .def("add_drive", &MechanismBuilder::add_drive, py::arg("name"), py::arg("shaft"), py::arg("at") = 0.0, py::kw_only(),
-             py::arg("stiffness"), py::arg("damping") = 0.0,
+        .def("add_drive", &MechanismBuilder::add_drive, py::arg("name"), py::arg("shaft"), py::arg("at") = 0.0,
+             py::kw_only(), py::arg("stiffness"), py::arg("damping") = 0.0,
              "The drive as an imposed speed through a compliance: a torsional spring-damper (N m/rad, N m s/rad)\n"
              "from the twist at station `at` to the rigid rotation omega t.")
-        .def("add_motor", &MechanismBuilder::add_motor, py::arg("name"), py::arg("shaft"), py::arg("at") = 0.0, py::kw_only(),
-             py::arg("inertia"), py::arg("position_gain"), py::arg("velocity_gain") = 0.0, py::arg("torque") = 0.0,
+        .def("add_motor", &MechanismBuilder::add_motor, py::arg("name"), py::arg("shaft"), py::arg("at") = 0.0,
+             py::kw_only(), py::arg("inertia"), py::arg("position_gain"), py::arg("velocity_gain") = 0.0,
+             py::arg("torque") = 0.0,
              "The drive as a speed-controlled motor with a flywheel at `at`: inertia (kg m^2) on the twist, the\n"
              "controller's position gain (N m/rad, > 0) and velocity gain (N m s/rad) to the nominal rotation, and\n"
              "a constant forward torque (N m, e.g. the cams' mean torque as feed-forward).")
@@ -454,21 +490,22 @@ void bind_mechanism(py::module_& m) {
                const std::string& follower_dof, const std::string& shaft, double at, double stiffness, double exponent,
                double damping_factor, double phase, double width, double cam_mass, double cam_inertia,
                const std::string& lateral) {
-                b.mount_cam({name, program, follower_from(follower), HertzContact{stiffness, exponent, damping_factor}, phase,
-                             ground_name, ground_name, follower_dof, lateral, CamEccentricity{}, ground_name},
+                b.mount_cam({name, program, follower_from(follower), HertzContact{stiffness, exponent, damping_factor},
+                             phase, ground_name, ground_name, follower_dof, lateral, CamEccentricity{}, ground_name},
                             shaft, at, width, cam_mass, cam_inertia);
             },
-            py::arg("name"), py::arg("program"), py::arg("follower"), py::kw_only(), py::arg("follower_dof"), py::arg("shaft"),
-            py::arg("at"), py::arg("stiffness"), py::arg("exponent") = 1.0, py::arg("damping_factor") = 0.0,
-            py::arg("phase") = 0.0, py::arg("width") = 0.0, py::arg("cam_mass") = 0.0, py::arg("cam_inertia") = 0.0,
-            py::arg("lateral") = ground_name,
-            "A contact pair whose cam sits on a shaft at station `at` (m): the cam centre is the node's (u_y, u_z), its\n"
+            py::arg("name"), py::arg("program"), py::arg("follower"), py::kw_only(), py::arg("follower_dof"),
+            py::arg("shaft"), py::arg("at"), py::arg("stiffness"), py::arg("exponent") = 1.0,
+            py::arg("damping_factor") = 0.0, py::arg("phase") = 0.0, py::arg("width") = 0.0, py::arg("cam_mass") = 0.0,
+            py::arg("cam_inertia") = 0.0, py::arg("lateral") = ground_name,
+            "A contact pair whose cam sits on a shaft at station `at` (m): the cam centre is the node's (u_y, u_z), "
+            "its\n"
             "angle omega t + phase + the node's twist. Its contact frame has x along the global y and the follower's\n"
             "axis along the global z. width (m) is checked against the other cams; cam_mass (kg) and cam_inertia\n"
             "(kg m^2) are added to the node.")
-        .def("add_spring_chain", &MechanismBuilder::add_spring_chain, py::arg("name"), py::arg("a"), py::arg("b") = ground_name,
-             py::kw_only(), py::arg("stiffness"), py::arg("mass"), py::arg("elements") = 6, py::arg("damping") = 0.0,
-             py::arg("preload") = 0.0, py::arg("direction") = Eigen::Vector3d::Zero(),
+        .def("add_spring_chain", &MechanismBuilder::add_spring_chain, py::arg("name"), py::arg("a"),
+             py::arg("b") = ground_name, py::kw_only(), py::arg("stiffness"), py::arg("mass"), py::arg("elements") = 6,
+             py::arg("damping") = 0.0, py::arg("preload") = 0.0, py::arg("direction") = Eigen::Vector3d::Zero(),
              "A spring with its own mass (a valve spring that surges): `elements` equal springs in series with\n"
              "interior masses '<name>.1', ...; its surge frequencies tend to (j / 2) sqrt(stiffness / mass) with both\n"
              "ends held. stiffness, damping and preload are the whole spring's.")
@@ -485,14 +522,16 @@ void bind_mechanism(py::module_& m) {
             py::arg("name"), py::arg("gap"), py::kw_only(), py::arg("clearance"), py::arg("stiffness"),
             py::arg("exponent") = 1.0, py::arg("damping_factor") = 0.0, py::arg("friction") = 0.0,
             py::arg("sliding_dof") = "", py::arg("slip_velocity") = 1e-3,
-            "A radial clearance: the gap coordinate u = sum c_j q_j (gap: [(dof, c_j), ...], m) is free for |u| <= clearance\n"
+            "A radial clearance: the gap coordinate u = sum c_j q_j (gap: [(dof, c_j), ...], m) is free for |u| <= "
+            "clearance\n"
             "(m) and meets a wall law F = k delta^n (1 + chi delta') beyond; with friction > 0, regularized Coulomb\n"
             "friction mu F tanh(v / slip_velocity) on sliding_dof. Channels <name>.force, .side, .gap, .friction.")
         .def(
             "add_guide",
-            [](MechanismBuilder& b, const std::string& name, const std::string& lateral_dof, double clearance, double length,
-               const std::vector<double>& bushings, const std::string& tilt_dof, double tilt_reference, double stiffness,
-               double exponent, double damping_factor, double friction, const std::string& sliding_dof, double slip_velocity) {
+            [](MechanismBuilder& b, const std::string& name, const std::string& lateral_dof, double clearance,
+               double length, const std::vector<double>& bushings, const std::string& tilt_dof, double tilt_reference,
+               double stiffness, double exponent, double damping_factor, double friction,
+               const std::string& sliding_dof, double slip_velocity) {
                 b.add_guide({name, lateral_dof, tilt_dof, sliding_dof, length, bushings, tilt_reference, clearance,
                              HertzContact{stiffness, exponent, damping_factor}, friction, slip_velocity});
             },
@@ -503,12 +542,14 @@ void bind_mechanism(py::module_& m) {
             "A rod in a guide of `length` (m) with one or two bushings at axial positions (m, in [0, length]); two\n"
             "bushings need the rod's tilt DOF (rad, about tilt_reference). One clearance per bushing\n"
             "(<name>, or <name>.bushing1/.bushing2).")
-        .def_property("camshaft_speed_rpm", &MechanismBuilder::camshaft_speed_rpm, &MechanismBuilder::set_camshaft_speed_rpm)
-        .def_property_readonly("dof_names", [](const MechanismBuilder& b) {
-            std::vector<std::string> n;
-            for (const DofSpec& d : b.structure.dofs()) n.push_back(d.name);
-            return n;
-        })
+        .def_property("camshaft_speed_rpm", &MechanismBuilder::camshaft_speed_rpm,
+                      &MechanismBuilder::set_camshaft_speed_rpm)
+        .def_property_readonly("dof_names",
+                               [](const MechanismBuilder& b) {
+                                   std::vector<std::string> n;
+                                   for (const DofSpec& d : b.structure.dofs()) n.push_back(d.name);
+                                   return n;
+                               })
         .def("build", &AnyMechanism::build, "Validate and assemble the immutable Mechanism.")
         .def(py::pickle(&builder_state, &builder_from));
     // The description read back, one list per kind (copies: change the builder through its add_ methods).
@@ -517,9 +558,10 @@ void bind_mechanism(py::module_& m) {
         {"masses", "Point masses added to DOFs, as (dof, mass) tuples (kg)."},
         {"springs", "Springs and dampers, as dicts (name, a, b, stiffness, damping, preload)."},
         {"loads", "Constant loads, as dicts (dof, force)."},
-        {"contacts", "Cam-follower contacts, as dicts with add_contact's parameters (name, program, follower, "
-                     "stiffness, exponent, damping_factor, phase, cam_x, cam_y, follower_dof, lateral, eccentricity, "
-                     "cam_twist) and paper_backlash (backlash, switch_width, guide_dof, guide_stiffness)."},
+        {"contacts",
+         "Cam-follower contacts, as dicts with add_contact's parameters (name, program, follower, "
+         "stiffness, exponent, damping_factor, phase, cam_x, cam_y, follower_dof, lateral, eccentricity, "
+         "cam_twist) and paper_backlash (backlash, switch_width, guide_dof, guide_stiffness)."},
         {"clearances", "Clearances, as dicts with add_clearance's parameters."},
     };
     for (const auto& [key, doc] : parts) {
@@ -538,8 +580,10 @@ void bind_mechanism(py::module_& m) {
                              "simulate(mechanism, ...) integrates it; channels: theta and per contact <name>.force,\n"
                              ".penetration, .stiffness, .pressure_angle, .cam_angle, .in_contact.")
         .def(py::init(&AnyMechanism::build), py::arg("builder"))
-        .def_property_readonly("size", [](const AnyMechanism& a) { return a.visit([](const auto& x) { return x.size(); }); })
-        .def_property_readonly("dof_names", [](const AnyMechanism& a) { return a.visit([](const auto& x) { return x.dof_names(); }); })
+        .def_property_readonly("size",
+                               [](const AnyMechanism& a) { return a.visit([](const auto& x) { return x.size(); }); })
+        .def_property_readonly(
+            "dof_names", [](const AnyMechanism& a) { return a.visit([](const auto& x) { return x.dof_names(); }); })
         .def_property_readonly("contact_names",
                                [](const AnyMechanism& a) {
                                    return a.visit([](const auto& x) {
@@ -556,36 +600,55 @@ void bind_mechanism(py::module_& m) {
                                        return n;
                                    });
                                })
-        .def_property_readonly("follower_dofs",
-                               [](const AnyMechanism& a) {
-                                   return a.visit([](const auto& x) {
-                                       std::vector<std::string> n;
-                                       for (const ContactPair& c : x.contacts()) n.push_back(c.spec().follower_dof);
-                                       return n;
-                                   });
-                               },
-                               "the follower DOF of each contact")
-        .def_property_readonly("warnings", [](const AnyMechanism& a) { return a.visit([](const auto& x) { return x.warnings(); }); },
-                               "what the formulation warns about (also issued as UserWarning when built)")
-        .def_property_readonly("initial_velocity",
-                               [](const AnyMechanism& a) { return a.visit([](const auto& x) { return Eigen::VectorXd(x.initial_velocity()); }); },
-                               "quasi-static velocity at t = 0 (the rate of the static equilibrium as the cam turns)")
-        .def_property_readonly("mass", [](const AnyMechanism& a) { return a.visit([](const auto& x) { return Eigen::MatrixXd(x.mass()); }); })
-        .def_property_readonly("damping", [](const AnyMechanism& a) { return a.visit([](const auto& x) { return Eigen::MatrixXd(x.damping()); }); })
-        .def_property_readonly("stiffness", [](const AnyMechanism& a) { return a.visit([](const auto& x) { return Eigen::MatrixXd(x.stiffness()); }); })
-        .def_property_readonly("initial_state",
-                               [](const AnyMechanism& a) { return a.visit([](const auto& x) { return Eigen::VectorXd(x.initial_displacement()); }); },
-                               "static equilibrium at t = 0 (m or rad per DOF)")
-        .def_property_readonly("omega", [](const AnyMechanism& a) { return a.visit([](const auto& x) { return x.omega(); }); }, "rad/s")
-        .def_property_readonly("period", [](const AnyMechanism& a) { return a.visit([](const auto& x) { return x.period(); }); },
-                               "one camshaft revolution, s")
+        .def_property_readonly(
+            "follower_dofs",
+            [](const AnyMechanism& a) {
+                return a.visit([](const auto& x) {
+                    std::vector<std::string> n;
+                    for (const ContactPair& c : x.contacts()) n.push_back(c.spec().follower_dof);
+                    return n;
+                });
+            },
+            "the follower DOF of each contact")
+        .def_property_readonly(
+            "warnings", [](const AnyMechanism& a) { return a.visit([](const auto& x) { return x.warnings(); }); },
+            "what the formulation warns about (also issued as UserWarning when built)")
+        .def_property_readonly(
+            "initial_velocity",
+            [](const AnyMechanism& a) {
+                return a.visit([](const auto& x) { return Eigen::VectorXd(x.initial_velocity()); });
+            },
+            "quasi-static velocity at t = 0 (the rate of the static equilibrium as the cam turns)")
+        .def_property_readonly(
+            "mass",
+            [](const AnyMechanism& a) { return a.visit([](const auto& x) { return Eigen::MatrixXd(x.mass()); }); })
+        .def_property_readonly(
+            "damping",
+            [](const AnyMechanism& a) { return a.visit([](const auto& x) { return Eigen::MatrixXd(x.damping()); }); })
+        .def_property_readonly(
+            "stiffness",
+            [](const AnyMechanism& a) { return a.visit([](const auto& x) { return Eigen::MatrixXd(x.stiffness()); }); })
+        .def_property_readonly(
+            "initial_state",
+            [](const AnyMechanism& a) {
+                return a.visit([](const auto& x) { return Eigen::VectorXd(x.initial_displacement()); });
+            },
+            "static equilibrium at t = 0 (m or rad per DOF)")
+        .def_property_readonly(
+            "omega", [](const AnyMechanism& a) { return a.visit([](const auto& x) { return x.omega(); }); }, "rad/s")
+        .def_property_readonly(
+            "period", [](const AnyMechanism& a) { return a.visit([](const auto& x) { return x.period(); }); },
+            "one camshaft revolution, s")
         .def_property_readonly("camshaft_speed_rpm",
-                               [](const AnyMechanism& a) { return a.visit([](const auto& x) { return x.description().camshaft_speed_rpm(); }); })
-        .def("static_equilibrium",
-             [](const AnyMechanism& a, double theta) {
-                 return a.visit([&](const auto& x) { return Eigen::VectorXd(x.static_equilibrium(theta)); });
-             },
-             py::arg("theta"), "Quasi-static equilibrium at camshaft angle theta (rad).")
+                               [](const AnyMechanism& a) {
+                                   return a.visit([](const auto& x) { return x.description().camshaft_speed_rpm(); });
+                               })
+        .def(
+            "static_equilibrium",
+            [](const AnyMechanism& a, double theta) {
+                return a.visit([&](const auto& x) { return Eigen::VectorXd(x.static_equilibrium(theta)); });
+            },
+            py::arg("theta"), "Quasi-static equilibrium at camshaft angle theta (rad).")
         .def("modal_analysis", &modal, py::arg("theta") = 0.0,
              "Undamped natural frequencies (Hz, ascending), mass-normalized mode shapes and the tangent stiffness at\n"
              "the quasi-static equilibrium at camshaft angle theta (rad), contacts linearized: every mode, as\n"
@@ -602,17 +665,20 @@ void bind_mechanism(py::module_& m) {
             "(frequencies in Hz ascending, mass-normalized mode shapes as columns) of the lowest `count` modes at\n"
             "camshaft angle theta (rad), contacts linearized; count = 0: all (a dense solve). A few of a large\n"
             "model (above 200 DOFs, a flexible camshaft): shift-invert Lanczos on the sparse factor (Spectra).")
-        .def("builder", [](const AnyMechanism& a) { return a.visit([](const auto& x) { return x.description(); }); },
-             "A copy of the description it was built from: change it and build() a changed mechanism.")
-        .def("with_camshaft_speed_rpm",
-             [](const AnyMechanism& a, double rpm) {
-                 MechanismBuilder b = a.visit([](const auto& x) { return x.description(); });
-                 b.set_camshaft_speed_rpm(rpm);
-                 return AnyMechanism::build(b);
-             },
-             py::arg("rpm"), "The same mechanism at another camshaft speed (a new object).")
-        .def(py::pickle([](const AnyMechanism& a) { return builder_state(a.visit([](const auto& x) { return x.description(); })); },
-                        [](const py::dict& t) { return AnyMechanism::build(builder_from(t)); }))
+        .def(
+            "builder", [](const AnyMechanism& a) { return a.visit([](const auto& x) { return x.description(); }); },
+            "A copy of the description it was built from: change it and build() a changed mechanism.")
+        .def(
+            "with_camshaft_speed_rpm",
+            [](const AnyMechanism& a, double rpm) {
+                MechanismBuilder b = a.visit([](const auto& x) { return x.description(); });
+                b.set_camshaft_speed_rpm(rpm);
+                return AnyMechanism::build(b);
+            },
+            py::arg("rpm"), "The same mechanism at another camshaft speed (a new object).")
+        .def(py::pickle(
+            [](const AnyMechanism& a) { return builder_state(a.visit([](const auto& x) { return x.description(); })); },
+            [](const py::dict& t) { return AnyMechanism::build(builder_from(t)); }))
         .def("__repr__", [](const AnyMechanism& a) {
             return a.visit([](const auto& x) {
                 return detail::concat("Mechanism(", x.size(), " DOFs, ", x.contacts().size(), " contacts, ",
@@ -625,7 +691,8 @@ void bind_mechanism(py::module_& m) {
         "paper_preset",
         [](const std::optional<CamFollowerParameters>& p, const std::optional<MotionProgram>& program,
            const std::optional<CamEccentricity>& eccentricity, double guide_clearance, double guide_wall_damping_factor,
-           double guide_friction, double element_damping_ratio, double paper_backlash, double paper_backlash_switch_width) {
+           double guide_friction, double element_damping_ratio, double paper_backlash,
+           double paper_backlash_switch_width) {
             presets::PaperOptions o;
             o.eccentricity = eccentricity.value_or(CamEccentricity{});
             o.guide_clearance = guide_clearance;
@@ -640,8 +707,9 @@ void bind_mechanism(py::module_& m) {
             return a;
         },
         py::arg("parameters") = py::none(), py::arg("program") = py::none(), py::kw_only(),
-        py::arg("eccentricity") = py::none(), py::arg("guide_clearance") = 0.0, py::arg("guide_wall_damping_factor") = 0.0,
-        py::arg("guide_friction") = 0.0, py::arg("element_damping_ratio") = 0.0, py::arg("paper_backlash") = 0.0,
+        py::arg("eccentricity") = py::none(), py::arg("guide_clearance") = 0.0,
+        py::arg("guide_wall_damping_factor") = 0.0, py::arg("guide_friction") = 0.0,
+        py::arg("element_damping_ratio") = 0.0, py::arg("paper_backlash") = 0.0,
         py::arg("paper_backlash_switch_width") = 0.0,
         "The paper's 7-DOF model (Tounsi et al.) built from the mechanism parts; DOFs y1..y4, x1..x3,\n"
         "contact 'cam'. parameters: a Parameters (Table 2 defaults). Options: a CamEccentricity;\n"
@@ -668,11 +736,14 @@ void bind_mechanism(py::module_& m) {
             return AnyMechanism::build(presets::valve_train(p));
         },
         py::arg("engine_speed_rpm"), py::arg("parameters"), "Internal: camfollower.presets.valve_train() calls this.");
-    m.def("valve_train_parameter_units", [] {
-        py::dict d;
-        for (const auto& f : presets::ValveTrainParameters::fields()) d[py::str(f.name)] = f.unit;
-        return d;
-    }, "The valve-train preset's real-valued parameters and their SI units.");
+    m.def(
+        "valve_train_parameter_units",
+        [] {
+            py::dict d;
+            for (const auto& f : presets::ValveTrainParameters::fields()) d[py::str(f.name)] = f.unit;
+            return d;
+        },
+        "The valve-train preset's real-valued parameters and their SI units.");
 
     bind_run<AnyMechanism>(m, [](const AnyMechanism& a, auto&&... args) {
         return a.visit([&](const auto& mech) { return run_system(mech, args...); });
@@ -701,12 +772,14 @@ void bind_mechanism(py::module_& m) {
                     settle.max_revolutions = settle_max_revolutions;
                 }
                 ManyCase job;
-                job.options = run_options(c[1].cast<double>(), decimation, c[2].cast<double>(), max_output_bytes, settle);
+                job.options =
+                    run_options(c[1].cast<double>(), decimation, c[2].cast<double>(), max_output_bytes, settle);
                 // The system objects stay alive in `cases` (held by the caller) for the whole call.
                 if (py::isinstance<AnyMechanism>(c[0])) {
                     const AnyMechanism* a = &c[0].cast<const AnyMechanism&>();
                     job.run = [a, s, settle](const RunOptions& o) {
-                        return a->visit([&](const auto& mech) { return output_of(mech, simulate(mech, s, o), settle); });
+                        return a->visit(
+                            [&](const auto& mech) { return output_of(mech, simulate(mech, s, o), settle); });
                     };
                 } else {
                     throw py::type_error(detail::concat("systems[", i, "] must be a Mechanism, got ",
@@ -717,8 +790,8 @@ void bind_mechanism(py::module_& m) {
             return run_many(jobs, threads, progress, progress_interval);
         },
         py::arg("cases"), py::arg("settings"), py::arg("decimation"), py::arg("max_output_bytes"), py::arg("threads"),
-        py::arg("progress"), py::arg("progress_interval"), py::arg("settle_tolerance"), py::arg("settle_min_revolutions"),
-        py::arg("settle_max_revolutions"),
+        py::arg("progress"), py::arg("progress_interval"), py::arg("settle_tolerance"),
+        py::arg("settle_min_revolutions"), py::arg("settle_max_revolutions"),
         "Internal: camfollower.simulate_many() calls this with (system, duration, record_from, settle_period,\n"
         "settle_dofs) per case and wraps each output in a Result.");
 }

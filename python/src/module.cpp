@@ -4,9 +4,10 @@
 
 PYBIND11_MODULE(_core, m) {
     m.doc() = "camfollower compiled core (use the camfollower package, not this module directly)";
-    m.attr("__version__") = CAMFOLLOWER_VERSION;  // from pyproject.toml, through CMake
+    m.attr("__version__") = CAMFOLLOWER_VERSION;             // from pyproject.toml, through CMake
     m.attr("MAX_POINTS") = camfollower::detail::max_points;  // largest point count of any sampled curve
-    m.attr("MAX_PART_LENGTH") = camfollower::detail::max_part_length;  // m, largest length of a part (export's cutter radius)
+    m.attr("MAX_PART_LENGTH") =
+        camfollower::detail::max_part_length;  // m, largest length of a part (export's cutter radius)
     m.attr("MIN_CAMSHAFT_SPEED") = camfollower::detail::min_camshaft_speed;  // rad/s
     m.attr("MAX_CAMSHAFT_SPEED") = camfollower::detail::max_camshaft_speed;  // rad/s
     camfollower::python::bind_motion(m);
@@ -24,8 +25,9 @@ PYBIND11_MODULE(_core, m) {
         if (!PyType_Check(item.second.ptr())) continue;
         if (py::detail::type_info* info = py::detail::get_type_info(reinterpret_cast<PyTypeObject*>(item.second.ptr())))
             info->operator_new = [](std::size_t) -> void* {
-                throw py::value_error("this instance is uninitialized: its __init__ never ran (made by cls.__new__(cls) "
-                                      "alone); create it by calling the class");
+                throw py::value_error(
+                    "this instance is uninitialized: its __init__ never ran (made by cls.__new__(cls) "
+                    "alone); create it by calling the class");
             };
     }
 }

@@ -108,8 +108,8 @@ MotionLaw law_from(const py::tuple& t) {
 // pickled form, rebuilt through the validating constructors.
 py::dict component_dict(const ProfileError::Component& c) {
     if (const auto* w = std::get_if<ProfileError::Waviness>(&c))
-        return py::dict(py::arg("kind") = "waviness", py::arg("amplitude") = w->amplitude,
-                        py::arg("order") = w->order, py::arg("phase") = w->phase);
+        return py::dict(py::arg("kind") = "waviness", py::arg("amplitude") = w->amplitude, py::arg("order") = w->order,
+                        py::arg("phase") = w->phase);
     if (const auto* d = std::get_if<ProfileError::Dent>(&c))
         return py::dict(py::arg("kind") = "dent", py::arg("centre") = d->centre, py::arg("width") = d->width,
                         py::arg("depth") = d->depth);
@@ -151,8 +151,7 @@ std::string error_repr(const ProfileError& e) {
             out += detail::concat("waviness(amplitude=", w->amplitude, ", order=", w->order, ", phase=", w->phase, ")");
         else if (const auto* d = std::get_if<ProfileError::Dent>(&c))
             out += detail::concat("dent(centre=", d->centre, ", width=", d->width, ", depth=", d->depth, ")");
-        else
-            out += detail::concat("fourier(", std::get<ProfileError::Fourier>(c).cos.size(), " harmonics)");
+        else out += detail::concat("fourier(", std::get<ProfileError::Fourier>(c).cos.size(), " harmonics)");
     }
     return out + ")";
 }
@@ -168,13 +167,14 @@ void bind_motion(py::module_& m) {
                                   ", jerk=", p.jerk, ")");
         });
 
-    py::class_<MotionLaw>(m, "MotionLaw",
-                          "Normalized motion law S(x) on x in [0, 1], S(0) = 0, S(1) = 1. Build one with a "
-                          "static method (MotionLaw.modified_trapezoid(), ...).\n"
-                          "A user-defined law (a lift table as a spline, a polynomial from boundary conditions) comes\n"
-                          "from Segment.from_table / Segment.polynomial / MotionProgram.from_table; it holds its lift in\n"
-                          "m relative to its segment's start (evaluate_lift), and evaluate/peaks give the normalized\n"
-                          "form only when its net lift is not zero.")
+    py::class_<MotionLaw>(
+        m, "MotionLaw",
+        "Normalized motion law S(x) on x in [0, 1], S(0) = 0, S(1) = 1. Build one with a "
+        "static method (MotionLaw.modified_trapezoid(), ...).\n"
+        "A user-defined law (a lift table as a spline, a polynomial from boundary conditions) comes\n"
+        "from Segment.from_table / Segment.polynomial / MotionProgram.from_table; it holds its lift in\n"
+        "m relative to its segment's start (evaluate_lift), and evaluate/peaks give the normalized\n"
+        "form only when its net lift is not zero.")
         .def_static("dwell", &MotionLaw::dwell)
         .def_static("simple_harmonic", &MotionLaw::simple_harmonic)
         .def_static("cycloidal", &MotionLaw::cycloidal)
@@ -183,8 +183,7 @@ void bind_motion(py::module_& m) {
         .def_static("polynomial_345", &MotionLaw::polynomial_345)
         .def_static("polynomial_4567", &MotionLaw::polynomial_4567)
         .def_static("constant_acceleration", &MotionLaw::constant_acceleration)
-        .def_static("sine_constant_cosine", &MotionLaw::sine_constant_cosine, py::arg("b"), py::arg("c"),
-                    py::arg("d"),
+        .def_static("sine_constant_cosine", &MotionLaw::sine_constant_cosine, py::arg("b"), py::arg("c"), py::arg("d"),
                     "Sine-constant-cosine acceleration family; b + c + d = 1 (fractions of the segment).")
         .def_property_readonly("name", &MotionLaw::name)
         .def_property_readonly("b", &MotionLaw::b)
@@ -225,8 +224,7 @@ void bind_motion(py::module_& m) {
         .def(py::pickle(&law_state, [](const py::tuple& t) { return law_from(t); }));
 
     py::class_<Segment>(m, "Segment", "One segment of a motion program (angles in rad, lifts in m).")
-        .def(py::init([](const MotionLaw& law, double theta_start, double theta_end, double h_start,
-                         double h_end) {
+        .def(py::init([](const MotionLaw& law, double theta_start, double theta_end, double h_start, double h_end) {
                  Segment s{law, theta_start, theta_end, h_start, h_end};
                  s.validate();  // at once, not when a MotionProgram is made of it
                  return s;
@@ -266,11 +264,12 @@ void bind_motion(py::module_& m) {
             },
             py::arg("theta"),
             "The design lift h (m) and dh, d2h, d3h (m/rad^k) at theta in [theta_start, theta_end] (rad), as a dict.")
-        .def(py::pickle([](const Segment& s) { return py::make_tuple(s.law, s.theta_start, s.theta_end, s.h_start, s.h_end); },
-                        [](const py::tuple& t) {
-                            return Segment{t[0].cast<MotionLaw>(), t[1].cast<double>(), t[2].cast<double>(),
-                                           t[3].cast<double>(), t[4].cast<double>()};
-                        }))
+        .def(py::pickle(
+            [](const Segment& s) { return py::make_tuple(s.law, s.theta_start, s.theta_end, s.h_start, s.h_end); },
+            [](const py::tuple& t) {
+                return Segment{t[0].cast<MotionLaw>(), t[1].cast<double>(), t[2].cast<double>(), t[3].cast<double>(),
+                               t[4].cast<double>()};
+            }))
         .def("__repr__", [](const Segment& s) {
             return detail::concat("Segment(", s.law.name(), ", ", radians_to_degrees(s.theta_start), "-",
                                   radians_to_degrees(s.theta_end), " deg, ", s.h_start, " -> ", s.h_end, " m)");
@@ -290,7 +289,8 @@ void bind_motion(py::module_& m) {
                     "Local dent e = -depth (1 - x^2)^4, x = (theta - centre) / (width / 2), zero for |x| >= 1 (C3 at\n"
                     "its edges). centre and width in rad (0 < width <= pi), depth in m (> 0: material missing,\n"
                     "< 0: a bump).")
-        .def_static("table", &ProfileError::table, py::arg("theta"), py::arg("error"), py::arg("max_harmonic") = py::none(),
+        .def_static("table", &ProfileError::table, py::arg("theta"), py::arg("error"),
+                    py::arg("max_harmonic") = py::none(),
                     "Least-squares Fourier fit of a measured table: theta (rad, >= 3 points, strictly increasing in\n"
                     "[0, 2 pi), any spacing), error (m). max_harmonic in [1, (N - 1) // 2], default the upper end\n"
                     "(interpolation for an odd number of equally spaced points); lower it to smooth a noisy table.")
@@ -334,8 +334,8 @@ void bind_motion(py::module_& m) {
                       "Highest k with h..h^(k) continuous: -1, 0, 1, 2 or 3 (3: C3 at least).")
         .def("__repr__", [](const BoundaryContinuity& b) {
             return detail::concat("BoundaryContinuity(segments ", b.left_segment, " -> ", b.right_segment, " at ",
-                                  radians_to_degrees(b.theta), " deg, continuous through order ",
-                                  b.continuous_through, ")");
+                                  radians_to_degrees(b.theta), " deg, continuous through order ", b.continuous_through,
+                                  ")");
         });
 
     py::class_<ContinuityReport>(m, "ContinuityReport",
@@ -344,19 +344,19 @@ void bind_motion(py::module_& m) {
         .def_property_readonly("continuous_through", &ContinuityReport::continuous_through,
                                "The program's order of continuity: the lowest over its boundaries.")
         .def("__len__", [](const ContinuityReport& r) { return r.boundaries.size(); })
-        .def("__getitem__", [](const ContinuityReport& r, py::ssize_t i) {
-            const py::ssize_t n = static_cast<py::ssize_t>(r.boundaries.size());
-            if (i < 0) i += n;
-            if (i < 0 || i >= n) throw py::index_error("boundary index out of range");
-            return r.boundaries[static_cast<std::size_t>(i)];
-        })
+        .def("__getitem__",
+             [](const ContinuityReport& r, py::ssize_t i) {
+                 const py::ssize_t n = static_cast<py::ssize_t>(r.boundaries.size());
+                 if (i < 0) i += n;
+                 if (i < 0 || i >= n) throw py::index_error("boundary index out of range");
+                 return r.boundaries[static_cast<std::size_t>(i)];
+             })
         .def("__repr__", [](const ContinuityReport& r) {
             return detail::concat("ContinuityReport(", r.boundaries.size(), " boundaries, continuous through order ",
                                   r.continuous_through(), ")");
         });
 
-    py::class_<MotionProgram>(m, "MotionProgram",
-                              "Segments tiling one revolution; h(theta) and its theta-derivatives.")
+    py::class_<MotionProgram>(m, "MotionProgram", "Segments tiling one revolution; h(theta) and its theta-derivatives.")
         .def(py::init<std::vector<Segment>>(), py::arg("segments"))
         .def_static("paper_default", &MotionProgram::paper_default, py::arg("total_rise") = 0.010,
                     "Paper Table 1: dwell 0-30, modified-trapezoid rise 30-180, dwell 180-210, return 210-360 deg.")
@@ -380,7 +380,8 @@ void bind_motion(py::module_& m) {
              "Raise ValueError naming the first boundary (segments, angle in deg) where h .. h^(order) jumps;\n"
              "order 0 (lift), 1 (velocity), 2 (acceleration) or 3 (jerk).")
         .def(
-            "smoothness", [](const MotionProgram& p, std::size_t excursions) { return smoothness_dict(smoothness(p, excursions)); },
+            "smoothness",
+            [](const MotionProgram& p, std::size_t excursions) { return smoothness_dict(smoothness(p, excursions)); },
             py::arg("excursions") = 5,
             "Per-radian smoothness report as a dict: peaks {'velocity', 'acceleration', 'jerk'}: {'value' (m/rad^k),\n"
             "'theta' (rad)}; 'table_points'; 'residual' {'max', 'rms' (m), 'theta_of_max'} of the spline tables;\n"

@@ -62,24 +62,24 @@ py::object get_parameter(const CamFollowerParameters& p, const std::string& name
 void bind_parameters(py::module_& m) {
     py::class_<CamFollowerParameters> params(
         m, "Parameters",
-        "The paper preset's parameters (SI units; paper Table 2 defaults; presets.paper(parameters)). Override any by keyword:\n"
+        "The paper preset's parameters (SI units; paper Table 2 defaults; presets.paper(parameters)). Override any by "
+        "keyword:\n"
         "Parameters(contact_stiffness=2e8, camshaft_speed_rpm=1000). Parameters.names() lists them.");
     params.def(py::init(&parameters_from_kwargs))
         .def_static("names", &parameter_names)
         .def("get", &get_parameter, py::arg("name"),
              "The value of one of names(): a float (SI units), or the contact_damping model's name.")
-        .def("replace", &with_kwargs,
-             "A copy with the given parameters changed (validated); Parameters are immutable.")
-        .def("to_dict", [](const CamFollowerParameters& p) {
-            py::dict d;
-            for (const auto& name : parameter_names()) d[name.c_str()] = get_parameter(p, name);
-            return d;
-        })
+        .def("replace", &with_kwargs, "A copy with the given parameters changed (validated); Parameters are immutable.")
+        .def("to_dict",
+             [](const CamFollowerParameters& p) {
+                 py::dict d;
+                 for (const auto& name : parameter_names()) d[name.c_str()] = get_parameter(p, name);
+                 return d;
+             })
         .def_property_readonly("omega", &CamFollowerParameters::omega, "camshaft speed, rad/s")
         .def("__repr__", [](const CamFollowerParameters& p) {
             std::string s = "Parameters(";
-            for (const auto& f : CamFollowerParameters::fields())
-                s += detail::concat(f.name, "=", p.get(f.name), ", ");
+            for (const auto& f : CamFollowerParameters::fields()) s += detail::concat(f.name, "=", p.get(f.name), ", ");
             return s + "contact_damping='" + contact_damping_name(p.contact_damping) + "')";
         });
     params.def_property_readonly(

@@ -91,7 +91,8 @@ template <class System>
 std::optional<typename System::Vector> initial_vector(const System& system, const std::optional<Eigen::VectorXd>& x,
                                                       const char* name) {
     if (!x) return std::nullopt;
-    if (x->size() != system.size()) detail::fail(name, " must have ", system.size(), " entries (one per DOF), got ", x->size());
+    if (x->size() != system.size())
+        detail::fail(name, " must have ", system.size(), " entries (one per DOF), got ", x->size());
     return typename System::Vector(*x);
 }
 
@@ -170,8 +171,9 @@ inline bool python_says_go_on(const py::object& progress, std::uint64_t done, st
             // True/False (or NumPy's bool); anything else is a mistake, not a vote to go on.
             const std::string type = py::str(py::type::handle_of(keep_going).attr("__name__"));
             if (!py::isinstance<py::bool_>(keep_going) && type != "bool" && type != "bool_") {
-                PyErr_SetString(PyExc_TypeError, ("progress(steps_done, steps_planned) must return None, True or False, got " +
-                                                  type).c_str());
+                PyErr_SetString(
+                    PyExc_TypeError,
+                    ("progress(steps_done, steps_planned) must return None, True or False, got " + type).c_str());
                 throw py::error_already_set();
             }
             if (!keep_going.cast<bool>()) return false;
@@ -197,9 +199,8 @@ inline RunOptions run_options(double duration, std::size_t decimation, double re
 // One run with the GIL released (Ctrl-C and the progress callback honoured), as dict_of.
 template <class System>
 py::dict run_system(const System& system, double duration, const SolverSettings& settings, std::size_t decimation,
-                    double record_from, double max_output_bytes, const py::object& progress,
-                    double progress_interval, const SettleOptions& settle,
-                    const std::optional<Eigen::VectorXd>& q0 = std::nullopt,
+                    double record_from, double max_output_bytes, const py::object& progress, double progress_interval,
+                    const SettleOptions& settle, const std::optional<Eigen::VectorXd>& q0 = std::nullopt,
                     const std::optional<Eigen::VectorXd>& v0 = std::nullopt) {
     using Vector = typename System::Vector;
     const std::optional<Vector> q_start = initial_vector<System>(system, q0, "initial q");
@@ -225,7 +226,6 @@ py::dict run_system(const System& system, double duration, const SolverSettings&
     if (python_error) throw std::move(*python_error);
     return dict_of(out);
 }
-
 
 // One case of simulate_many: its run (called without the GIL) and its own options.
 struct ManyCase {
@@ -322,13 +322,14 @@ void bind_run(py::module_& m, Run run) {
                 settle.min_revolutions = settle_min_revolutions;
                 settle.max_revolutions = settle_max_revolutions;
             }
-            return run(system, duration, s, decimation, record_from, max_output_bytes, progress, progress_interval, settle, q0, v0);
+            return run(system, duration, s, decimation, record_from, max_output_bytes, progress, progress_interval,
+                       settle, q0, v0);
         },
         py::arg("system"), py::arg("settings"), py::arg("duration"), py::arg("decimation"), py::arg("record_from"),
-        py::arg("max_output_bytes"), py::arg("progress"), py::arg("progress_interval"), py::arg("settle_period") = py::none(),
-        py::arg("settle_dofs") = std::vector<int>{}, py::arg("settle_tolerance") = 1e-4,
-        py::arg("settle_min_revolutions") = 2, py::arg("settle_max_revolutions") = 200, py::arg("q0") = py::none(),
-        py::arg("v0") = py::none(),
+        py::arg("max_output_bytes"), py::arg("progress"), py::arg("progress_interval"),
+        py::arg("settle_period") = py::none(), py::arg("settle_dofs") = std::vector<int>{},
+        py::arg("settle_tolerance") = 1e-4, py::arg("settle_min_revolutions") = 2,
+        py::arg("settle_max_revolutions") = 200, py::arg("q0") = py::none(), py::arg("v0") = py::none(),
         "Internal: camfollower.simulate() calls this and wraps the output in a Result.");
 }
 
@@ -398,8 +399,8 @@ void bind_shoot(py::module_& m, Shoot shoot_fn) {
             return shoot_fn(system, s, o, q0, v0);
         },
         py::arg("system"), py::arg("settings"), py::arg("period"), py::arg("start_time"), py::arg("tolerance"),
-        py::arg("shooting_max_iterations"), py::arg("warmup_revolutions"), py::arg("perturbation"), py::arg("multipliers"),
-        py::arg("monodromy"), py::arg("q0"), py::arg("v0"),
+        py::arg("shooting_max_iterations"), py::arg("warmup_revolutions"), py::arg("perturbation"),
+        py::arg("multipliers"), py::arg("monodromy"), py::arg("q0"), py::arg("v0"),
         "Internal: camfollower.periodic_steady_state() calls this and wraps the output in a PeriodicOrbit.");
 }
 

@@ -14,9 +14,9 @@ namespace camfollower::python {
 
 namespace {
 
-const char* const field_names[] = {"method",          "time_step",          "tolerance",           "max_step",
-                                   "gamma",           "beta",               "hht_alpha",           "linear_solver",
-                                   "residual_tolerance", "increment_tolerance", "max_iterations", "max_halvings"};
+const char* const field_names[] = {
+    "method",        "time_step",          "tolerance",           "max_step",       "gamma",       "beta", "hht_alpha",
+    "linear_solver", "residual_tolerance", "increment_tolerance", "max_iterations", "max_halvings"};
 
 std::string listed_fields() {
     std::string list;
@@ -27,7 +27,8 @@ std::string listed_fields() {
 // An integer: int or anything with __index__ (NumPy integers), never a bool.
 int integer_argument(const std::string& name, const py::handle& value) {
     if (py::isinstance<py::bool_>(value) || !PyIndex_Check(value.ptr()))
-        throw py::type_error(name + " must be an integer, got " + std::string(py::str(py::type::handle_of(value).attr("__name__"))));
+        throw py::type_error(name + " must be an integer, got " +
+                             std::string(py::str(py::type::handle_of(value).attr("__name__"))));
     PyObject* index = PyNumber_Index(value.ptr());
     if (!index) throw py::error_already_set();
     int overflow = 0;
@@ -40,7 +41,8 @@ int integer_argument(const std::string& name, const py::handle& value) {
 
 std::string text_argument(const std::string& name, const py::handle& value) {
     if (!py::isinstance<py::str>(value))
-        throw py::type_error(name + " must be a str, got " + std::string(py::str(py::type::handle_of(value).attr("__name__"))));
+        throw py::type_error(name + " must be a str, got " +
+                             std::string(py::str(py::type::handle_of(value).attr("__name__"))));
     return value.cast<std::string>();
 }
 
@@ -51,7 +53,9 @@ SolverSettings settings_from_keywords(const py::dict& kw) {
         const std::string key = py::str(item.first);
         bool known = false;
         for (const char* f : field_names) known = known || key == f;
-        if (!known) throw py::type_error("SolverSettings got an unexpected keyword '" + key + "'; its fields: " + listed_fields());
+        if (!known)
+            throw py::type_error("SolverSettings got an unexpected keyword '" + key +
+                                 "'; its fields: " + listed_fields());
     }
     const auto given = [&kw](const char* key) { return kw.contains(key) && !kw[key].is_none(); };
     SolverSettings s;
@@ -84,7 +88,8 @@ py::dict fields_of(const SolverSettings& s) {
     f["time_step"] = s.time_step;
     if (s.tolerance) f["tolerance"] = *s.tolerance;
     if (s.max_step != d.max_step) f["max_step"] = s.max_step;
-    if (s.method == Method::newmark && (s.gamma != d.gamma || s.beta != d.beta)) f["gamma"] = s.gamma, f["beta"] = s.beta;
+    if (s.method == Method::newmark && (s.gamma != d.gamma || s.beta != d.beta))
+        f["gamma"] = s.gamma, f["beta"] = s.beta;
     if (s.method == Method::hht) f["hht_alpha"] = newmark_parameters(s).alpha;
     if (std::string(linear_solver_name(s)) != "auto") f["linear_solver"] = linear_solver_name(s);
     if (s.residual_tolerance != d.residual_tolerance) f["residual_tolerance"] = s.residual_tolerance;
@@ -126,36 +131,48 @@ Raises ValueError for a value out of range, TypeError for an unknown keyword or 
         },
         "The field names, in the C++ order.");
     cls.def(py::init([](const py::object& method, const py::kwargs& kw) {
-                 py::dict all(kw);
-                 if (all.contains("method")) throw py::type_error("SolverSettings got method twice (positional and keyword)");
-                 all["method"] = method;
-                 return settings_from_keywords(all);
-             }),
-             py::arg("method") = method_name(d.method))
+                py::dict all(kw);
+                if (all.contains("method"))
+                    throw py::type_error("SolverSettings got method twice (positional and keyword)");
+                all["method"] = method;
+                return settings_from_keywords(all);
+            }),
+            py::arg("method") = method_name(d.method))
         .def_property_readonly("method", [](const SolverSettings& s) { return std::string(method_name(s.method)); })
-        .def_property_readonly("time_step", [](const SolverSettings& s) { return s.time_step; }, "s; under a tolerance the output interval")
-        .def_property_readonly("tolerance", [](const SolverSettings& s) { return s.tolerance; }, "None: fixed steps")
-        .def_property_readonly("max_step", [](const SolverSettings& s) { return s.max_step; }, "s, 0: unbounded")
-        .def_property_readonly("gamma", [](const SolverSettings& s) { return newmark_parameters(s).gamma; },
-                               "Newmark's gamma as the method steps with it")
-        .def_property_readonly("beta", [](const SolverSettings& s) { return newmark_parameters(s).beta; },
-                               "Newmark's beta as the method steps with it")
-        .def_property_readonly("hht_alpha", [](const SolverSettings& s) { return newmark_parameters(s).alpha; },
-                               "HHT's alpha as the method steps with it (0 but for method 'hht')")
-        .def_property_readonly("linear_solver", [](const SolverSettings& s) { return std::string(linear_solver_name(s)); })
+        .def_property_readonly(
+            "time_step", [](const SolverSettings& s) { return s.time_step; },
+            "s; under a tolerance the output interval")
+        .def_property_readonly(
+            "tolerance", [](const SolverSettings& s) { return s.tolerance; }, "None: fixed steps")
+        .def_property_readonly(
+            "max_step", [](const SolverSettings& s) { return s.max_step; }, "s, 0: unbounded")
+        .def_property_readonly(
+            "gamma", [](const SolverSettings& s) { return newmark_parameters(s).gamma; },
+            "Newmark's gamma as the method steps with it")
+        .def_property_readonly(
+            "beta", [](const SolverSettings& s) { return newmark_parameters(s).beta; },
+            "Newmark's beta as the method steps with it")
+        .def_property_readonly(
+            "hht_alpha", [](const SolverSettings& s) { return newmark_parameters(s).alpha; },
+            "HHT's alpha as the method steps with it (0 but for method 'hht')")
+        .def_property_readonly("linear_solver",
+                               [](const SolverSettings& s) { return std::string(linear_solver_name(s)); })
         .def_property_readonly("residual_tolerance", [](const SolverSettings& s) { return s.residual_tolerance; })
         .def_property_readonly("increment_tolerance", [](const SolverSettings& s) { return s.increment_tolerance; })
         .def_property_readonly("max_iterations", [](const SolverSettings& s) { return s.max_iterations; })
         .def_property_readonly("max_halvings", [](const SolverSettings& s) { return s.max_halvings; })
-        .def_property_readonly("adaptive", [](const SolverSettings& s) { return s.adaptive() || is_runge_kutta(s.method); },
-                               "True when the run adapts its steps: a tolerance set, or a Runge-Kutta method "
-                               "(which runs under 1e-6 without one)")
-        .def("fields", &fields_of, "The fields that say what these settings are (method, time step, and the others "
-                                   "that apply and differ from their defaults), as keywords of SolverSettings.")
+        .def_property_readonly(
+            "adaptive", [](const SolverSettings& s) { return s.adaptive() || is_runge_kutta(s.method); },
+            "True when the run adapts its steps: a tolerance set, or a Runge-Kutta method "
+            "(which runs under 1e-6 without one)")
+        .def("fields", &fields_of,
+             "The fields that say what these settings are (method, time step, and the others "
+             "that apply and differ from their defaults), as keywords of SolverSettings.")
         .def("replace",
              [](const SolverSettings& s, const py::kwargs& changes) {
                  py::dict kw = fields_of(s);
-                 if (changes.contains("method") && py::str(changes["method"]).cast<std::string>() != method_name(s.method))
+                 if (changes.contains("method") &&
+                     py::str(changes["method"]).cast<std::string>() != method_name(s.method))
                      for (const char* k : {"gamma", "beta", "hht_alpha"})
                          if (kw.contains(k)) PyDict_DelItemString(kw.ptr(), k);
                  for (const auto& item : changes) kw[item.first] = item.second;

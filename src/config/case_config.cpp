@@ -57,17 +57,17 @@ Length written(const Section& s, std::string_view key, std::size_t index, double
     return {detail::concat(s.where(key), "[", index, "]"), value, index < units.size() && units[index].empty(), {}};
 }
 
-
 // ---- motion programs -------------------------------------------------------------------------
 
 // Two numeric columns (theta, h) from a text file: comma, semicolon, tab or blank separated; '#'
 // comments and one header line of words are skipped.
 std::pair<std::vector<double>, std::vector<double>> read_table_file(const Section& s, std::string_view key,
-                                                                   const std::string& base_dir) {
+                                                                    const std::string& base_dir) {
     const std::string name = s.text(key);
     const std::string path = !name.empty() && name.front() == '/' ? name : base_dir + "/" + name;
     struct stat st {};
-    if (stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) s.fail(key, "cannot read the lift table '" + path + "' (not a regular file)");
+    if (stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode))
+        s.fail(key, "cannot read the lift table '" + path + "' (not a regular file)");
     std::ifstream in(path);
     if (!in) s.fail(key, "cannot open the lift table '" + path + "'");
     std::vector<double> theta, h;
@@ -102,7 +102,9 @@ LiftDimension dimension_of(const std::string& unit) {
 }
 
 const char* dimension_name(LiftDimension d) {
-    return d == LiftDimension::angle ? "an arm angle (rad, deg)" : d == LiftDimension::length ? "a length (m, mm, um, inch)" : "unstated";
+    return d == LiftDimension::angle    ? "an arm angle (rad, deg)"
+           : d == LiftDimension::length ? "a length (m, mm, um, inch)"
+                                        : "unstated";
 }
 
 // Records the dimension of each lift value read and refuses a program that mixes them; keeps the lift
@@ -114,8 +116,8 @@ struct LiftUnits {
         const LiftDimension d = dimension_of(unit);
         if (d == LiftDimension::unstated) return;
         if (dimension != LiftDimension::unstated && d != dimension)
-            s.fail(key, detail::concat("mixes lift units: this program's lift was ", dimension_name(dimension), ", here it is ",
-                                       dimension_name(d)));
+            s.fail(key, detail::concat("mixes lift units: this program's lift was ", dimension_name(dimension),
+                                       ", here it is ", dimension_name(d)));
         dimension = d;
     }
 };
@@ -130,7 +132,8 @@ Table read_table(const Section& s, const std::string& base_dir, LiftUnits& lift)
     lift.note(s, "h_unit", h_unit);
     Table t;
     if (s.has("file")) {
-        if (s.has("theta") || s.has("h")) s.fail("file", "give the table either as a file or as theta/h arrays, not both");
+        if (s.has("theta") || s.has("h"))
+            s.fail("file", "give the table either as a file or as theta/h arrays, not both");
         auto [theta, h] = read_table_file(s, "file", base_dir);
         try {
             for (double& v : theta) v = to_si(v, theta_unit, "rad");
@@ -174,9 +177,10 @@ MotionLaw named_law(const Section& s, const std::string& law) {
 }
 
 Segment read_segment(const Section& s, double start, double level, const std::string& base_dir, LiftUnits& lift) {
-    const std::string law = s.choice("law", "", {"dwell", "simple_harmonic", "cycloidal", "modified_trapezoid",
-                                                 "modified_sine", "polynomial_345", "polynomial_4567",
-                                                 "constant_acceleration", "sine_constant_cosine", "polynomial", "table"});
+    const std::string law =
+        s.choice("law", "",
+                 {"dwell", "simple_harmonic", "cycloidal", "modified_trapezoid", "modified_sine", "polynomial_345",
+                  "polynomial_4567", "constant_acceleration", "sine_constant_cosine", "polynomial", "table"});
     return located(s, [&]() -> Segment {
         if (law == "table") {
             Table t = read_table(s, base_dir, lift);
@@ -198,8 +202,10 @@ Segment read_segment(const Section& s, double start, double level, const std::st
             for (double v : s.has("end_derivatives") ? s.quantities("end_derivatives", "-") : zero) d1.push_back(v);
             std::vector<std::pair<double, double>> interior;
             if (s.has("interior_theta") || s.has("interior_h")) {
-                const std::vector<double> th = s.quantities("interior_theta", "rad"), hh = s.quantities("interior_h", "lift");
-                if (th.size() != hh.size()) s.fail("interior_h", "interior_theta and interior_h must have the same length");
+                const std::vector<double> th = s.quantities("interior_theta", "rad"),
+                                          hh = s.quantities("interior_h", "lift");
+                if (th.size() != hh.size())
+                    s.fail("interior_h", "interior_theta and interior_h must have the same length");
                 for (std::size_t i = 0; i < th.size(); ++i) {
                     interior.emplace_back(th[i], hh[i]);
                     lift.levels.push_back(written(s, "interior_h", i, hh[i]));
@@ -218,7 +224,6 @@ Segment read_segment(const Section& s, double start, double level, const std::st
     });
 }
 
-
 // A program's lengths as written: lift levels, and its profile errors' amplitudes and depths.
 struct ProgramLengths {
     std::vector<Length> levels;
@@ -236,7 +241,8 @@ ProfileError read_profile_error(const Section& s, ProgramLengths& lengths) {
         located(w, [&] { e = e + ProfileError::waviness(amplitude, int(order), phase); });
     }
     for (const Section& d : s.tables("dent")) {
-        const double centre = d.quantity("centre", "rad"), width = d.quantity("width", "rad"), depth = d.quantity("depth", "m");
+        const double centre = d.quantity("centre", "rad"), width = d.quantity("width", "rad"),
+                     depth = d.quantity("depth", "m");
         lengths.errors.emplace_back(written(d, "depth", depth), "the dent depth");
         d.finish({"centre", "width", "depth"});
         located(d, [&] { e = e + ProfileError::dent(centre, width, depth); });
@@ -289,7 +295,8 @@ NamedProgram read_program(const Section& s, const std::string& base_dir) {
         const ProfileError e = read_profile_error(*error, lengths);
         located(*error, [&] { program = program.with_profile_error(e); });
     }
-    s.finish({"segments", "start_h", "file", "theta", "h", "theta_unit", "h_unit", "degree", "smoothing", "continuity", "error"});
+    s.finish({"segments", "start_h", "file", "theta", "h", "theta_unit", "h_unit", "degree", "smoothing", "continuity",
+              "error"});
     return {std::move(program), lift.dimension, std::move(lengths)};
 }
 
@@ -328,7 +335,8 @@ decltype(auto) with_offset_hint(const ContactLengths& lengths, F&& validate) {
 // `owner` names the contact in messages ("contact 'cam'"). Its lengths written as bare numbers are
 // checked against each other (lengths.hpp) before the follower is built, the offset's with it.
 Follower read_follower(const Section& s, const std::string& owner) {
-    const std::string type = s.choice("type", "", {"translating_roller", "translating_flat", "oscillating_roller", "oscillating_flat"});
+    const std::string type =
+        s.choice("type", "", {"translating_roller", "translating_flat", "oscillating_roller", "oscillating_flat"});
     return located(s, [&]() -> Follower {
         const double rb = s.quantity("base_radius", "m");
         ContactLengths lengths{owner, written(s, "base_radius", rb), {}, {}, {}, {}, {}};
@@ -359,8 +367,10 @@ Follower read_follower(const Section& s, const std::string& owner) {
                 check_follower_lengths(lengths, false);
                 return with_offset_hint(lengths, [&] { return TranslatingFlat(rb, angle, e); });
             }
-            const ArmTurn turn = s.choice("turn", "counter_clockwise", {"counter_clockwise", "clockwise"}) == "clockwise"
-                                     ? ArmTurn::clockwise : ArmTurn::counter_clockwise;
+            const ArmTurn turn =
+                s.choice("turn", "counter_clockwise", {"counter_clockwise", "clockwise"}) == "clockwise"
+                    ? ArmTurn::clockwise
+                    : ArmTurn::counter_clockwise;
             if (type == "oscillating_roller") {
                 const double rr = length("roller_radius", std::nullopt, lengths.roller_radius);
                 const Eigen::Vector2d at = pivot();
@@ -373,7 +383,8 @@ Follower read_follower(const Section& s, const std::string& owner) {
             check_follower_lengths(lengths);
             return OscillatingFlat(rb, at, face, turn);
         }();
-        s.finish({"type", "base_radius", "roller_radius", "offset", "face_angle", "pivot", "arm_length", "face_offset", "turn"});
+        s.finish({"type", "base_radius", "roller_radius", "offset", "face_angle", "pivot", "arm_length", "face_offset",
+                  "turn"});
         return f;
     });
 }
@@ -382,11 +393,12 @@ CamEccentricity read_eccentricity(const Section& s) {
     CamEccentricity e;
     e.radius = s.quantity("radius", "m");
     e.phase = s.quantity("phase", "rad", 0.0);
-    const std::string f = s.choice("formulation", "exact", {"exact", "paper_force_camshaft", "paper_force_roller", "paper_force_both"});
-    e.formulation = f == "exact" ? EccentricityFormulation::exact
-                  : f == "paper_force_camshaft" ? EccentricityFormulation::paper_force_camshaft
-                  : f == "paper_force_roller" ? EccentricityFormulation::paper_force_roller
-                                              : EccentricityFormulation::paper_force_both;
+    const std::string f =
+        s.choice("formulation", "exact", {"exact", "paper_force_camshaft", "paper_force_roller", "paper_force_both"});
+    e.formulation = f == "exact"                  ? EccentricityFormulation::exact
+                    : f == "paper_force_camshaft" ? EccentricityFormulation::paper_force_camshaft
+                    : f == "paper_force_roller"   ? EccentricityFormulation::paper_force_roller
+                                                  : EccentricityFormulation::paper_force_both;
     e.unbalance_mass = s.quantity("unbalance_mass", "kg", 0.0);
     s.finish({"radius", "phase", "formulation", "unbalance_mass"});
     located(s, [&] { e.validate("eccentricity"); });
@@ -424,14 +436,14 @@ std::string dof_name(const Section& s, std::string_view key, const MechanismBuil
                     (ground_ok ? " (or \"ground\")" : ""));
 }
 
-
 using Dimensions = std::map<std::string, LiftDimension>;
 using Lengths = std::map<std::string, ProgramLengths>;
 
 // The lengths of `program` as written, checked against the base radius of the contact `owner` that
 // uses it (lengths.hpp): its lift levels when the follower translates (an arm angle is no length),
 // its profile errors' amplitudes and depths.
-void check_program_lengths(const ProgramLengths& program, double base_radius, bool translating, const std::string& owner) {
+void check_program_lengths(const ProgramLengths& program, double base_radius, bool translating,
+                           const std::string& owner) {
     if (translating)
         for (const Length& h : program.levels) check_lift(h, base_radius, owner);
     for (const auto& [L, what] : program.errors) check_small_length(L, what, base_radius, owner);
@@ -445,7 +457,8 @@ void check_lift_dimension(const Section& s, const Follower& f, LiftDimension d, 
                                          follower_type_name(f), " follower's lift is ", dimension_name(wanted)));
 }
 
-void read_parts(const Section& root, const CaseConfig& c, const Dimensions& dims, const Lengths& lengths, MechanismBuilder& b) {
+void read_parts(const Section& root, const CaseConfig& c, const Dimensions& dims, const Lengths& lengths,
+                MechanismBuilder& b) {
     DofMotions motions;  // what the units of each [[dof]]'s mass say it does: turn or translate
     for (const Section& s : root.tables("dof")) {
         const std::string name = s.text("name");
@@ -483,13 +496,15 @@ void read_parts(const Section& root, const CaseConfig& c, const Dimensions& dims
     }
     for (const Section& s : root.tables("bearing")) {
         const std::string name = s.text("name"), shaft = s.text("shaft");
-        const double x = s.quantity("at", "m"), k = s.quantity("stiffness", "N/m"), d = s.quantity("damping", "N s/m", 0.0);
+        const double x = s.quantity("at", "m"), k = s.quantity("stiffness", "N/m"),
+                     d = s.quantity("damping", "N s/m", 0.0);
         s.finish({"name", "shaft", "at", "stiffness", "damping"});
         located(s, [&] { b.add_bearing(name, shaft, x, k, d); });
     }
     for (const Section& s : root.tables("drive")) {
         const std::string name = s.text("name", "drive"), shaft = s.text("shaft");
-        const double x = s.quantity("at", "m", 0.0), k = s.quantity("stiffness", "N/m"), d = s.quantity("damping", "N s/m", 0.0);
+        const double x = s.quantity("at", "m", 0.0), k = s.quantity("stiffness", "N/m"),
+                     d = s.quantity("damping", "N s/m", 0.0);
         const double inertia = s.quantity("inertia", "kg", 0.0);
         s.finish({"name", "shaft", "at", "stiffness", "damping", "inertia"});
         located(s, [&] {
@@ -506,23 +521,27 @@ void read_parts(const Section& root, const CaseConfig& c, const Dimensions& dims
         located(s, [&] { b.add_motor(name, shaft, x, inertia, kp, kv, torque); });
     }
     for (const Section& s : root.tables("spring")) {
-        const std::string name = s.text("name"), a = dof_name(s, "a", b, false, ""), bb = dof_name(s, "b", b, true, ground_name);
+        const std::string name = s.text("name"), a = dof_name(s, "a", b, false, ""),
+                          bb = dof_name(s, "b", b, true, ground_name);
         motions.check(s, "stiffness", Measure::stiffness, {a, bb}, "b");
         motions.check(s, "damping", Measure::damping, {a, bb}, "b");
         motions.check(s, "preload", Measure::force, {a, bb}, "b");
-        const double k = s.quantity("stiffness", "N/m"), d = s.quantity("damping", "N s/m", 0.0), p = force_or_moment(s, "preload", 0.0);
+        const double k = s.quantity("stiffness", "N/m"), d = s.quantity("damping", "N s/m", 0.0),
+                     p = force_or_moment(s, "preload", 0.0);
         s.finish({"name", "a", "b", "stiffness", "damping", "preload"});
         located(s, [&] { b.add_spring(name, a, bb, k, d, p); });
     }
     for (const Section& s : root.tables("damper")) {
-        const std::string name = s.text("name"), a = dof_name(s, "a", b, false, ""), bb = dof_name(s, "b", b, true, ground_name);
+        const std::string name = s.text("name"), a = dof_name(s, "a", b, false, ""),
+                          bb = dof_name(s, "b", b, true, ground_name);
         motions.check(s, "damping", Measure::damping, {a, bb}, "b");
         const double d = s.quantity("damping", "N s/m");
         s.finish({"name", "a", "b", "damping"});
         located(s, [&] { b.add_damper(name, a, bb, d); });
     }
     for (const Section& s : root.tables("spring_chain")) {
-        const std::string name = s.text("name"), a = dof_name(s, "a", b, false, ""), bb = dof_name(s, "b", b, true, ground_name);
+        const std::string name = s.text("name"), a = dof_name(s, "a", b, false, ""),
+                          bb = dof_name(s, "b", b, true, ground_name);
         const double k = s.quantity("stiffness", "N/m"), m = s.quantity("mass", "kg");
         const int elements = int(s.integer("elements", 6, 1, 1000));
         const double d = s.quantity("damping", "N s/m", 0.0), p = s.quantity("preload", "N", 0.0);
@@ -543,12 +562,22 @@ void read_parts(const Section& root, const CaseConfig& c, const Dimensions& dims
         located(s, [&] { b.add_load(dof, f); });
     }
     for (const Section& s : root.tables("contact")) {
-        ContactPairSpec p{s.text("name"), MotionProgram::paper_default(), TranslatingRoller(0.03, 0.008, 0.0), HertzContact{},
-                          0.0, ground_name, ground_name, "", ground_name, CamEccentricity{}, ground_name};
+        ContactPairSpec p{s.text("name"),
+                          MotionProgram::paper_default(),
+                          TranslatingRoller(0.03, 0.008, 0.0),
+                          HertzContact{},
+                          0.0,
+                          ground_name,
+                          ground_name,
+                          "",
+                          ground_name,
+                          CamEccentricity{},
+                          ground_name};
         const std::string program = s.text("program");
         located(s, [&] { p.program = c.program(program); });
         const std::optional<Section> follower = s.table("follower");
-        if (!follower) s.fail_here("a contact needs a follower table: follower = { type = \"translating_roller\", ... }");
+        if (!follower)
+            s.fail_here("a contact needs a follower table: follower = { type = \"translating_roller\", ... }");
         const std::string owner = "contact '" + detail::printable(p.name) + "'";
         p.follower = read_follower(*follower, owner);
         check_lift_dimension(s, p.follower, dims.at(program), program);
@@ -562,15 +591,17 @@ void read_parts(const Section& root, const CaseConfig& c, const Dimensions& dims
         p.lateral = dof_name(s, "lateral", b, true, ground_name);
         p.cam_twist = dof_name(s, "cam_twist", b, true, ground_name);
         const bool translating = is_translating(p.follower);
-        motions.require(s, "follower_dof", p.follower_dof, translating ? DofMotion::translation : DofMotion::rotation,
-                        translating ? "a translating follower's lift (m)" : "an oscillating follower's arm angle (rad)");
+        motions.require(
+            s, "follower_dof", p.follower_dof, translating ? DofMotion::translation : DofMotion::rotation,
+            translating ? "a translating follower's lift (m)" : "an oscillating follower's arm angle (rad)");
         motions.require(s, "cam_x", p.cam_x, DofMotion::translation, "the cam centre's x displacement (m)");
         motions.require(s, "cam_y", p.cam_y, DofMotion::translation, "the cam centre's y displacement (m)");
         motions.require(s, "lateral", p.lateral, DofMotion::translation, "the follower's lateral displacement (m)");
         motions.require(s, "cam_twist", p.cam_twist, DofMotion::rotation, "the cam's twist angle (rad)");
         if (const std::optional<Section> e = s.table("eccentricity")) {
             p.eccentricity = read_eccentricity(*e);
-            check_small_length(written(*e, "radius", p.eccentricity.radius), "the eccentricity radius", base_radius, owner);
+            check_small_length(written(*e, "radius", p.eccentricity.radius), "the eccentricity radius", base_radius,
+                               owner);
         }
         const bool mounted = s.has("shaft");
         std::string shaft;
@@ -656,7 +687,8 @@ MechanismBuilder read_valve_train(const Section& s, double rpm) {
     if (ps) {
         for (const std::string& key : ps->keys()) {
             if (key == "cylinders") p.cylinders = int(ps->integer(key, p.cylinders, 1, 64));
-            else if (key == "valves_per_cylinder") p.valves_per_cylinder = int(ps->integer(key, p.valves_per_cylinder, 1, 2));
+            else if (key == "valves_per_cylinder")
+                p.valves_per_cylinder = int(ps->integer(key, p.valves_per_cylinder, 1, 2));
             else if (key == "spring_elements") p.spring_elements = int(ps->integer(key, p.spring_elements, 1, 1000));
             else if (key == "firing_order") {
                 p.firing_order.clear();
@@ -676,7 +708,9 @@ MechanismBuilder read_valve_train(const Section& s, double rpm) {
         }
     }
     if (ps) {
-        const auto as_written = [&](const char* key, double v) { return ps->has(key) ? written(*ps, key, v) : Length{"", v, false, {}}; };
+        const auto as_written = [&](const char* key, double v) {
+            return ps->has(key) ? written(*ps, key, v) : Length{"", v, false, {}};
+        };
         const std::string owner = "the valve-train preset's cams";
         ContactLengths lengths{owner, as_written("base_radius", p.base_radius), {}, {}, {}, {}, {}};
         lengths.roller_radius = as_written("roller_radius", p.roller_radius);
@@ -691,7 +725,8 @@ MechanismBuilder read_valve_train(const Section& s, double rpm) {
     return b;
 }
 
-MechanismBuilder read_preset(const Section& s, const CaseConfig& c, const Dimensions& dims, const Lengths& lengths, double rpm) {
+MechanismBuilder read_preset(const Section& s, const CaseConfig& c, const Dimensions& dims, const Lengths& lengths,
+                             double rpm) {
     const std::string name = s.choice("name", "", {"paper", "paper_damped", "valve_train"});
     if (name == "valve_train") return read_valve_train(s, rpm);
     CamFollowerParameters p;
@@ -706,15 +741,17 @@ MechanismBuilder read_preset(const Section& s, const CaseConfig& c, const Dimens
             if (!kind) {
                 std::string known;
                 for (const auto& f : CamFollowerParameters::fields())
-                    if (std::string(f.name) != "camshaft_speed_rpm") known += (known.empty() ? "" : ", ") + std::string(f.name);
+                    if (std::string(f.name) != "camshaft_speed_rpm")
+                        known += (known.empty() ? "" : ", ") + std::string(f.name);
                 ps->fail(key, "unknown parameter; known: " + known + ", contact_damping");
             }
             p.ref(key) = ps->quantity(key, kind);
         }
         if (ps->has("contact_damping")) {
             const std::string d = ps->choice("contact_damping", "", {"none", "hunt_crossley", "lankarani_nikravesh"});
-            p.contact_damping = d == "none" ? ContactDampingModel::none
-                              : d == "hunt_crossley" ? ContactDampingModel::hunt_crossley : ContactDampingModel::lankarani_nikravesh;
+            p.contact_damping = d == "none"            ? ContactDampingModel::none
+                                : d == "hunt_crossley" ? ContactDampingModel::hunt_crossley
+                                                       : ContactDampingModel::lankarani_nikravesh;
         }
     }
     p.camshaft_speed_rpm = rpm;
@@ -731,22 +768,26 @@ MechanismBuilder read_preset(const Section& s, const CaseConfig& c, const Dimens
     presets::PaperOptions o;
     if (const std::optional<Section> e = s.table("eccentricity")) {
         o.eccentricity = read_eccentricity(*e);
-        check_small_length(written(*e, "radius", o.eccentricity.radius), "the eccentricity radius", p.geometry.base_radius, owner);
+        check_small_length(written(*e, "radius", o.eccentricity.radius), "the eccentricity radius",
+                           p.geometry.base_radius, owner);
     }
     o.guide_clearance = s.quantity("guide_clearance", "m", 0.0);
     o.guide_wall_damping_factor = s.quantity("guide_wall_damping_factor", "s/m", 0.0);
     o.guide_friction = s.quantity("guide_friction", "-", 0.0);
-    o.element_damping_ratio = s.quantity("element_damping_ratio", "-", name == "paper_damped" ? presets::realistic_damping_ratio : 0.0);
+    o.element_damping_ratio =
+        s.quantity("element_damping_ratio", "-", name == "paper_damped" ? presets::realistic_damping_ratio : 0.0);
     o.paper_backlash = s.quantity("paper_backlash", "m", 0.0);
     o.paper_backlash_switch_width = s.quantity("paper_backlash_switch_width", "rad", 0.0);
     if (name == "paper_damped" && o.element_damping_ratio == 0.0)
-        s.fail("element_damping_ratio", "paper_damped needs a ratio in (0, 1); use name = \"paper\" for the paper's dampers");
+        s.fail("element_damping_ratio",
+               "paper_damped needs a ratio in (0, 1); use name = \"paper\" for the paper's dampers");
     MotionProgram program = MotionProgram::paper_default();
     if (s.has("program")) {
         const std::string pname = s.text("program");
         located(s, [&] { program = c.program(pname); });
         if (dims.at(pname) == LiftDimension::angle)
-            s.fail("program", "program '" + pname + "' lifts by an arm angle; the paper preset's follower translates (give a length)");
+            s.fail("program", "program '" + pname +
+                                  "' lifts by an arm angle; the paper preset's follower translates (give a length)");
         check_program_lengths(lengths.at(pname), p.geometry.base_radius, true, owner);
     }
     s.finish({"name", "parameters", "eccentricity", "guide_clearance", "guide_wall_damping_factor", "guide_friction",
@@ -762,10 +803,12 @@ SolverConfig read_solver(const Section& s) {
     SolverConfig v;
     if (s.has("duration") && s.has("revolutions")) s.fail("duration", "give revolutions or duration, not both");
     v.revolutions = s.quantity("revolutions", "-", v.revolutions);
-    if (!(v.revolutions > 0.0 && v.revolutions <= 1e6)) s.fail("revolutions", detail::concat("must be in (0, 1e6], got ", v.revolutions));
+    if (!(v.revolutions > 0.0 && v.revolutions <= 1e6))
+        s.fail("revolutions", detail::concat("must be in (0, 1e6], got ", v.revolutions));
     v.duration = s.quantity("duration", "s", 0.0);
     if (s.has("duration") && !(v.duration > 0.0)) s.fail("duration", "must be > 0 s");
-    if (s.has("time_step") && s.has("steps_per_revolution")) s.fail("time_step", "give time_step or steps_per_revolution, not both");
+    if (s.has("time_step") && s.has("steps_per_revolution"))
+        s.fail("time_step", "give time_step or steps_per_revolution, not both");
     v.time_step = s.quantity("time_step", "s", 0.0);
     if (s.has("time_step") && !(v.time_step > 0.0)) s.fail("time_step", "must be > 0 s");
     v.steps_per_revolution = s.integer("steps_per_revolution", v.steps_per_revolution, 16, 1LL << 26);
@@ -789,7 +832,8 @@ SolverConfig read_solver(const Section& s) {
     if (n.tolerance) {
         n.max_step = s.quantity("max_step", "s", n.max_step);
     } else if (s.has("max_step")) {
-        s.fail("max_step", "applies with a tolerance only (scheme = \"" + scheme + "\" without one runs fixed steps of time_step)");
+        s.fail("max_step",
+               "applies with a tolerance only (scheme = \"" + scheme + "\" without one runs fixed steps of time_step)");
     }
     n.residual_tolerance = s.quantity("residual_tolerance", "-", n.residual_tolerance);
     n.increment_tolerance = s.quantity("increment_tolerance", "-", n.increment_tolerance);
@@ -810,10 +854,26 @@ SolverConfig read_solver(const Section& s) {
         if (!named_newmark && s.has(k))
             s.fail(k, detail::concat("applies only with scheme = \"", method_name(Method::newmark), "\" (\"", scheme,
                                      "\" sets its own)"));
-    s.finish({"revolutions", "duration", "time_step", "steps_per_revolution", "scheme", "hht_alpha", "gamma", "beta",
-              "residual_tolerance", "increment_tolerance", "max_iterations", "max_halvings", "linear_solver", "settle",
-              "tolerance", "max_step",
-              "settle_tolerance", "settle_dofs", "settle_min_revolutions", "settle_max_revolutions"});
+    s.finish({"revolutions",
+              "duration",
+              "time_step",
+              "steps_per_revolution",
+              "scheme",
+              "hht_alpha",
+              "gamma",
+              "beta",
+              "residual_tolerance",
+              "increment_tolerance",
+              "max_iterations",
+              "max_halvings",
+              "linear_solver",
+              "settle",
+              "tolerance",
+              "max_step",
+              "settle_tolerance",
+              "settle_dofs",
+              "settle_min_revolutions",
+              "settle_max_revolutions"});
     SolverSettings check = n;
     check.time_step = 1.0;
     located(s, [&] { check.validate(); });
@@ -840,12 +900,14 @@ void check_recording(const Section& s, const SolverConfig& solver, const OutputC
                                             " steps): it would record a single row"));
     if (o.record_last_revolutions <= 0.0) return;
     if (o.record_last_revolutions * period > duration * (1.0 + 1e-12))
-        s.fail("record_last_revolutions", detail::concat("record_last_revolutions = ", o.record_last_revolutions,
-                                                         " is longer than the run (", duration / period, " revolutions)"));
+        s.fail("record_last_revolutions",
+               detail::concat("record_last_revolutions = ", o.record_last_revolutions, " is longer than the run (",
+                              duration / period, " revolutions)"));
     if (o.record_last_revolutions * period < 2.0 * double(o.decimation) * dt)
         s.fail("record_last_revolutions",
-               detail::concat("record_last_revolutions = ", o.record_last_revolutions, " (", o.record_last_revolutions * period,
-                              " s) holds fewer than two rows at decimation ", o.decimation, " x time step ", dt, " s"));
+               detail::concat("record_last_revolutions = ", o.record_last_revolutions, " (",
+                              o.record_last_revolutions * period, " s) holds fewer than two rows at decimation ",
+                              o.decimation, " x time step ", dt, " s"));
 }
 
 // The element table ([[contact]], [[clearance]], ...) whose name the message quotes first ("clearance
@@ -875,7 +937,8 @@ const MotionProgram& CaseConfig::program(const std::string& name) const {
         if (n == name) return p;
         known.push_back(n);
     }
-    detail::fail("unknown program '", detail::printable(name), "'; the [program.<name>] tables define: ", detail::name_list(known));
+    detail::fail("unknown program '", detail::printable(name),
+                 "'; the [program.<name>] tables define: ", detail::name_list(known));
 }
 
 CaseConfig build_case(const toml::table& table, const std::string& origin, const std::string& base_dir) {
@@ -895,7 +958,8 @@ CaseConfig build_case(const toml::table& table, const std::string& origin, const
         rpm = cam->quantity("speed", "rpm");
         // The model's own bounds (error.hpp), checked here so that the message names the line.
         const double lo = detail::min_camshaft_speed * 30.0 / pi, hi = detail::max_camshaft_speed * 30.0 / pi;
-        if (!(rpm >= lo && rpm <= hi)) cam->fail("speed", detail::concat("must be in [", lo, ", ", hi, "] rpm, got ", rpm));
+        if (!(rpm >= lo && rpm <= hi))
+            cam->fail("speed", detail::concat("must be in [", lo, ", ", hi, "] rpm, got ", rpm));
         cam->finish({"speed"});
     } else {
         root.fail_here("a [camshaft] table with its speed is required, e.g. [camshaft] speed = \"750 rpm\"");
@@ -903,12 +967,16 @@ CaseConfig build_case(const toml::table& table, const std::string& origin, const
     const bool parts = root.has("dof") || root.has("contact") || root.has("spring") || root.has("shaft");
     if (const std::optional<Section> preset = root.table("preset")) {
         if (parts)
-            root.fail(root.has("dof") ? "dof" : root.has("contact") ? "contact" : "spring",
-                      "a [preset] mechanism is complete: describe the mechanism either by its parts or by a preset, not both");
+            root.fail(root.has("dof")       ? "dof"
+                      : root.has("contact") ? "contact"
+                                            : "spring",
+                      "a [preset] mechanism is complete: describe the mechanism either by its parts or by a preset, "
+                      "not both");
         c.preset = preset->text("name", "");
         c.mechanism = read_preset(*preset, c, dims, lengths, rpm);
     } else {
-        if (!parts) root.fail_here("describe the mechanism: [[dof]], [[spring]], [[contact]] ... blocks, or a [preset]");
+        if (!parts)
+            root.fail_here("describe the mechanism: [[dof]], [[spring]], [[contact]] ... blocks, or a [preset]");
         read_parts(root, c, dims, lengths, c.mechanism);
         c.mechanism.set_camshaft_speed_rpm(rpm);
     }
@@ -921,9 +989,9 @@ CaseConfig build_case(const toml::table& table, const std::string& origin, const
     // montecarlo), which reads and checks them; they do not change the case.
     (void)root.table("sweep");
     (void)root.table("montecarlo");
-    root.finish({"camshaft", "program", "preset", "dof", "spring", "damper", "load", "contact", "clearance", "guide",
-                 "damping", "gravity", "solver", "output", "shaft", "bearing", "drive", "motor", "spring_chain",
-                 "sweep", "montecarlo"});
+    root.finish({"camshaft", "program",   "preset", "dof",     "spring",       "damper", "load",
+                 "contact",  "clearance", "guide",  "damping", "gravity",      "solver", "output",
+                 "shaft",    "bearing",   "drive",  "motor",   "spring_chain", "sweep",  "montecarlo"});
     // The description must build (DOF references, contact geometry): fail now, located at the table
     // of the element the message names, else at the file (a fault of the whole structure).
     try {
@@ -948,7 +1016,8 @@ CaseConfig load_case(const std::string& path) {
     if (S_ISDIR(st.st_mode)) detail::fail("config '", path, "' is a directory, not a config file");
     if (!S_ISREG(st.st_mode)) detail::fail("config '", path, "' is not a regular file");
     if (st.st_size == 0) detail::fail("config '", path, "' is empty");
-    if (st.st_size > (64 << 20)) detail::fail("config '", path, "' is larger than 64 MiB; put large lift tables in a data file");
+    if (st.st_size > (64 << 20))
+        detail::fail("config '", path, "' is larger than 64 MiB; put large lift tables in a data file");
     std::ifstream in(path, std::ios::binary);
     if (!in) detail::fail("config '", path, "': cannot open for reading");
     std::stringstream buffer;

@@ -18,31 +18,33 @@
 namespace camfollower::config {
 
 struct SolverConfig {
-    double revolutions = 1.0;           // of the camshaft; used unless duration > 0
-    double duration = 0.0;              // s
-    double time_step = 0.0;             // s; 0: period / steps_per_revolution
+    double revolutions = 1.0;  // of the camshaft; used unless duration > 0
+    double duration = 0.0;     // s
+    double time_step = 0.0;    // s; 0: period / steps_per_revolution
     long long steps_per_revolution = 32768;
-    SolverSettings settings;           // method and Newton tolerances (its time_step: see time_step_for)
-    bool settle = false;                // first settle on the periodic response
+    SolverSettings settings;  // method and Newton tolerances (its time_step: see time_step_for)
+    bool settle = false;      // first settle on the periodic response
     double settle_tolerance = 1e-4;
     std::vector<std::string> settle_dofs;  // empty: each contact's follower DOF
     int settle_min_revolutions = 2;
     int settle_max_revolutions = 200;
 
-    double time_step_for(double period) const { return time_step > 0.0 ? time_step : period / double(steps_per_revolution); }
+    double time_step_for(double period) const {
+        return time_step > 0.0 ? time_step : period / double(steps_per_revolution);
+    }
     double duration_for(double period) const { return duration > 0.0 ? duration : revolutions * period; }
 };
 
 struct OutputConfig {
-    std::string file;                   // CSV of the recorded channels ("" : none); relative to the working directory
-    long long decimation = 1;           // one row every `decimation` steps
+    std::string file;          // CSV of the recorded channels ("" : none); relative to the working directory
+    long long decimation = 1;  // one row every `decimation` steps
     double record_last_revolutions = 0.0;  // > 0: record only the last revolutions
 };
 
 struct CaseConfig {
-    std::string origin;                 // the file (or "<config>") the case came from
+    std::string origin;                                           // the file (or "<config>") the case came from
     std::vector<std::pair<std::string, MotionProgram>> programs;  // by name, in file order
-    std::string preset;                 // "" for a mechanism described part by part, else the preset's name
+    std::string preset;  // "" for a mechanism described part by part, else the preset's name
     MechanismBuilder mechanism;
     SolverConfig solver;
     OutputConfig output;

@@ -26,12 +26,12 @@ const char* fitting(Measure measure, DofMotion m) {
 
 DofMotion motion_of_unit(std::string_view unit) {
     static const std::map<std::string, DofMotion, std::less<>> table{
-        {"kg", DofMotion::translation},      {"g", DofMotion::translation},        {"kg m^2", DofMotion::rotation},
-        {"kg mm^2", DofMotion::rotation},    {"N/m", DofMotion::translation},      {"N/mm", DofMotion::translation},
-        {"N/um", DofMotion::translation},    {"N m/rad", DofMotion::rotation},     {"N s/m", DofMotion::translation},
-        {"N*s/m", DofMotion::translation},   {"Ns/m", DofMotion::translation},     {"N m s/rad", DofMotion::rotation},
-        {"N", DofMotion::translation},       {"kN", DofMotion::translation},       {"N m", DofMotion::rotation},
-        {"N*m", DofMotion::rotation},        {"Nm", DofMotion::rotation},          {"N mm", DofMotion::rotation},
+        {"kg", DofMotion::translation},    {"g", DofMotion::translation},    {"kg m^2", DofMotion::rotation},
+        {"kg mm^2", DofMotion::rotation},  {"N/m", DofMotion::translation},  {"N/mm", DofMotion::translation},
+        {"N/um", DofMotion::translation},  {"N m/rad", DofMotion::rotation}, {"N s/m", DofMotion::translation},
+        {"N*s/m", DofMotion::translation}, {"Ns/m", DofMotion::translation}, {"N m s/rad", DofMotion::rotation},
+        {"N", DofMotion::translation},     {"kN", DofMotion::translation},   {"N m", DofMotion::rotation},
+        {"N*m", DofMotion::rotation},      {"Nm", DofMotion::rotation},      {"N mm", DofMotion::rotation},
     };
     const auto it = table.find(unit);
     return it == table.end() ? DofMotion::unstated : it->second;

@@ -58,7 +58,8 @@ std::vector<std::pair<double, double>> runs(const std::vector<bool>& bad, double
 
 std::string intervals(const std::vector<std::pair<double, double>>& r, double step) {
     // Every grid point: runs() gives the one interval of length 2 pi - step.
-    if (r.size() == 1 && std::abs(r[0].second - r[0].first - (two_pi - step)) < 0.5 * step) return "the whole revolution";
+    if (r.size() == 1 && std::abs(r[0].second - r[0].first - (two_pi - step)) < 0.5 * step)
+        return "the whole revolution";
     std::string out;
     const std::size_t shown = std::min<std::size_t>(r.size(), 3);
     for (std::size_t i = 0; i < shown; ++i)
@@ -138,7 +139,8 @@ ForceClosure check(const Model& m, double rpm) {
         // there: the least-squares answer (its free motion carries no contact force).
         if (!x.allFinite() || (A * x - rhs).norm() > 1e-6 * (A.norm() * x.norm() + rhs.norm()))
             x = A.completeOrthogonalDecomposition().solve(rhs);
-        for (std::size_t i = 0; i < nc; ++i) F2[i][std::size_t(j)] = x(n + int(i), 0), F1[i][std::size_t(j)] = x(n + int(i), 1);
+        for (std::size_t i = 0; i < nc; ++i)
+            F2[i][std::size_t(j)] = x(n + int(i), 0), F1[i][std::size_t(j)] = x(n + int(i), 1);
     }
 
     const double max_rpm = detail::max_camshaft_speed * 30.0 / pi;
@@ -169,15 +171,17 @@ ForceClosure check(const Model& m, double rpm) {
         if (std::find(open.begin(), open.end(), true) != open.end()) {
             r.static_open = runs(open, step, phase);
             out.warnings.push_back(detail::concat(
-                who, " is not force-closed: at rest its contact force is <= 0 (", newtons(r.static_min_force), " at cam angle ",
-                degrees(r.static_min_angle), " deg; over ", intervals(r.static_open, step),
+                who, " is not force-closed: at rest its contact force is <= 0 (", newtons(r.static_min_force),
+                " at cam angle ", degrees(r.static_min_angle), " deg; over ", intervals(r.static_open, step),
                 "): nothing presses the follower onto the cam there; add a return spring with a preload, or a load, "
                 "that holds it on the cam"));
         } else if (std::find(lost.begin(), lost.end(), true) != lost.end()) {
             r.rigid_loss = runs(lost, step, phase);
             out.warnings.push_back(detail::concat(
-                who, " is not force-closed at ", speed(rpm), ": in the rigid check (the mechanism following the cam "
-                "quasi-statically: springs, preloads and loads against its inertia and damping) the contact force falls to ",
+                who, " is not force-closed at ", speed(rpm),
+                ": in the rigid check (the mechanism following the cam "
+                "quasi-statically: springs, preloads and loads against its inertia and damping) the contact force "
+                "falls to ",
                 newtons(r.rigid_min_force), " at cam angle ", degrees(r.rigid_min_angle), " deg, below zero over ",
                 intervals(r.rigid_loss, step), "; the check keeps contact up to ", speed(r.rigid_limit_rpm),
                 " (raise the return spring's preload or rate, or lower the speed)"));

@@ -30,8 +30,8 @@ struct ContactClosure {
     double static_min_force = 0.0;  // N, the smallest contact force at rest over the revolution
     double static_min_angle = 0.0;  // rad, the contact's cam angle (shaft angle + phase) where it is
     std::vector<std::pair<double, double>> static_open;  // cam-angle intervals (rad) where it is <= 0
-    double rigid_min_force = 0.0;   // N, the rigid check's smallest contact force at the checked speed
-    double rigid_min_angle = 0.0;   // rad, cam angle
+    double rigid_min_force = 0.0;  // N, the rigid check's smallest contact force at the checked speed
+    double rigid_min_angle = 0.0;  // rad, cam angle
     std::vector<std::pair<double, double>> rigid_loss;  // cam-angle intervals (rad) where it is < 0
     // The lowest camshaft speed at which the rigid check loses this contact: 0 when it is not pressed at
     // rest, infinity when no speed the model takes loses it.

@@ -92,12 +92,14 @@ void check_follower_lengths(const ContactLengths& c, bool offset) {
 
 void check_lift(const Length& lift, double base_radius, const std::string& owner) {
     if (!usable(base_radius)) return;
-    refuse_above(lift, "the lift", 10.0 * base_radius, "10 x the base radius " + number(base_radius) + " m of " + owner);
+    refuse_above(lift, "the lift", 10.0 * base_radius,
+                 "10 x the base radius " + number(base_radius) + " m of " + owner);
 }
 
 void check_small_length(const Length& length, const char* what, double base_radius, const std::string& owner) {
     if (!usable(base_radius)) return;
-    refuse_above(length, what, 0.1 * base_radius, "a tenth of the base radius " + number(base_radius) + " m of " + owner);
+    refuse_above(length, what, 0.1 * base_radius,
+                 "a tenth of the base radius " + number(base_radius) + " m of " + owner);
 }
 
 }  // namespace camfollower::config

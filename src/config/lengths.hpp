@@ -15,9 +15,9 @@ namespace camfollower::config {
 
 // One length as the config wrote it.
 struct Length {
-    std::string where;   // "file:line: key.path" of the value (Section::where)
-    double value = 0.0;  // m
-    bool bare = false;   // a bare number (no unit): metres by the config's rule, and checked here
+    std::string where;          // "file:line: key.path" of the value (Section::where)
+    double value = 0.0;         // m
+    bool bare = false;          // a bare number (no unit): metres by the config's rule, and checked here
     std::vector<double> parts;  // a pivot's coordinates as written (value is their distance from the cam centre)
 };
 

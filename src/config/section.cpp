@@ -44,17 +44,11 @@ std::string Section::location(const toml::node* node) const {
     return s.begin.line > 0 ? detail::concat(*origin_, ":", s.begin.line) : *origin_;
 }
 
-std::string Section::where(std::string_view key) const {
-    return location(table_.get(key)) + ": " + key_path(key);
-}
+std::string Section::where(std::string_view key) const { return location(table_.get(key)) + ": " + key_path(key); }
 
-void Section::fail(std::string_view key, const std::string& message) const {
-    detail::fail(where(key), ": ", message);
-}
+void Section::fail(std::string_view key, const std::string& message) const { detail::fail(where(key), ": ", message); }
 
-void Section::fail_here(const std::string& message) const {
-    detail::fail(here(), ": ", message);
-}
+void Section::fail_here(const std::string& message) const { detail::fail(here(), ": ", message); }
 
 namespace {
 
@@ -109,9 +103,7 @@ void Section::fail_named(const std::string& message) const {
     fail(best, message.compare(0, lead.size(), lead) == 0 ? message.substr(best.size() + 1) : message);
 }
 
-std::string Section::here() const {
-    return path_.empty() ? location(nullptr) : location(nullptr) + ": " + path_;
-}
+std::string Section::here() const { return path_.empty() ? location(nullptr) : location(nullptr) + ": " + path_; }
 
 const toml::node* Section::get(std::string_view key) const {
     const toml::node* n = table_.get(key);
@@ -125,7 +117,8 @@ const toml::node& Section::need(std::string_view key) const {
     return *n;
 }
 
-double Section::quantity_of(const toml::node& node, std::string_view key, std::string_view si, std::string_view unit) const {
+double Section::quantity_of(const toml::node& node, std::string_view key, std::string_view si,
+                            std::string_view unit) const {
     const auto bad = [&](const std::string& why) -> double {
         detail::fail(location(&node), ": ", key_path(key), ": ", why);
     };

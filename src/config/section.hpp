@@ -42,7 +42,8 @@ public:
     std::string text(std::string_view key, std::string_view fallback) const;
     std::vector<std::string> texts(std::string_view key) const;
     // One of `allowed` (the message lists them).
-    std::string choice(std::string_view key, std::string_view fallback, const std::vector<std::string_view>& allowed) const;
+    std::string choice(std::string_view key, std::string_view fallback,
+                       const std::vector<std::string_view>& allowed) const;
     std::optional<Section> table(std::string_view key) const;
     // An array of tables ([[key]] blocks, or an array of inline tables); empty when absent.
     std::vector<Section> tables(std::string_view key) const;

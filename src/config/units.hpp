@@ -15,7 +15,7 @@ struct UnitFactor {
 };
 
 struct QuantityKind {
-    const char* si;                   // the SI unit the value ends in ("-": dimensionless)
+    const char* si;                    // the SI unit the value ends in ("-": dimensionless)
     std::vector<UnitFactor> accepted;  // empty: plain numbers only
 };
 

@@ -13,9 +13,9 @@ int main() {
 
     // The user's own mechanism: a flat-faced tappet on a rigid cam, a valve spring with its own mass.
     cf::MechanismBuilder b;
-    b.add_dof("tappet", 0.1, {0, 1, 0});                     // kg, moves along +y
+    b.add_dof("tappet", 0.1, {0, 1, 0});  // kg, moves along +y
     b.add_dof("spring_mid", 0.02, {0, 1, 0});
-    b.add_spring("spring_top", "tappet", "spring_mid", 6e4, 0.0, 250.0);   // N/m, N s/m, preload N
+    b.add_spring("spring_top", "tappet", "spring_mid", 6e4, 0.0, 250.0);  // N/m, N s/m, preload N
     b.add_spring("spring_bottom", "spring_mid", "ground", 6e4, 0.0, 250.0);
     b.set_gravity({0, -9.81, 0});
     b.set_camshaft_speed_rpm(1500);
@@ -29,7 +29,7 @@ int main() {
     const cf::RunResult<cf::Mechanism<>> run = cf::simulate(mine, cf::SolverSettings{}, options);
     const double* force = run.recording.channel("cam.force");
 
-    const auto preset = cf::presets::paper();                  // the paper's 7-DOF model
+    const auto preset = cf::presets::paper();  // the paper's 7-DOF model
     const auto q = preset.static_equilibrium(0.0);
     std::printf("pressure angle at 105 deg: %.6f deg; %zu rows; contact force at t = 0: %.2f N; preset y4 = %.3g m\n",
                 cf::radians_to_degrees(alpha), run.recording.rows, force[0], q[3]);

@@ -37,13 +37,18 @@ struct Bouncer {
         f[0] = m * g - (q[0] < 0.0 ? k * -q[0] : 0.0);
     }
     int max_rank() const { return 1; }
-    void tangent(const Workspace&, const Vector& q, const Vector&, double cq, double, camfollower::LowRank<Vector>& uv) const {
+    void tangent(const Workspace&, const Vector& q, const Vector&, double cq, double,
+                 camfollower::LowRank<Vector>& uv) const {
         if (q[0] < 0.0) uv.add(Vector::Ones(), Vector::Constant(cq * k));
     }
     template <bool E = WithEvents, std::enable_if_t<E, int> = 0>
-    std::vector<std::string> event_names() const { return {"ground"}; }
+    std::vector<std::string> event_names() const {
+        return {"ground"};
+    }
     template <bool E = WithEvents, std::enable_if_t<E, int> = 0>
-    void event_values(const Workspace&, const Vector& q, const Vector&, double* out) const { out[0] = -q[0]; }
+    void event_values(const Workspace&, const Vector& q, const Vector&, double* out) const {
+        out[0] = -q[0];
+    }
 
     double flight() const { return 2.0 * std::sqrt(2.0 * h0 / g); }  // between two contacts
     double impact_speed() const { return std::sqrt(2.0 * g * h0); }
@@ -71,4 +76,3 @@ struct Bouncer {
         return -d + d * std::cos(w * s) - (v1 / w) * std::sin(w * s);
     }
 };
-

@@ -38,8 +38,8 @@ MechanismBuilder supported_shaft(double length, int elements, const std::vector<
 
 // Generalized eigenvalues (rad/s) of a mechanism's tangent stiffness and mass at its equilibrium.
 Eigen::VectorXd natural_frequencies(const Mechanism<>& m) {
-    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(m.tangent_stiffness(0.0, m.initial_displacement()),
-                                                                       m.mass(), Eigen::EigenvaluesOnly);
+    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(
+        m.tangent_stiffness(0.0, m.initial_displacement()), m.mass(), Eigen::EigenvaluesOnly);
     return eig.eigenvalues().cwiseMax(0.0).cwiseSqrt();
 }
 
@@ -66,7 +66,8 @@ TEST_CASE("a shaft in a mechanism: midspan load and own weight give Timoshenko's
         REQUIRE(point.size() == 5 * (elements + 1));
         // Bending, shear, and the bearings' own give under their reactions (a rigid translation).
         const double exact_point = P * L * L * L / (48.0 * EI) + P * L / (4.0 * kGA) + 0.5 * P / bearing_stiffness;
-        const double mid_point = point.initial_displacement()[point.dof_index(b.structure.shaft_dof_at("s", 0.5 * L, 2))];
+        const double mid_point =
+            point.initial_displacement()[point.dof_index(b.structure.shaft_dof_at("s", 0.5 * L, 2))];
         CHECK(-mid_point == Approx(exact_point).epsilon(1e-9));
 
         MechanismBuilder heavy = supported_shaft(L, elements, {0.5 * L});
@@ -74,7 +75,8 @@ TEST_CASE("a shaft in a mechanism: midspan load and own weight give Timoshenko's
         const Mechanism<> weight(heavy);
         const double exact_weight =
             5.0 * w * std::pow(L, 4) / (384.0 * EI) + w * L * L / (8.0 * kGA) + 0.5 * w * L / bearing_stiffness;
-        const double mid_weight = weight.initial_displacement()[weight.dof_index(heavy.structure.shaft_dof_at("s", 0.5 * L, 2))];
+        const double mid_weight =
+            weight.initial_displacement()[weight.dof_index(heavy.structure.shaft_dof_at("s", 0.5 * L, 2))];
         CHECK(-mid_weight == Approx(exact_weight).epsilon(1e-9));
     }
 }
@@ -93,10 +95,11 @@ TEST_CASE("a shaft in a mechanism: bending and torsional frequencies converge to
     std::vector<double> bending_errors;
     for (int elements : {4, 8, 16}) {
         const Eigen::VectorXd w = natural_frequencies(Mechanism<>(supported_shaft(L, elements, {})));
-        const double bending_error = std::abs(w[0] / bending - 1.0), torsion_error = std::abs(nearest(w, torsion) / torsion - 1.0);
+        const double bending_error = std::abs(w[0] / bending - 1.0),
+                     torsion_error = std::abs(nearest(w, torsion) / torsion - 1.0);
         INFO(elements << " elements: bending " << w[0] / two_pi << " Hz (exact " << bending / two_pi << "), error "
                       << bending_error << "; torsion error " << torsion_error);
-        CHECK(w[1] == Approx(w[0]).epsilon(1e-6));  // the two bending planes
+        CHECK(w[1] == Approx(w[0]).epsilon(1e-6));            // the two bending planes
         CHECK(torsion_error < 0.12 / (elements * elements));  // the linear bar: second order
         bending_errors.push_back(bending_error);
     }
@@ -142,8 +145,8 @@ MechanismBuilder twisting_cam(const Follower& follower, const MotionProgram& pro
     b.add_spring("drive", "twist", "ground", 5e3);
     b.add_dof("s", translating ? 0.3 : 4e-4, {0, 1, 0});
     b.add_spring("spring", "s", "ground", translating ? 2e4 : 40.0, 0.0, translating ? 150.0 : 4.0);
-    ContactPairSpec c{"cam", program, follower, HertzContact{2e8, 1.5, 0.0}, 0.4, "ground", "ground", "s", "ground",
-                      CamEccentricity{}, "twist"};
+    ContactPairSpec c{"cam",    program, follower, HertzContact{2e8, 1.5, 0.0}, 0.4,    "ground",
+                      "ground", "s",     "ground", CamEccentricity{},           "twist"};
     b.add_contact(c);
     return b;
 }
@@ -240,9 +243,17 @@ MechanismBuilder camshaft(int cams, int elements_per_bay, bool contact_damping) 
         const std::string f = "valve" + std::to_string(i);
         b.add_dof(f, 0.1, {0, 0, 1});
         b.add_spring_chain("spring" + std::to_string(i), f, "ground", 3e4, 0.04, 4, 2.0, 250.0, {0, 0, 1});
-        ContactPairSpec c{"cam" + std::to_string(i), MotionProgram::paper_default(0.008), TranslatingRoller(0.02, 0.008, 0.0),
-                          HertzContact{2e8, 1.0, contact_damping ? 2e-5 : 0.0}, two_pi * i / cams, "ground", "ground", f,
-                          "ground", CamEccentricity{}, "ground"};
+        ContactPairSpec c{"cam" + std::to_string(i),
+                          MotionProgram::paper_default(0.008),
+                          TranslatingRoller(0.02, 0.008, 0.0),
+                          HertzContact{2e8, 1.0, contact_damping ? 2e-5 : 0.0},
+                          two_pi * i / cams,
+                          "ground",
+                          "ground",
+                          f,
+                          "ground",
+                          CamEccentricity{},
+                          "ground"};
         b.mount_cam(c, "cs", stations[std::size_t(i)], 0.015, 0.3, 1e-4);
     }
     return b;
@@ -251,7 +262,8 @@ MechanismBuilder camshaft(int cams, int elements_per_bay, bool contact_damping) 
 // max |a - b| / max |a|.
 double relative_difference(const std::vector<double>& a, const std::vector<double>& b) {
     double d = 0.0, scale = 0.0;
-    for (std::size_t i = 0; i < a.size(); ++i) d = std::max(d, std::abs(a[i] - b[i])), scale = std::max(scale, std::abs(a[i]));
+    for (std::size_t i = 0; i < a.size(); ++i)
+        d = std::max(d, std::abs(a[i] - b[i])), scale = std::max(scale, std::abs(a[i]));
     return d / scale;
 }
 
@@ -271,9 +283,10 @@ TEST_CASE("the sparse backend (KLU, CHOLMOD) reproduces the dense one on a four-
         const auto sparse = run(m, s, duration, 10);
         s.sparse_factorization = SparseFactorization::klu;
         const auto klu = run(m, s, duration, 10);
-        INFO("relative differences from dense: automatic " << relative_difference(dense.q, sparse.q) << ", KLU "
-             << relative_difference(dense.q, klu.q) << "; Newton iterations per step " << dense.stats.mean_iterations()
-             << " dense, " << sparse.stats.mean_iterations() << " sparse");
+        INFO("relative differences from dense: automatic "
+             << relative_difference(dense.q, sparse.q) << ", KLU " << relative_difference(dense.q, klu.q)
+             << "; Newton iterations per step " << dense.stats.mean_iterations() << " dense, "
+             << sparse.stats.mean_iterations() << " sparse");
         CHECK(relative_difference(dense.q, sparse.q) <= 1e-9);
         CHECK(relative_difference(dense.q, klu.q) <= 1e-9);
         CHECK(relative_difference(dense.q, sparse.q) > 0.0);  // the backends really differ (in rounding)
@@ -296,21 +309,35 @@ TEST_CASE("the sparse backend (KLU, CHOLMOD) reproduces the dense one on a four-
 TEST_CASE("camshaft bad input: cams outside or overlapping, bearings twice at a station, a shaft held by nothing") {
     MechanismBuilder b;
     b.add_shaft({"cs", shaft_section(), 0.3, 0.05, {0.1, 0.11, 0.2}, false});
-    ContactPairSpec c{"cam", MotionProgram::paper_default(0.008), TranslatingRoller(0.02, 0.008, 0.0), HertzContact{},
-                      0.0, "ground", "ground", "ground", "ground", CamEccentricity{}, "ground"};
-    CHECK_THROWS_WITH(b.mount_cam(c, "cs", 0.4), Catch::Contains("cam 'cam' at x = 0.4 m is outside shaft 'cs' [0, 0.3] m"));
+    ContactPairSpec c{"cam",
+                      MotionProgram::paper_default(0.008),
+                      TranslatingRoller(0.02, 0.008, 0.0),
+                      HertzContact{},
+                      0.0,
+                      "ground",
+                      "ground",
+                      "ground",
+                      "ground",
+                      CamEccentricity{},
+                      "ground"};
+    CHECK_THROWS_WITH(b.mount_cam(c, "cs", 0.4),
+                      Catch::Contains("cam 'cam' at x = 0.4 m is outside shaft 'cs' [0, 0.3] m"));
     CHECK_THROWS_WITH(b.mount_cam(c, "cs", 0.15), Catch::Contains("shaft 'cs' has no node at x = 0.15 m"));
     CHECK_THROWS_WITH(b.mount_cam(c, "nowhere", 0.1), Catch::Contains("no shaft named 'nowhere'"));
     b.add_dof("f1", 0.1, {0, 0, 1});
     c.follower_dof = "f1";
     b.mount_cam(c, "cs", 0.1, 0.015);
     c.name = "cam2";
-    CHECK_THROWS_WITH(b.mount_cam(c, "cs", 0.11, 0.015), Catch::Contains("cams 'cam' (x = 0.1 m, width 0.015 m) and 'cam2'"));
+    CHECK_THROWS_WITH(b.mount_cam(c, "cs", 0.11, 0.015),
+                      Catch::Contains("cams 'cam' (x = 0.1 m, width 0.015 m) and 'cam2'"));
     b.add_bearing("b", "cs", 0.0, 1e8);
-    CHECK_THROWS_WITH(b.add_bearing("b2", "cs", 0.0, 1e8), Catch::Contains("bearings 'b' and 'b2' are at the same station"));
-    CHECK_THROWS_WITH(b.add_shaft({"cs", shaft_section(), 0.3, 0.05, {}, false}), Catch::Contains("shaft 'cs' is defined twice"));
+    CHECK_THROWS_WITH(b.add_bearing("b2", "cs", 0.0, 1e8),
+                      Catch::Contains("bearings 'b' and 'b2' are at the same station"));
+    CHECK_THROWS_WITH(b.add_shaft({"cs", shaft_section(), 0.3, 0.05, {}, false}),
+                      Catch::Contains("shaft 'cs' is defined twice"));
     CHECK_THROWS_WITH(b.add_shaft({"t", shaft_section(), -1.0, 0.0, {}, false}), Catch::Contains("shaft 't' length"));
-    CHECK_THROWS_WITH(b.add_shaft({"t", shaft_section(), 1.0, 0.0, {1.5}, false}), Catch::Contains("station x = 1.5 m is outside"));
+    CHECK_THROWS_WITH(b.add_shaft({"t", shaft_section(), 1.0, 0.0, {1.5}, false}),
+                      Catch::Contains("station x = 1.5 m is outside"));
     BeamSection bad = shaft_section();
     bad.area = NAN;
     CHECK_THROWS_WITH(b.add_shaft({"t", bad, 1.0, 0.0, {}, false}), Catch::Contains("shaft 't' section: area"));
@@ -334,7 +361,8 @@ TEST_CASE("the valve-train preset: lowest modes by sparse shift-invert equal the
         CHECK(sparse.shapes.col(k).dot(m.mass() * sparse.shapes.col(k)) == Approx(1.0).epsilon(1e-8));
     }
     // Every valve is held on its base circle or its flank by the spring's preload at the start.
-    for (std::size_t i = 0; i < m.contacts().size(); ++i) CHECK(m.static_contact_force(0.0, m.initial_displacement(), i) > 150.0);
+    for (std::size_t i = 0; i < m.contacts().size(); ++i)
+        CHECK(m.static_contact_force(0.0, m.initial_displacement(), i) > 150.0);
 }
 
 TEST_CASE("a motor drive: its torque twists the shaft by torque / position gain, and a motor needs that gain") {

@@ -56,7 +56,8 @@ void check_same_run(const System& system, const SolverSettings& chosen_by_auto, 
     REQUIRE(r.recording.names == direct.recording.names);
     std::size_t differ = 0;
     for (const std::string& name : r.recording.names)
-        for (std::size_t i = 0; i < r.recording.rows; ++i) differ += r.recording.at(name, i) != direct.recording.at(name, i);
+        for (std::size_t i = 0; i < r.recording.rows; ++i)
+            differ += r.recording.at(name, i) != direct.recording.at(name, i);
     CHECK(differ == 0u);
 }
 
@@ -106,7 +107,8 @@ TEST_CASE("Auto under a tolerance: radau where the fastest mode is damped or rin
     RunOptions o;
     o.duration = damped.period() / 64;
     const std::string why = simulate(damped, automatic(damped.period() / 512, 1e-6), o).method_choice;
-    CHECK_THAT(why, Catch::StartsWith("radau: the fastest modes are damped: ") && Catch::Contains("Hz at damping ratio 0.78"));
+    CHECK_THAT(
+        why, Catch::StartsWith("radau: the fastest modes are damped: ") && Catch::Contains("Hz at damping ratio 0.78"));
     const std::string alone = simulate(stiff, automatic(stiff.period() / 512, 1e-6), o).method_choice;
     CHECK_THAT(alone, Catch::StartsWith("radau: the fastest mode rings alone") &&
                           Catch::Contains(" times the next ringing mode (1.052e+04 Hz)"));
@@ -118,7 +120,8 @@ TEST_CASE("Auto under a tolerance: radau where the fastest mode is damped or rin
 
 TEST_CASE("Auto under a tolerance above 1e-5 bounds radau's steps by the output interval, unless max_step is set") {
     const Mechanism<presets::paper_dofs> damped = presets::paper_damped();
-    const State<Mechanism<presets::paper_dofs>> start = state_at(damped, 0.0, damped.initial_displacement(), damped.initial_velocity());
+    const State<Mechanism<presets::paper_dofs>> start =
+        state_at(damped, 0.0, damped.initial_displacement(), damped.initial_velocity());
     const double dt = damped.period() / 2048;
     const MethodChoice loose = choose_method(damped, automatic(dt, 1e-4), start);
     CHECK(loose.settings.method == Method::radau);
@@ -133,8 +136,8 @@ TEST_CASE("Auto under a tolerance above 1e-5 bounds radau's steps by the output 
     CHECK_THAT(tight.reason, !Catch::Contains("max_step"));
     // dop853 is left as asked.
     const Mechanism<presets::paper_dofs> paper = presets::paper();
-    const MethodChoice explicit_choice =
-        choose_method(paper, automatic(dt, 1e-8), state_at(paper, 0.0, paper.initial_displacement(), paper.initial_velocity()));
+    const MethodChoice explicit_choice = choose_method(
+        paper, automatic(dt, 1e-8), state_at(paper, 0.0, paper.initial_displacement(), paper.initial_velocity()));
     CHECK(explicit_choice.settings.method == Method::dop853);
     CHECK(explicit_choice.settings.max_step == 0.0);
 }
@@ -148,7 +151,8 @@ TEST_CASE("Auto at a fixed step says why it took Fox-Goodwin or average accelera
     s.time_step = paper.period() / 8192;
     const auto fine = simulate(paper, s, o);
     CHECK(std::string(fine.method) == "fox_goodwin");
-    CHECK_THAT(fine.method_choice, Catch::StartsWith("fox_goodwin: time_step 9.766e-06 s against Fox-Goodwin's stability limit"));
+    CHECK_THAT(fine.method_choice,
+               Catch::StartsWith("fox_goodwin: time_step 9.766e-06 s against Fox-Goodwin's stability limit"));
     s.time_step = paper.period() / 1024;  // 78 us: beyond the limit (~29 us at the 12 kHz contact mode)
     const auto coarse = simulate(paper, s, o);
     CHECK(std::string(coarse.method) == "newmark");
@@ -162,8 +166,10 @@ TEST_CASE("Auto refuses settings it would ignore, naming them") {
     CHECK_THROWS_WITH(s.validate(), Catch::Contains("tolerance must be in [1e-13, 0.1]"));
     s = automatic(1e-3, 1e-6);
     s.beta = 1.0 / 12.0;
-    CHECK_THROWS_WITH(s.validate(), Catch::Contains("gamma and beta apply to method 'newmark' only, got them with method 'auto'"));
+    CHECK_THROWS_WITH(s.validate(),
+                      Catch::Contains("gamma and beta apply to method 'newmark' only, got them with method 'auto'"));
     s = automatic(1e-3, 1e-6);
     s.hht_alpha = -0.1;
-    CHECK_THROWS_WITH(s.validate(), Catch::Contains("hht_alpha applies to method 'hht' only, got it with method 'auto'"));
+    CHECK_THROWS_WITH(s.validate(),
+                      Catch::Contains("hht_alpha applies to method 'hht' only, got it with method 'auto'"));
 }

@@ -64,15 +64,18 @@ decimation = 4
 cf::MechanismBuilder two_mass_by_hand() {
     const auto deg = cf::degrees_to_radians;
     const cf::MotionLaw c = cf::MotionLaw::cycloidal(), d = cf::MotionLaw::dwell();
-    const cf::MotionProgram p({{d, 0, deg(60), 0, 0}, {c, deg(60), deg(150), 0, 0.008}, {d, deg(150), deg(210), 0.008, 0.008},
-                               {c, deg(210), deg(300), 0.008, 0}, {d, deg(300), cf::two_pi, 0, 0}});
+    const cf::MotionProgram p({{d, 0, deg(60), 0, 0},
+                               {c, deg(60), deg(150), 0, 0.008},
+                               {d, deg(150), deg(210), 0.008, 0.008},
+                               {c, deg(210), deg(300), 0.008, 0},
+                               {d, deg(300), cf::two_pi, 0, 0}});
     cf::MechanismBuilder b;
     b.add_dof("tappet", 0.1, {0, 1, 0});
     b.add_dof("mid", 0.02, {0, 1, 0});
     b.add_spring("top", "tappet", "mid", 6e4, 0.0, 250.0);
     b.add_spring("bottom", "mid", "ground", 6e4, 3.0, 250.0);
-    b.add_contact({"cam", p, cf::TranslatingFlat(0.02), cf::HertzContact{2e8, 1.0, 0.0}, 0.0, "ground", "ground", "tappet",
-                   "ground", cf::CamEccentricity{}, "ground"});
+    b.add_contact({"cam", p, cf::TranslatingFlat(0.02), cf::HertzContact{2e8, 1.0, 0.0}, 0.0, "ground", "ground",
+                   "tappet", "ground", cf::CamEccentricity{}, "ground"});
     b.set_gravity({0, -9.81, 0});
     b.set_camshaft_speed_rpm(900.0);
     return b;
@@ -107,7 +110,8 @@ TEST_CASE("config: a mechanism from its parts is the one the builder makes by ha
         REQUIRE(x.rows == y.rows);
         REQUIRE(x.rows > 100);
         double worst = 0.0;
-        for (std::size_t i = 0; i < x.rows; ++i) worst = std::max(worst, std::abs(x.at("cam.force", i) - y.at("cam.force", i)));
+        for (std::size_t i = 0; i < x.rows; ++i)
+            worst = std::max(worst, std::abs(x.at("cam.force", i) - y.at("cam.force", i)));
         CHECK(worst <= 1e-9);  // the degree conversion of the angles may differ in the last bit
     });
 }
@@ -123,7 +127,8 @@ eccentricity = { radius = "10 um", phase = "90 deg" }
 [preset.parameters]
 offset = "5 mm"
 contact_stiffness = 2.1e8
-)", "paper.toml");
+)",
+                                                "paper.toml");
     CHECK(c.preset == "paper");
     cf::CamFollowerParameters p;
     p.geometry.offset = 0.005;
@@ -149,17 +154,20 @@ TEST_CASE("config: lift tables, polynomial segments and continuity") {
         theta += (i ? ", " : "") + std::to_string(60.0 + 90.0 * x);
         h += (i ? ", " : "") + std::to_string(1e3 * 0.01 * cf::MotionLaw::polynomial_4567().evaluate(x).S);
     }
-    const std::string text = "[camshaft]\nspeed = 600\n[program.t]\nsegments = [\n { law = \"dwell\", end = \"60 deg\" },\n"
-                             " { law = \"table\", theta = " + theta + "], h = " + h + "] },\n"
-                             " { law = \"polynomial_4567\", end = \"360 deg\", h = 0 },\n]\n"
-                             "[preset]\nname = \"paper\"\nprogram = \"t\"\n";
+    const std::string text =
+        "[camshaft]\nspeed = 600\n[program.t]\nsegments = [\n { law = \"dwell\", end = \"60 deg\" },\n"
+        " { law = \"table\", theta = " +
+        theta + "], h = " + h +
+        "] },\n"
+        " { law = \"polynomial_4567\", end = \"360 deg\", h = 0 },\n]\n"
+        "[preset]\nname = \"paper\"\nprogram = \"t\"\n";
     const cf::config::CaseConfig c = parse_case(text, "table.toml");
     const cf::MotionProgram& p = c.program("t");
     const double beta = cf::degrees_to_radians(90.0);
     for (double x : {0.1, 0.37, 0.5, 0.81}) {
         const cf::LawValue v = cf::MotionLaw::polynomial_4567().evaluate(x);
         const cf::FollowerMotion m = p.evaluate(cf::degrees_to_radians(60.0) + x * beta);
-        CHECK(m.h == Approx(0.01 * v.S).margin(2e-7));                 // the table holds 6 digits in mm
+        CHECK(m.h == Approx(0.01 * v.S).margin(2e-7));  // the table holds 6 digits in mm
         CHECK(m.d2h == Approx(0.01 * v.A / (beta * beta)).margin(2e-4 * 0.01 * 52.5 / (beta * beta) * 10));
     }
     // Polynomial segment: the 3-4-5 polynomial from its end conditions (the default [0, 0]).
@@ -193,7 +201,9 @@ segments = [
 [preset]
 name = "paper"
 program = "q"
-)", "jump.toml"), Catch::Contains("jump.toml:5: program.q.continuity"));
+)",
+                                 "jump.toml"),
+                      Catch::Contains("jump.toml:5: program.q.continuity"));
 }
 
 TEST_CASE("config: errors name the file, the line and the key") {
@@ -201,7 +211,8 @@ TEST_CASE("config: errors name the file, the line and the key") {
     const auto fails = [&](const std::string& text, const std::string& expected) {
         CHECK_THROWS_WITH(parse_case(text, "c.toml"), Catch::Contains(expected));
     };
-    fails(head + "[preset.parameters]\noffset = \"10 kg\"\n", "c.toml:6: preset.parameters.offset: unit 'kg' does not fit this quantity (m)");
+    fails(head + "[preset.parameters]\noffset = \"10 kg\"\n",
+          "c.toml:6: preset.parameters.offset: unit 'kg' does not fit this quantity (m)");
     fails(head + "[preset.parameters]\nofset = 0.01\n", "c.toml:6: preset.parameters.ofset: unknown parameter");
     fails(head + "[solver]\nrevs = 1\n", "c.toml:6: solver.revs: unknown key; known here: revolutions");
     fails(head + "[solverr]\n", "c.toml:5: solverr: unknown key");
@@ -215,20 +226,26 @@ TEST_CASE("config: errors name the file, the line and the key") {
     fails("[preset]\nname = \"paper\"\n", "a [camshaft] table with its speed is required");
     fails(head + "[solver]\nsteps_per_revolution = 8\n", "solver.steps_per_revolution: must be in [16, ");
     fails(head + "[solver]\nrevolutions = nan\n", "solver.revolutions: must be finite");
-    fails("[camshaft]\nspeed = 600\n[program.a]\nsegments = [{ law = \"dwell\", end = \"360 deg\" }]\n"
-          "[preset]\nname = \"paper\"\nprogram = \"b\"\n", "unknown program 'b'; the [program.<name>] tables define: a");
+    fails(
+        "[camshaft]\nspeed = 600\n[program.a]\nsegments = [{ law = \"dwell\", end = \"360 deg\" }]\n"
+        "[preset]\nname = \"paper\"\nprogram = \"b\"\n",
+        "unknown program 'b'; the [program.<name>] tables define: a");
     // A translating follower cannot take an arm angle as its lift.
-    fails("[camshaft]\nspeed = 600\n[program.a]\nsegments = [{ law = \"dwell\", end = \"90 deg\" },"
-          "{ law = \"cycloidal\", end = \"360 deg\", h = \"0 deg\" }]\n[preset]\nname = \"paper\"\nprogram = \"a\"\n",
-          "preset.program: program 'a' lifts by an arm angle");
+    fails(
+        "[camshaft]\nspeed = 600\n[program.a]\nsegments = [{ law = \"dwell\", end = \"90 deg\" },"
+        "{ law = \"cycloidal\", end = \"360 deg\", h = \"0 deg\" }]\n[preset]\nname = \"paper\"\nprogram = \"a\"\n",
+        "preset.program: program 'a' lifts by an arm angle");
     // Parts: an unknown DOF, a missing follower table, a bad follower parameter.
-    const std::string parts = "[camshaft]\nspeed = 600\n[program.a]\nsegments = [{ law = \"dwell\", end = \"90 deg\" },"
-                              "{ law = \"cycloidal\", end = \"360 deg\", h = \"1 mm\" }]\n";  // closes at 1 mm: refused
+    const std::string parts =
+        "[camshaft]\nspeed = 600\n[program.a]\nsegments = [{ law = \"dwell\", end = \"90 deg\" },"
+        "{ law = \"cycloidal\", end = \"360 deg\", h = \"1 mm\" }]\n";  // closes at 1 mm: refused
     fails(parts, "c.toml:4: program.a.segments:");
-    const std::string ok = "[camshaft]\nspeed = 600\n[program.a]\nsegments = [{ law = \"cycloidal\", end = \"180 deg\", h = \"1 mm\" },"
-                           "{ law = \"cycloidal\", end = \"360 deg\", h = 0 }]\n[[dof]]\nname = \"f\"\nmass = 0.1\n";
+    const std::string ok =
+        "[camshaft]\nspeed = 600\n[program.a]\nsegments = [{ law = \"cycloidal\", end = \"180 deg\", h = \"1 mm\" },"
+        "{ law = \"cycloidal\", end = \"360 deg\", h = 0 }]\n[[dof]]\nname = \"f\"\nmass = 0.1\n";
     fails(ok + "[[spring]]\nname = \"s\"\na = \"g\"\nstiffness = 1e4\n", "c.toml:10: spring[0].a: unknown DOF 'g'");
-    fails(ok + "[[contact]]\nname = \"c\"\nprogram = \"a\"\nfollower_dof = \"f\"\nstiffness = 1e8\n", "a contact needs a follower table");
+    fails(ok + "[[contact]]\nname = \"c\"\nprogram = \"a\"\nfollower_dof = \"f\"\nstiffness = 1e8\n",
+          "a contact needs a follower table");
     fails(ok + "[[contact]]\nname = \"c\"\nprogram = \"a\"\nfollower_dof = \"f\"\nstiffness = 1e8\n"
                "follower = { type = \"translating_roller\", base_radius = \"-3 mm\", roller_radius = \"5 mm\" }\n",
           "c.toml:13: contact[0].follower.base_radius: must be finite and > 0");
@@ -240,19 +257,23 @@ TEST_CASE("config: errors name the file, the line and the key") {
 TEST_CASE("config: a model's error is located at the key it names") {
     // The builders name their parameter; the reader gives that key's line and path (it gave the
     // table's, or for the mechanism's final checks the file alone).
-    const std::string ok = "[camshaft]\nspeed = 600\n[program.a]\nsegments = [{ law = \"cycloidal\", end = \"180 deg\", h = \"1 mm\" },"
-                           "{ law = \"cycloidal\", end = \"360 deg\", h = 0 }]\n[[dof]]\nname = \"f\"\nmass = 0.1\n";
-    const std::string contact = "[[contact]]\nname = \"c\"\nprogram = \"a\"\nfollower_dof = \"f\"\nstiffness = 1e8\n"
-                                "follower = { type = \"translating_roller\", base_radius = \"30 mm\", roller_radius = \"5 mm\" }\n";
+    const std::string ok =
+        "[camshaft]\nspeed = 600\n[program.a]\nsegments = [{ law = \"cycloidal\", end = \"180 deg\", h = \"1 mm\" },"
+        "{ law = \"cycloidal\", end = \"360 deg\", h = 0 }]\n[[dof]]\nname = \"f\"\nmass = 0.1\n";
+    const std::string contact =
+        "[[contact]]\nname = \"c\"\nprogram = \"a\"\nfollower_dof = \"f\"\nstiffness = 1e8\n"
+        "follower = { type = \"translating_roller\", base_radius = \"30 mm\", roller_radius = \"5 mm\" }\n";
     const auto fails = [&](const std::string& text, const std::string& expected) {
         CHECK_THROWS_WITH(parse_case(text, "c.toml"), Catch::Contains(expected));
     };
-    fails(ok + "[[dof]]\nname = \"g\"\n\nmass = -1\n", "c.toml:11: dof[1].mass: mass of DOF 'g' must be finite and > 0");
+    fails(ok + "[[dof]]\nname = \"g\"\n\nmass = -1\n",
+          "c.toml:11: dof[1].mass: mass of DOF 'g' must be finite and > 0");
     fails(ok + "[[spring]]\nname = \"s\"\na = \"f\"\n\nstiffness = -1\n",
           "c.toml:12: spring[0].stiffness: stiffness of 's' must be finite and >= 0");
     // Checked when the whole mechanism is built: the element named in the message, then its key.
     fails(ok + "[[spring]]\nname = \"s\"\na = \"f\"\nstiffness = 1e4\n" + contact +
-              "[[clearance]]\nname = \"gap\"\ngap_dofs = [\"f\"]\ngap_coefficients = [1]\nclearance = 0.001\nstiffness = 1e6\n"
+              "[[clearance]]\nname = \"gap\"\ngap_dofs = [\"f\"]\ngap_coefficients = [1]\nclearance = 0.001\nstiffness "
+              "= 1e6\n"
               "friction = 0.1\nsliding_dof = \"nope\"\n",
           "c.toml:25: clearance[0].sliding_dof: clearance 'gap' sliding_dof refers to DOF 'nope'");
     fails(ok + "[[spring]]\nname = \"s\"\na = \"f\"\nstiffness = 1e4\n[damping]\nmodal_ratios = [0.1, 0.2]\n",
@@ -286,8 +307,9 @@ TEST_CASE("config: files: a directory, an empty file, a missing lift table") {
     { std::ofstream(empty).flush(); }
     CHECK_THROWS_WITH(cf::config::load_case(empty), Catch::Contains("is empty"));
     std::remove(empty.c_str());
-    CHECK_THROWS_WITH(parse_case("[camshaft]\nspeed = 600\n[program.m]\nfile = \"no_such_lift.csv\"\n", "c.toml", "/tmp"),
-                      Catch::Contains("c.toml:4: program.m.file: cannot read the lift table '/tmp/no_such_lift.csv'"));
+    CHECK_THROWS_WITH(
+        parse_case("[camshaft]\nspeed = 600\n[program.m]\nfile = \"no_such_lift.csv\"\n", "c.toml", "/tmp"),
+        Catch::Contains("c.toml:4: program.m.file: cannot read the lift table '/tmp/no_such_lift.csv'"));
 }
 
 TEST_CASE("config: a program's manufacturing error is the one the API adds") {
@@ -307,7 +329,8 @@ dent = [{ centre = "100 deg", width = "4 deg", depth = "20 um" }]
 [preset]
 name = "paper"
 program = "worn"
-)", "worn.toml");
+)",
+                                                "worn.toml");
     const cf::MotionProgram expected = cf::MotionProgram::paper_default().with_profile_error(
         cf::ProfileError::waviness(5e-6, 3, cf::degrees_to_radians(10.0)) +
         cf::ProfileError::dent(cf::degrees_to_radians(100.0), cf::degrees_to_radians(4.0), 20e-6));
@@ -321,8 +344,10 @@ program = "worn"
         cf::ProfileError::waviness(5e-6, 3, cf::degrees_to_radians(10.0)));
     const double centre = cf::degrees_to_radians(100.0);
     CHECK(std::abs(c.program("worn").evaluate(centre).h - wavy.evaluate(centre).h) == Approx(20e-6).epsilon(1e-9));
-    CHECK_THROWS_WITH(parse_case("[camshaft]\nspeed = 750\n[program.w]\nsegments = [{ law = \"dwell\", end = \"360 deg\" }]\n"
-                                 "[program.w.error]\nwaviness = [{ amplitude = \"5 um\", order = 0 }]\n[preset]\nname = \"paper\"\nprogram = \"w\"\n",
-                                 "w.toml"),
-                      Catch::Contains("w.toml:6: program.w.error.waviness[0].order: must be in [1, "));
+    CHECK_THROWS_WITH(
+        parse_case("[camshaft]\nspeed = 750\n[program.w]\nsegments = [{ law = \"dwell\", end = \"360 deg\" }]\n"
+                   "[program.w.error]\nwaviness = [{ amplitude = \"5 um\", order = 0 }]\n[preset]\nname = "
+                   "\"paper\"\nprogram = \"w\"\n",
+                   "w.toml"),
+        Catch::Contains("w.toml:6: program.w.error.waviness[0].order: must be in [1, "));
 }

@@ -51,7 +51,8 @@ TEST_CASE("eccentric circular cam: lift and pressure angle equal the closed form
             CHECK(std::abs(g.lift - ref.lift) <= 1e-15 + 1e-12 * radius);
             CHECK(std::abs(g.pressure_angle() - ref.alpha) <= 1e-12);
             const double h = 1e-5;
-            const CircleContact p = circle_contact(rb, rr, e, ecc, theta + h), m = circle_contact(rb, rr, e, ecc, theta - h);
+            const CircleContact p = circle_contact(rb, rr, e, ecc, theta + h),
+                                m = circle_contact(rb, rr, e, ecc, theta - h);
             CHECK(std::abs(g.dlift - (p.lift - m.lift) / (2 * h)) <= 1e-9 * radius / 1e-6 * 1e-6 + 1e-12);
             const double dalpha = (p.alpha - m.alpha) / (2 * h);
             CHECK(std::abs(g.dnormal.x() + std::cos(ref.alpha) * dalpha) <= 1e-8);
@@ -59,7 +60,8 @@ TEST_CASE("eccentric circular cam: lift and pressure angle equal the closed form
     }
 }
 
-TEST_CASE("eccentric cam with a lift: the roller centre lies on the displaced pitch curve, rates by finite differences") {
+TEST_CASE(
+    "eccentric cam with a lift: the roller centre lies on the displaced pitch curve, rates by finite differences") {
     // Second method: rotate the cam-frame pitch curve P(psi) = Rot(-psi) (e, R(psi)) by theta, shift
     // it by u, and bisect on psi for the point on the follower axis x = e.
     const double rb = 0.04, rr = 0.0125, e = 0.01;
@@ -93,7 +95,8 @@ TEST_CASE("eccentric cam with a lift: the roller centre lies on the displaced pi
         // To first order the exact change of the penetration is the projection of u on the normal.
         const ContactGeometry nominal = roller.contact(theta, program.evaluate(theta));
         const double projection = nominal.normal.dot(ecc.offset(theta));
-        CHECK(std::abs(g.lever * g.lift - nominal.lever * nominal.lift - projection) <= 50.0 * ecc.radius * ecc.radius / rb);
+        CHECK(std::abs(g.lever * g.lift - nominal.lever * nominal.lift - projection) <=
+              50.0 * ecc.radius * ecc.radius / rb);
     }
 }
 
@@ -104,8 +107,17 @@ Mechanism<> follower_on_eccentric_circle(double rpm, const CamEccentricity& ecc,
     MechanismBuilder b;
     b.add_dof("s", 0.5, {0, 1, 0});
     b.add_spring("return", "s", "ground", 2e4, 0.0, 300.0);
-    ContactPairSpec c{"cam", circle(), TranslatingRoller(0.04, 0.0125, 0.01), HertzContact{1e8, 1.0, chi}, 0.0,
-                      "ground", "ground", "s", "ground", ecc, "ground"};
+    ContactPairSpec c{"cam",
+                      circle(),
+                      TranslatingRoller(0.04, 0.0125, 0.01),
+                      HertzContact{1e8, 1.0, chi},
+                      0.0,
+                      "ground",
+                      "ground",
+                      "s",
+                      "ground",
+                      ecc,
+                      "ground"};
     b.add_contact(c);
     b.set_camshaft_speed_rpm(rpm);
     return Mechanism<>(b);
@@ -118,8 +130,9 @@ TEST_CASE("a run on an eccentric cam starts in its quasi-static state: no start-
     const Mechanism<> m = follower_on_eccentric_circle(750.0, ecc);
     // The start velocity is the closed-form lift rate, d lift / dt = omega d lift / d theta.
     const double h = 1e-6;
-    const double rate = m.omega() * (circle_contact(0.04, 0.0125, 0.01, ecc, h).lift -
-                                     circle_contact(0.04, 0.0125, 0.01, ecc, -h).lift) / (2 * h);
+    const double rate =
+        m.omega() *
+        (circle_contact(0.04, 0.0125, 0.01, ecc, h).lift - circle_contact(0.04, 0.0125, 0.01, ecc, -h).lift) / (2 * h);
     REQUIRE(std::abs(rate) > 1e-4);  // the run-out moves the follower at the start
     CHECK(m.initial_velocity()[0] == Approx(rate).epsilon(1e-3));
     // Free vibration left after a revolution, quasi-static start vs a start at rest: the follower's
@@ -140,11 +153,13 @@ TEST_CASE("a run on an eccentric cam starts in its quasi-static state: no start-
         ring_rest = std::max(ring_rest, std::abs(pen_rest[i] - pen_rest[0]));
     }
     INFO("penetration swing: quasi-static start " << ring_qs << " m, start at rest " << ring_rest << " m, static "
-                                                   << delta_static << " m");
+                                                  << delta_static << " m");
     CHECK(ring_qs < 0.05 * ring_rest);
 }
 
-TEST_CASE("the paper's literal eccentricity force: loads K_h epsilon sin(theta + zeta), named, warned when it exceeds the preload") {
+TEST_CASE(
+    "the paper's literal eccentricity force: loads K_h epsilon sin(theta + zeta), named, warned when it exceeds the "
+    "preload") {
     CamFollowerParameters p;
     presets::PaperOptions o;
     o.eccentricity = {10e-6, 0.3, EccentricityFormulation::paper_force_both};
@@ -242,7 +257,8 @@ TEST_CASE("guide clearance: a free rod rattles between the walls with the closed
     CHECK(measured == Approx(period).epsilon(2e-3));
     // Energy kept: speed in free flight stays v0.
     const double v_end = r.final_state.v[0];
-    if (r.recording.channel("guide.side")[r.recording.rows - 1] == 0.0) CHECK(std::abs(v_end) == Approx(v0).epsilon(1e-3));
+    if (r.recording.channel("guide.side")[r.recording.rows - 1] == 0.0)
+        CHECK(std::abs(v_end) == Approx(v0).epsilon(1e-3));
 }
 
 TEST_CASE("guide clearance with friction: a seated rod sliding axially decelerates at mu N / m (closed form)") {
@@ -295,7 +311,8 @@ TEST_CASE("guide clearance: tangent of wall and friction forces equals finite di
     }
 }
 
-TEST_CASE("a guide with two bushings: load at mid-span seats both, a moment tilts the rod across the gap (closed forms)") {
+TEST_CASE(
+    "a guide with two bushings: load at mid-span seats both, a moment tilts the rod across the gap (closed forms)") {
     const double c = 10e-6, k = 2.5e8, L = 0.06, z1 = 0.01, z2 = 0.05, ref = 0.03;
     auto build = [&](double lateral_load, double moment) {
         MechanismBuilder b;
@@ -341,7 +358,10 @@ TEST_CASE("bad defect input names the parameter") {
                }),
                Catch::Contains("tilt DOF"));
     CHECK_THAT(message([] { follower_on_eccentric_circle(750, {0.05, 0.0}); }), Catch::Contains("eccentric"));
-    CHECK_THAT(message([] { follower_on_eccentric_circle(750, {-1e-6, 0.0}); }), Catch::Contains("eccentricity radius"));
+    CHECK_THAT(message([] {
+                   follower_on_eccentric_circle(750, {-1e-6, 0.0});
+               }),
+               Catch::Contains("eccentricity radius"));
     CHECK_THAT(message([] {
                    presets::PaperOptions o;
                    o.element_damping_ratio = 1.0;
@@ -363,7 +383,8 @@ TEST_CASE("realistic preset: dashpots on the elements; the five lowest modes at 
         auto w = m.workspace();
         m.prepare(0.0, w);
         const ContactTerms& c = w.contact(0).terms;
-        const ContactResponse r = m.contacts()[0].spec().law(ContactPair::penetration(c, m.initial_displacement()), 0.0);
+        const ContactResponse r =
+            m.contacts()[0].spec().law(ContactPair::penetration(c, m.initial_displacement()), 0.0);
         Mechanism<7>::Matrix C = m.damping();
         for (int a = 0; a < c.count; ++a)
             for (int b = 0; b < c.count; ++b) C(c.dof[a], c.dof[b]) += r.damping * c.g[a] * c.g[b];
@@ -379,7 +400,8 @@ TEST_CASE("realistic preset: dashpots on the elements; the five lowest modes at 
         std::sort(modes.begin(), modes.end());
         REQUIRE(modes.size() == 7);
         for (std::size_t i = 0; i < modes.size(); ++i) {
-            INFO("offset " << offset << " m, mode " << i + 1 << ": " << modes[i].first / two_pi << " Hz, ratio " << modes[i].second);
+            INFO("offset " << offset << " m, mode " << i + 1 << ": " << modes[i].first / two_pi << " Hz, ratio "
+                           << modes[i].second);
             // The five lowest (up to ~5.5 kHz) at the target; the two highest, local modes of the roller
             // on its pin and the contact, come out at 0.8-80 % (the fit weights them least).
             if (i < 5) CHECK(modes[i].second == Approx(presets::realistic_damping_ratio).epsilon(0.1));

@@ -53,7 +53,8 @@ TEST_CASE("Dormand-Prince 5(4) and 8(5,3) with fixed steps are fifth and eighth 
         }
         for (int i = 0; i < scheme.halvings; ++i) {
             const double order = std::log2(errors[i] / errors[i + 1]);
-            INFO(scheme.method << ", h = T/" << scheme.coarsest * (1 << i) << ": error " << errors[i] << ", observed order " << order);
+            INFO(scheme.method << ", h = T/" << scheme.coarsest * (1 << i) << ": error " << errors[i]
+                               << ", observed order " << order);
             CHECK(order == Approx(scheme.order).margin(0.1));
         }
     }
@@ -67,15 +68,16 @@ TEST_CASE("The dense output between fixed steps keeps the order of the steps") {
     for (const Scheme& scheme : schemes) {
         double errors[3];
         for (int i = 0; i < 3; ++i) {
-            SolverSettings s = dopri(T / (8.0 * scheme.coarsest * (1 << i)), 1e-6, scheme.method);  // output 8 times per step
+            SolverSettings s =
+                dopri(T / (8.0 * scheme.coarsest * (1 << i)), 1e-6, scheme.method);  // output 8 times per step
             s.tolerance.reset();
             s.max_step = 8.0 * s.time_step;
             errors[i] = max_error(sdof, s, 3 * T);
         }
         for (int i = 0; i < 2; ++i) {
             const double order = std::log2(errors[i] / errors[i + 1]);
-            INFO(scheme.method << ", step T/" << scheme.coarsest * (1 << i) << ", output 8 per step: error " << errors[i]
-                               << ", observed order " << order);
+            INFO(scheme.method << ", step T/" << scheme.coarsest * (1 << i) << ", output 8 per step: error "
+                               << errors[i] << ", observed order " << order);
             CHECK(order == Approx(scheme.order).margin(0.15));
         }
     }
@@ -89,7 +91,8 @@ TEST_CASE("The adaptive error of both explicit methods follows the tolerance") {
         for (double tol : {1e-4, 1e-6, 1e-8, 1e-10, 1e-12}) {
             const double peak = sdof.F / sdof.k * 10.0;  // generous bound of |x|
             const double err = max_error(sdof, dopri(T / 64, tol, scheme.method), 3 * T);
-            INFO(scheme.method << ", tolerance " << tol << ": max error " << err << " (" << err / peak << " of the peak)");
+            INFO(scheme.method << ", tolerance " << tol << ": max error " << err << " (" << err / peak
+                               << " of the peak)");
             CHECK(err < 30.0 * tol * peak);
             CHECK(err < previous);
             previous = err;
@@ -131,7 +134,7 @@ TEST_CASE("Dormand-Prince on the paper preset: contact force against Richardson-
         // The tolerance bounds each step's error; over a revolution's thousands of steps the global
         // error is some tens of times larger (measured against a tighter run: 47 and 42 times).
         CHECK(err / peak < 100.0 * tol + 2e-5);  // the reference is good to ~1.4e-5
-        CHECK(err / peak > 0.5 * tol);  // and the comparison resolves it: the reference is that good
+        CHECK(err / peak > 0.5 * tol);           // and the comparison resolves it: the reference is that good
         CHECK(r.stats.newton_iterations == 0u);
     }
 }
@@ -148,13 +151,14 @@ TEST_CASE("DOP853 on the paper preset agrees with Dormand-Prince 5(4) at tight t
         const double* x = dp.channel(channel);
         const double* y = d8.channel(channel);
         double peak = 0.0, diff = 0.0;
-        for (std::size_t i = 0; i < dp.rows; ++i) peak = std::max(peak, std::abs(x[i])), diff = std::max(diff, std::abs(x[i] - y[i]));
+        for (std::size_t i = 0; i < dp.rows; ++i)
+            peak = std::max(peak, std::abs(x[i])), diff = std::max(diff, std::abs(x[i] - y[i]));
         return diff / peak;
     };
     const double force = difference("cam.force"), accel = difference("a.y4");
     INFO("force " << force << ", follower acceleration " << accel << " of the peak; steps " << dp.stats.steps
-                  << " (dormand_prince), " << d8.stats.steps << " (dop853); evaluations " << dp.stats.evaluations << ", "
-                  << d8.stats.evaluations);
+                  << " (dormand_prince), " << d8.stats.steps << " (dop853); evaluations " << dp.stats.evaluations
+                  << ", " << d8.stats.evaluations);
     // Dormand-Prince's global error at this tolerance is ~2e-8 of the peak (docs/benchmarks.md),
     // DOP853's ~1e-9 (measured against DOP853 at 1e-13).
     CHECK(force < 1e-7);
@@ -193,10 +197,13 @@ TEST_CASE("Fox-Goodwin (beta = 1/12) is fourth order on an undamped oscillator, 
     CHECK(std::string(method_name(s.method)) == "fox_goodwin");
     s.time_step = 3.0 / w;  // beyond sqrt(6) / w
     CHECK_THROWS_WITH(run(system, s, 10 * T), Catch::Contains("exceeds the stability limit"));
-    CHECK_THROWS_WITH(s.method = method_from_name("rk4"), Catch::Contains("method must be 'newmark', 'fox_goodwin', 'hht', 'dormand_prince', 'dop853', 'radau' or 'auto', got 'rk4'"));
+    CHECK_THROWS_WITH(s.method = method_from_name("rk4"),
+                      Catch::Contains("method must be 'newmark', 'fox_goodwin', 'hht', 'dormand_prince', 'dop853', "
+                                      "'radau' or 'auto', got 'rk4'"));
 }
 
-TEST_CASE("Method auto takes Fox-Goodwin within its stability limit sqrt(6) / w (10 % margin), else average acceleration") {
+TEST_CASE(
+    "Method auto takes Fox-Goodwin within its stability limit sqrt(6) / w (10 % margin), else average acceleration") {
     // Undamped oscillator, w = sqrt(k / m) = 20 rad/s: Fox-Goodwin's limit is 0.9 sqrt(6) / 20 = 0.1102 s.
     DrivenSdof free;
     free.c = 0.0, free.F = 0.0;
@@ -217,13 +224,15 @@ TEST_CASE("Method auto takes Fox-Goodwin within its stability limit sqrt(6) / w 
         same.time_step = dt;
         const auto direct = simulate(system, same, o);
         REQUIRE(direct.recording.rows == r.recording.rows);
-        for (std::size_t i = 0; i < r.recording.rows; ++i) CHECK(r.recording.at("q.0", i) == direct.recording.at("q.0", i));
+        for (std::size_t i = 0; i < r.recording.rows; ++i)
+            CHECK(r.recording.at("q.0", i) == direct.recording.at("q.0", i));
     }
     SolverSettings s;
     s.method = method_from_name("auto");
     CHECK(std::string(method_name(s.method)) == "auto");
     s.gamma = 0.6, s.beta = 0.3025;
-    CHECK_THROWS_WITH(s.validate(), Catch::Contains("gamma and beta apply to method 'newmark' only, got them with method 'auto'"));
+    CHECK_THROWS_WITH(s.validate(),
+                      Catch::Contains("gamma and beta apply to method 'newmark' only, got them with method 'auto'"));
 }
 
 TEST_CASE("Both explicit methods report steps bounded by stability on a stiff system, none on a soft one") {
@@ -253,10 +262,12 @@ TEST_CASE("Both explicit methods refuse tolerances and steps they cannot honour,
         CHECK(std::string(method_name(named.method)) == scheme.method);
         CHECK(is_runge_kutta(named.method));
         for (double tol : {0.0, -1e-6, 1e-14, 0.5, std::nan("")})
-            CHECK_THROWS_WITH(run(system, dopri(1e-3, tol, scheme.method), 0.1), Catch::Contains("tolerance must be in [1e-13, 0.1]"));
+            CHECK_THROWS_WITH(run(system, dopri(1e-3, tol, scheme.method), 0.1),
+                              Catch::Contains("tolerance must be in [1e-13, 0.1]"));
         SolverSettings s = dopri(1e-3, 1e-6, scheme.method);
         s.max_step = -1.0;
-        CHECK_THROWS_WITH(run(system, s, 0.1), Catch::Contains("max_step must be 0 (unbounded) or finite and >= 1e-12 s"));
+        CHECK_THROWS_WITH(run(system, s, 0.1),
+                          Catch::Contains("max_step must be 0 (unbounded) or finite and >= 1e-12 s"));
         // A fixed step far beyond the stability limit blows up: reported, not returned.
         s.max_step = s.time_step;  // fixed steps
         s.tolerance.reset();
@@ -327,10 +338,12 @@ TEST_CASE("A recording window without rows is refused by the option's name") {
     RunOptions options;
     options.duration = 0.1;
     options.record.from_time = 0.2;
-    CHECK_THROWS_WITH(simulate(system, s, options), Catch::Contains("record_from = 0.2 s: the recording window starts after the run ends"));
+    CHECK_THROWS_WITH(simulate(system, s, options),
+                      Catch::Contains("record_from = 0.2 s: the recording window starts after the run ends"));
     options.record.from_time = -std::numeric_limits<double>::infinity();
     options.record.decimation = 1000;
-    CHECK_THROWS_WITH(simulate(system, s, options), Catch::Contains("decimation = 1000 steps") && Catch::Contains("single row"));
+    CHECK_THROWS_WITH(simulate(system, s, options),
+                      Catch::Contains("decimation = 1000 steps") && Catch::Contains("single row"));
     options.record.decimation = 50;
     CHECK(simulate(system, s, options).recording.rows == 3);
 }

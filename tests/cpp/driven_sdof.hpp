@@ -25,8 +25,9 @@ struct DrivenSdof {
         // Steady: X sin(W t - phi)
         const double den = (k - m * W * W) * (k - m * W * W) + (c * W) * (c * W);
         const double A = F * (k - m * W * W) / den, B = -F * c * W / den;  // x_p = A sin + B cos
-        const double x0 = -B, v0 = -A * W;                                // free part's start
-        const double free = std::exp(-zeta * w * t) * (x0 * std::cos(wd * t) + (v0 + zeta * w * x0) / wd * std::sin(wd * t));
+        const double x0 = -B, v0 = -A * W;                                 // free part's start
+        const double free =
+            std::exp(-zeta * w * t) * (x0 * std::cos(wd * t) + (v0 + zeta * w * x0) / wd * std::sin(wd * t));
         return A * std::sin(W * t) + B * std::cos(W * t) + free;
     }
     double period() const { return 2 * camfollower::pi / std::sqrt(k / m); }

@@ -184,7 +184,8 @@ TEST_CASE("a cutter larger than the tightest concave radius is refused at that c
     double tightest = std::numeric_limits<double>::infinity(), at = 0.0;
     for (std::size_t k = 0; k < s.size(); ++k) {
         const double r = three_point_radius(s[(k + s.size() - 1) % s.size()], s[k], s[(k + 1) % s.size()]);
-        if (r < 0.0 && -r < tightest) tightest = -r, at = 2 * pi * static_cast<double>(k) / static_cast<double>(s.size());
+        if (r < 0.0 && -r < tightest)
+            tightest = -r, at = 2 * pi * static_cast<double>(k) / static_cast<double>(s.size());
     }
     REQUIRE(std::isfinite(tightest));
     INFO("tightest concave radius " << tightest << " m at " << at / deg << " deg");
@@ -210,8 +211,8 @@ TEST_CASE("bad export input names the parameter") {
     CHECK_THROWS_WITH(cam_outline(f, paper, 36, std::nan("")), Catch::Contains("cutter_radius"));
     CHECK_THROWS_WITH(length_unit_from_name("cm"), Catch::Contains("unit must be one of m, mm, um, inch"));
     // A roller that undercuts cannot be exported at all.
-    const MotionProgram steep({{MotionLaw::cycloidal(), 0, 40 * deg, 0, 0.04},
-                               {MotionLaw::cycloidal(), 40 * deg, 2 * pi, 0.04, 0.0}});
+    const MotionProgram steep(
+        {{MotionLaw::cycloidal(), 0, 40 * deg, 0, 0.04}, {MotionLaw::cycloidal(), 40 * deg, 2 * pi, 0.04, 0.0}});
     CHECK_THROWS_WITH(cam_outline(TranslatingRoller(0.010, 0.012, 0.0), steep), Catch::Contains("undercuts"));
 }
 
@@ -286,9 +287,9 @@ TEST_CASE("the atomic writer refuses non-regular targets and never leaves partia
     const TranslatingRoller f(0.030, 0.008, 0.010);
     SECTION("a directory") {
         ::mkdir((dir.path + "/sub").c_str(), 0755);
-        CHECK_THROWS_WITH(write_cam_csv(dir.path + "/sub", f, paper, 36),
-                          Catch::Contains("path") && Catch::Contains("not a regular file") &&
-                              Catch::Contains("a directory"));
+        CHECK_THROWS_WITH(write_cam_csv(dir.path + "/sub", f, paper, 36), Catch::Contains("path") &&
+                                                                              Catch::Contains("not a regular file") &&
+                                                                              Catch::Contains("a directory"));
         CHECK_THROWS_WITH(write_cam_csv(dir.path + "/", f, paper, 36), Catch::Contains("not a regular file"));
         CHECK(dir.entries() == std::vector<std::string>{"sub"});
     }

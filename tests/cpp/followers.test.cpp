@@ -95,11 +95,9 @@ struct OscillatingRollerTruth {
     Vec pivot;
     double arm, sigma;
     const MotionProgram& program;
-    double phi0 = bisect_increasing(
-        [this](double phi) { return (pivot + arm * direction(phi)).norm() - (rb + rr); }, sigma);
-    Circle at(double theta) const {
-        return {pivot + arm * direction(phi0 + sigma * program.evaluate(theta).h), rr};
-    }
+    double phi0 =
+        bisect_increasing([this](double phi) { return (pivot + arm * direction(phi)).norm() - (rb + rr); }, sigma);
+    Circle at(double theta) const { return {pivot + arm * direction(phi0 + sigma * program.evaluate(theta).h), rr}; }
 };
 
 struct TranslatingFlatTruth {
@@ -118,8 +116,7 @@ struct OscillatingFlatTruth {
     double f, sigma;
     const MotionProgram& program;
     // The face touches the base circle (support distance rb) and lifting pushes it outwards.
-    double phi0 = bisect_increasing(
-        [this](double phi) { return direction(phi).dot(pivot) + f - rb; }, sigma);
+    double phi0 = bisect_increasing([this](double phi) { return direction(phi).dot(pivot) + f - rb; }, sigma);
     Line at(double theta) const {
         const Vec m = direction(phi0 + sigma * program.evaluate(theta).h);
         return {pivot + f * m, quarter_turn(m), m};
@@ -199,7 +196,9 @@ EnvelopeErrors compare_with_envelope(const Follower& follower, const Truth& trut
         worst.point = std::max(worst.point, (p.contact_ground - turn(theta, env)).norm());
 
         // Normal: perpendicular to the envelope's tangent (central difference, Richardson).
-        auto derivative = [&](double d) { return Vec((envelope(truth, theta + d) - envelope(truth, theta - d)) / (2 * d)); };
+        auto derivative = [&](double d) {
+            return Vec((envelope(truth, theta + d) - envelope(truth, theta - d)) / (2 * d));
+        };
         const double delta = 1e-3;
         const Vec tangent = (4.0 * derivative(delta / 2) - derivative(delta)) / 3.0;
         Vec n_env = quarter_turn(tangent).normalized();
@@ -250,7 +249,8 @@ DerivativeErrors compare_with_differences(const Follower& follower, const Motion
         const Vec dn = (up.normal - down.normal) / (2 * h);
         const double dlever = (up.lever - down.lever) / (2 * h), dlift = (up.lift - down.lift) / (2 * h);
         worst.dnormal = std::max(worst.dnormal, (c.dnormal - dn).norm() / std::max(c.dnormal.norm(), 1e-2));
-        worst.dlever = std::max(worst.dlever, std::abs(c.dlever - dlever) / std::max(std::abs(c.dlever), 1e-2 * lever_scale));
+        worst.dlever =
+            std::max(worst.dlever, std::abs(c.dlever - dlever) / std::max(std::abs(c.dlever), 1e-2 * lever_scale));
         worst.dlift = std::max(worst.dlift, std::abs(c.dlift - dlift) / std::max(std::abs(c.dlift), 1e-2 * lift_scale));
     }
     return worst;
@@ -327,23 +327,26 @@ void for_each_follower(Visit&& visit) {
               TranslatingRollerTruth{0.030, 0.008, e, linear_program}, linear_program, translate, 0.030,
               TranslatingRoller(0.010, 0.012, 0.0), steep);
     for (double e : {0.008, -0.005})
-        visit("translating roller on the aggressive cam, offset " + std::to_string(e), TranslatingRoller(0.025, 0.006, e),
-              TranslatingRollerTruth{0.025, 0.006, e, aggressive}, aggressive, translate, 0.025,
-              TranslatingRoller(0.010, 0.012, 0.0), steep);
+        visit("translating roller on the aggressive cam, offset " + std::to_string(e),
+              TranslatingRoller(0.025, 0.006, e), TranslatingRollerTruth{0.025, 0.006, e, aggressive}, aggressive,
+              translate, 0.025, TranslatingRoller(0.010, 0.012, 0.0), steep);
     for (double g : {0.0, 10 * deg, -25 * deg})
         visit("translating flat, face angle " + std::to_string(g / deg), TranslatingFlat(0.035, g, 0.005),
-              TranslatingFlatTruth{0.035, g, linear_program}, linear_program, translate, 0.035, TranslatingFlat(0.010), fast);
+              TranslatingFlatTruth{0.035, g, linear_program}, linear_program, translate, 0.035, TranslatingFlat(0.010),
+              fast);
     for (ArmTurn sense : {ArmTurn::counter_clockwise, ArmTurn::clockwise}) {
         const double sigma = sense == ArmTurn::counter_clockwise ? 1.0 : -1.0;
         for (double arm : {0.060, 0.095})
             visit("oscillating roller, sigma " + std::to_string(sigma) + ", arm " + std::to_string(arm),
                   OscillatingRoller(0.035, 0.008, pivot, arm, sense),
                   OscillatingRollerTruth{0.035, 0.008, pivot, arm, sigma, angular_program}, angular_program,
-                  swing(pivot, sigma), 0.035, OscillatingRoller(0.010, 0.012, Vec(0.05, 0.03), 0.05, sense), steep_swing);
+                  swing(pivot, sigma), 0.035, OscillatingRoller(0.010, 0.012, Vec(0.05, 0.03), 0.05, sense),
+                  steep_swing);
         for (double f : {0.0, 0.006, -0.004})
             visit("oscillating flat, sigma " + std::to_string(sigma) + ", face offset " + std::to_string(f),
-                  OscillatingFlat(0.035, pivot, f, sense), OscillatingFlatTruth{0.035, pivot, f, sigma, angular_program},
-                  angular_program, swing(pivot, sigma), 0.035, OscillatingFlat(0.035, pivot, 0.0, sense), whip);
+                  OscillatingFlat(0.035, pivot, f, sense),
+                  OscillatingFlatTruth{0.035, pivot, f, sigma, angular_program}, angular_program, swing(pivot, sigma),
+                  0.035, OscillatingFlat(0.035, pivot, 0.0, sense), whip);
     }
 }
 
@@ -369,7 +372,8 @@ TEST_CASE("every follower type: closed form against the envelope of its position
         CHECK(err.point < 1e-12);
         CHECK(err.normal < 1e-10);
         CHECK(err.curvature < 1e-7);
-        for (double t : {1.3, 2.1, 2.5}) CHECK(reference_error(truth, follower.profile(t, program.evaluate(t))) < 1e-14);
+        for (double t : {1.3, 2.1, 2.5})
+            CHECK(reference_error(truth, follower.profile(t, program.evaluate(t))) < 1e-14);
     });
 }
 
@@ -440,8 +444,8 @@ TEST_CASE("every follower type: sampled extremes agree with brute force; an unde
 
 TEST_CASE("translating flat: its reference point lies on the follower axis") {
     const TranslatingFlat follower(0.035, 10 * deg, 0.005);
-    for (double t : {0.4, 2.1, 4.0}) CHECK(turn(t, follower.profile(t, linear_program.evaluate(t)).reference).x() ==
-                                           Approx(0.005).epsilon(1e-13));
+    for (double t : {0.4, 2.1, 4.0})
+        CHECK(turn(t, follower.profile(t, linear_program.evaluate(t)).reference).x() == Approx(0.005).epsilon(1e-13));
 }
 
 // ---------------------------------------------------------------------------------------------------
@@ -562,15 +566,18 @@ TEST_CASE("dwells: pressure angles") {
         // Not zero in general: an inclined face keeps alpha = g; a face off the pivot by f touches a
         // dwell (a circle about the cam centre) at the foot of the perpendicular from the cam centre,
         // p m0, whose velocity about the pivot leans from m0.
-        CHECK(TranslatingFlat(0.035, 12 * deg, 0.005).contact(theta, lin).pressure_angle() == Approx(12 * deg).epsilon(1e-15));
+        CHECK(TranslatingFlat(0.035, 12 * deg, 0.005).contact(theta, lin).pressure_angle() ==
+              Approx(12 * deg).epsilon(1e-15));
         for (double sigma : {1.0, -1.0}) {
             const double f = 0.006;
             const OscillatingFlatTruth truth{0.035, pivot, f, sigma, angular_program};
             const Vec m0 = direction(truth.phi0 + sigma * ang.h), X = (m0.dot(pivot) + f) * m0;
             if (ang.h == 0.0) CHECK(X.norm() == Approx(0.035).epsilon(1e-12));  // on the base circle
             const Vec v = sigma * quarter_turn(X - pivot);
-            const OscillatingFlat follower(0.035, pivot, f, sigma > 0 ? ArmTurn::counter_clockwise : ArmTurn::clockwise);
-            CHECK(follower.contact(theta, ang).pressure_angle() == Approx(std::atan2(cross(v, m0), v.dot(m0))).epsilon(1e-12));
+            const OscillatingFlat follower(0.035, pivot, f,
+                                           sigma > 0 ? ArmTurn::counter_clockwise : ArmTurn::clockwise);
+            CHECK(follower.contact(theta, ang).pressure_angle() ==
+                  Approx(std::atan2(cross(v, m0), v.dot(m0))).epsilon(1e-12));
             CHECK((follower.profile(theta, ang).contact_ground - X).norm() < 1e-15);
         }
     }
@@ -652,7 +659,8 @@ TEST_CASE("translating roller: a perturbed offset e* is a roller built with that
         }
         // On the dwell the roller centre stays r_b + r_r from the cam centre, the contact on r_b.
         const FollowerMotion dwell = linear_program.evaluate(10 * deg);
-        CHECK(std::hypot(e_star, TranslatingRoller::kinematics_from(dwell, s0_star, e_star).R) == Approx(rp).epsilon(1e-15));
+        CHECK(std::hypot(e_star, TranslatingRoller::kinematics_from(dwell, s0_star, e_star).R) ==
+              Approx(rp).epsilon(1e-15));
         CHECK(shifted.profile(10 * deg, dwell).surface.norm() == Approx(rb).epsilon(1e-14));
     }
     // A larger offset steepens the return.
@@ -688,10 +696,13 @@ TEST_CASE("translating roller: the profile closes after a revolution; its CSV in
     // The first row is the contact on the base circle at theta = 0, which theta = 2 pi returns to.
     CHECK(rows.front().norm() == Approx(0.030).epsilon(1e-12));
     CHECK((rows.front() - last.surface).norm() < 1e-15);
-    CHECK((rows.back() - roller.profile(2 * pi * 359 / 360, linear_program.evaluate(2 * pi * 359 / 360)).surface).norm() < 1e-15);
+    CHECK(
+        (rows.back() - roller.profile(2 * pi * 359 / 360, linear_program.evaluate(2 * pi * 359 / 360)).surface).norm() <
+        1e-15);
 }
 
-TEST_CASE("translating roller: a dent narrower than a segment's sampling step sets the pressure angle and surface radius") {
+TEST_CASE(
+    "translating roller: a dent narrower than a segment's sampling step sets the pressure angle and surface radius") {
     // A dent 0.1 deg wide centred at 100.125 deg on the 150 deg rise of the paper program: a search with
     // 600 samples per segment looks every 0.25 deg (100.0, 100.25 deg), on both sides of the dent. (A
     // deep one that undercuts is refused: profile_error.test.cpp.) 0.2 um deep under a 1 mm roller: no
@@ -752,7 +763,8 @@ TEST_CASE("bad parameters are refused with the parameter named") {
     CHECK_THROWS_WITH(OscillatingRoller(0.035, NAN, pivot, 0.06), Contains("roller_radius must be finite and > 0"));
     CHECK_THROWS_WITH(OscillatingRoller(0.035, 0.008, pivot, -0.06), Contains("arm_length must be finite and > 0"));
     CHECK_THROWS_WITH(OscillatingRoller(0.035, 0.008, Vec(NAN, 0.04), 0.06), Contains("pivot must be finite"));
-    CHECK_THROWS_WITH(OscillatingRoller(0.035, 0.008, Vec(0.02, 0.02), 0.03), Contains("pivot must lie outside the base circle"));
+    CHECK_THROWS_WITH(OscillatingRoller(0.035, 0.008, Vec(0.02, 0.02), 0.03),
+                      Contains("pivot must lie outside the base circle"));
     // |pivot| = 80.6 mm, r_b + r_r = 43 mm: the arm must lie in (37.6, 123.6) mm.
     CHECK_THROWS_WITH(OscillatingRoller(0.035, 0.008, pivot, 0.030), Contains("arm_length must lie in (0.0376"));
     CHECK_THROWS_WITH(OscillatingRoller(0.035, 0.008, pivot, 0.130), Contains("arm_length must lie in"));
@@ -832,6 +844,7 @@ TEST_CASE("check_undercut: a NaN curvature or pressure angle fails the check") {
     CHECK(theta_in(partial) > 100.0);
     CHECK(theta_in(partial) < 100.6);
     CHECK_THROWS_WITH(check_undercut(linear_program, NanFollower{true}), Catch::Contains("not finite at theta = "));
-    CHECK_THROWS_WITH(check_undercut(linear_program, NanAngleFollower{}), Catch::Contains("pressure angle is not finite"));
+    CHECK_THROWS_WITH(check_undercut(linear_program, NanAngleFollower{}),
+                      Catch::Contains("pressure angle is not finite"));
     CHECK_THROWS_WITH(min_surface_radius(linear_program, NanFollower{false}), Catch::Contains("theta = "));
 }

@@ -106,8 +106,8 @@ TEST_CASE("a 4-5-6-7 rise sampled into a segment table reproduces the law betwee
         theta.push_back(a + beta * x), h.push_back(lift * law.evaluate(x).S);
     }
     const auto program = [&](const Segment& rise) {
-        return MotionProgram({{MotionLaw::dwell(), 0.0, a, 0.0, 0.0}, rise,
-                              {MotionLaw::polynomial_4567(), b, 2 * pi, lift, 0.0}});
+        return MotionProgram(
+            {{MotionLaw::dwell(), 0.0, a, 0.0, 0.0}, rise, {MotionLaw::polynomial_4567(), b, 2 * pi, lift, 0.0}});
     };
     // Relative errors of h .. h''' against the closed form, each over its own peak.
     const auto errors = [&](const MotionProgram& p) {
@@ -119,8 +119,10 @@ TEST_CASE("a 4-5-6-7 rise sampled into a segment table reproduces the law betwee
             const LawValue v = law.evaluate(x);
             e[0] = std::max(e[0], std::abs(s.h - lift * v.S) / lift);
             e[1] = std::max(e[1], std::abs(s.dh - lift * v.V / beta) / (lift * peaks.velocity / beta));
-            e[2] = std::max(e[2], std::abs(s.d2h - lift * v.A / (beta * beta)) / (lift * peaks.acceleration / (beta * beta)));
-            e[3] = std::max(e[3], std::abs(s.d3h - lift * v.J / std::pow(beta, 3)) / (lift * peaks.jerk / std::pow(beta, 3)));
+            e[2] = std::max(e[2],
+                            std::abs(s.d2h - lift * v.A / (beta * beta)) / (lift * peaks.acceleration / (beta * beta)));
+            e[3] = std::max(e[3],
+                            std::abs(s.d3h - lift * v.J / std::pow(beta, 3)) / (lift * peaks.jerk / std::pow(beta, 3)));
         }
         return e;
     };
@@ -185,10 +187,11 @@ TEST_CASE("smoothing a noisy table lowers the jerk peak and leaves residuals at 
     const MotionProgram smooth = MotionProgram::from_table(theta, h, {5, lambda});
     const SmoothnessReport r = smoothness(rough), s = smoothness(smooth);
     const double true_jerk = 0.012;  // max |-a sin t - 8 b cos 2t| ~ 0.0117 m/rad^3
-    std::printf("noise 10 um, 360 points: jerk peak interpolating %.3g, smoothing %.3g m/rad^3 (true ~%.3g); "
-                "residual RMS %.3g um, max %.3g um; roughness %.3g -> %.3g\n",
-                r.peaks.jerk.value, s.peaks.jerk.value, true_jerk, s.residual.rms * 1e6, s.residual.max * 1e6,
-                r.jerk_roughness, s.jerk_roughness);
+    std::printf(
+        "noise 10 um, 360 points: jerk peak interpolating %.3g, smoothing %.3g m/rad^3 (true ~%.3g); "
+        "residual RMS %.3g um, max %.3g um; roughness %.3g -> %.3g\n",
+        r.peaks.jerk.value, s.peaks.jerk.value, true_jerk, s.residual.rms * 1e6, s.residual.max * 1e6, r.jerk_roughness,
+        s.jerk_roughness);
     CHECK(r.peaks.jerk.value > 10 * true_jerk);  // interpolated noise dominates the jerk
     CHECK(s.peaks.jerk.value < 2 * true_jerk);
     CHECK(s.residual.rms > 0.6 * sigma);
@@ -201,7 +204,8 @@ TEST_CASE("smoothing a noisy table lowers the jerk peak and leaves residuals at 
     CHECK(r.jerk_excursions.front().excursion > r.jerk_excursions.back().excursion * 0.999);
     // The smooth fit stays within a few sigma of the noise-free lift.
     double worst = 0.0;
-    for (int i = 0; i < 1000; ++i) worst = std::max(worst, std::abs(smooth.evaluate(i * 2 * pi / 1000).h - f.at(i * 2 * pi / 1000).h));
+    for (int i = 0; i < 1000; ++i)
+        worst = std::max(worst, std::abs(smooth.evaluate(i * 2 * pi / 1000).h - f.at(i * 2 * pi / 1000).h));
     CHECK(worst < 4 * sigma);
 }
 
@@ -236,8 +240,10 @@ TEST_CASE("the paper's modified-trapezoid program as a 13-point and a 73-point t
         const SmoothnessReport r = smoothness(table);
         CHECK(r.peaks.acceleration.value * omega * omega == Approx(peak).epsilon(1e-6));
         results[k++] = peak;
-        std::printf("paper program from %d table points, quintic spline: peak acceleration %.1f m/s^2 at 750 rpm "
-                    "(true %.1f m/s^2)\n", points, peak, truth);
+        std::printf(
+            "paper program from %d table points, quintic spline: peak acceleration %.1f m/s^2 at 750 rpm "
+            "(true %.1f m/s^2)\n",
+            points, peak, truth);
     }
     // 13 points (30 deg apart) cannot resolve a law whose features are 150 / 8 deg wide: the peak is off,
     // but nowhere near the hundreds-fold spikes of linear interpolation. 73 points: close.
@@ -295,7 +301,8 @@ TEST_CASE("bad tables are refused, naming the parameter") {
     const std::vector<double> h(12, 0.001);
     std::vector<double> beyond = theta;
     beyond[11] = 2 * pi + 0.1;
-    REQUIRE_THROWS_WITH(MotionProgram::from_table(beyond, h), Catch::Contains("theta[11]") && Catch::Contains("[0, 360) deg"));
+    REQUIRE_THROWS_WITH(MotionProgram::from_table(beyond, h),
+                        Catch::Contains("theta[11]") && Catch::Contains("[0, 360) deg"));
     std::vector<double> negative = theta;
     negative[0] = -0.1;
     REQUIRE_THROWS_WITH(MotionProgram::from_table(negative, h), Catch::Contains("theta[0]"));
@@ -305,8 +312,8 @@ TEST_CASE("bad tables are refused, naming the parameter") {
                         Catch::Contains("at least 8"));
     std::vector<double> repeated = theta;
     repeated[5] = repeated[4];
-    REQUIRE_THROWS_WITH(MotionProgram::from_table(repeated, h), Catch::Contains("theta must be strictly increasing") &&
-                                                                    Catch::Contains("theta[5]"));
+    REQUIRE_THROWS_WITH(MotionProgram::from_table(repeated, h),
+                        Catch::Contains("theta must be strictly increasing") && Catch::Contains("theta[5]"));
     const std::vector<double> reversed(theta.rbegin(), theta.rend());
     REQUIRE_THROWS_WITH(Segment::from_table(reversed, h), Catch::Contains("theta must be strictly increasing"));
     std::vector<double> nan_h = h;

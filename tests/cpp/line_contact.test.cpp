@@ -183,7 +183,8 @@ TEST_CASE("contact stress: bad input names the parameter and its range") {
     CHECK_THROWS_WITH((LineContact{0.01, Elastic::steel(), Elastic::steel(), 0.0}.stress(1.0, 0.01)),
                       Contains("crown_radius must be > 0"));
     CHECK_THROWS_WITH(good.stress(-1.0, 0.01), Contains("contact force") && Contains(">= 0"));
-    CHECK_THROWS_WITH(good.stress(1.0, 0.0125, -0.010), Contains("effective radius must be > 0") && Contains("more concave"));
+    CHECK_THROWS_WITH(good.stress(1.0, 0.0125, -0.010),
+                      Contains("effective radius must be > 0") && Contains("more concave"));
     CHECK_THROWS_WITH(good.stress(1.0, inf, inf), Contains("effective radius must be > 0"));
     CHECK_THROWS_WITH(good.stress(1.0, std::nan("")), Contains("not NaN"));
     CHECK_THROWS_WITH(palmgren_stiffness(-0.01), Contains("roller width (length)"));

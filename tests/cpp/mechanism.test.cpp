@@ -58,7 +58,8 @@ TEST_CASE("paper preset: tangent stiffness is K + K_h g g^T with g from the clos
         g[paper_x1] = -std::sin(alpha), g[paper_y1] = std::cos(alpha);
         g[paper_x2] = std::sin(alpha), g[paper_y2] = -std::cos(alpha);
         const Mechanism<7>::Matrix expected = preset.stiffness() + K_h * g * g.transpose();
-        CHECK((preset.tangent_stiffness(theta, q) - expected).cwiseAbs().maxCoeff() <= 1e-12 * expected.cwiseAbs().maxCoeff());
+        CHECK((preset.tangent_stiffness(theta, q) - expected).cwiseAbs().maxCoeff() <=
+              1e-12 * expected.cwiseAbs().maxCoeff());
         // The natural frequencies are that pencil's (K_t phi = omega^2 M phi).
         const Eigen::GeneralizedSelfAdjointEigenSolver<Mechanism<7>::Matrix> eig(expected, preset.mass());
         const Eigen::VectorXd f = eig.eigenvalues().cwiseSqrt() / two_pi;
@@ -72,7 +73,8 @@ TEST_CASE("paper preset: tangent stiffness is K + K_h g g^T with g from the clos
 // the offset e' = e + b s(theta), s from the side rule above, and the guide spring K_rb anchored on
 // the displaced rod (a load K_rb b s on x3). (The offset's rate in the terms' time derivatives:
 // paper_preset.test.cpp, against finite differences.)
-TEST_CASE("paper preset's imposed backlash: pressure angle at e +- b by the paper's side rule, the rod displaced by b") {
+TEST_CASE(
+    "paper preset's imposed backlash: pressure angle at e +- b by the paper's side rule, the rod displaced by b") {
     const MotionProgram program = MotionProgram::paper_default();
     const double b = 1e-4;
     for (double width_deg : {0.0, 10.0, 30.0}) {
@@ -100,10 +102,12 @@ TEST_CASE("paper preset's imposed backlash: pressure angle at e +- b by the pape
             // K_hc (x3 - x2) + K_rb x3 = K_rb b s on the rod, so x3 = b s - F sin a / K_rb.
             const Mechanism<7>::Vector q = preset.static_equilibrium(theta);
             const double F = preset.static_contact_force(theta, q, 0);
-            worst_x3 = std::max(worst_x3, std::abs(q[paper_x3] - (b * side - F * std::sin(alpha) / paper_guide_stiffness)));
+            worst_x3 =
+                std::max(worst_x3, std::abs(q[paper_x3] - (b * side - F * std::sin(alpha) / paper_guide_stiffness)));
             x3_max = std::max(x3_max, std::abs(q[paper_x3]));
         }
-        INFO("worst: pressure angle " << worst_alpha << " rad, guide load " << worst_load << " N, x3 " << worst_x3 << " m");
+        INFO("worst: pressure angle " << worst_alpha << " rad, guide load " << worst_load << " N, x3 " << worst_x3
+                                      << " m");
         CHECK(worst_alpha < 1e-13);
         CHECK(worst_load <= 1e-12 * paper_guide_stiffness * b);
         CHECK(worst_x3 < 1e-13);
@@ -130,7 +134,8 @@ MechanismBuilder small_mechanism(const F& follower, const MotionProgram& program
     b.add_spring("bearing_x", "cx", "ground", 1e8, 50.0);
     b.add_spring("bearing_y", "cy", "ground", 1e8, 50.0);
     b.add_spring("return", "s", "ground", lateral ? 2e4 : 20.0, 0.0, lateral ? 300.0 : 3.0);
-    ContactPairSpec c{"cam", program, follower, HertzContact{1e11, 1.5, 0.5}, 0.3, "cx", "cy", "s", "ground", CamEccentricity{}, "ground"};
+    ContactPairSpec c{"cam",    program,           follower, HertzContact{1e11, 1.5, 0.5}, 0.3, "cx", "cy", "s",
+                      "ground", CamEccentricity{}, "ground"};
     if (lateral) {
         b.add_dof("lat", 0.2, {1, 0, 0});
         b.add_spring("guide", "lat", "ground", 1e8);
@@ -212,7 +217,8 @@ TEST_CASE("two cams on one shaft: rank-two Woodbury update equals the dense LU, 
         b.add_dof(f, 0.4, {0, 1, 0});
         b.add_spring("spring_" + std::string(name), f, "ground", 1.4e4, 0.0, 180.0);
         b.add_contact({std::string("cam_") + name, MotionProgram::paper_default(), TranslatingRoller(0.03, 0.008, 0.01),
-                       HertzContact{1.9e8, 1.0, 0.0}, name[0] == 'a' ? 0.0 : pi, "ground", "shaft", f, "ground", CamEccentricity{}, "ground"});
+                       HertzContact{1.9e8, 1.0, 0.0}, name[0] == 'a' ? 0.0 : pi, "ground", "shaft", f, "ground",
+                       CamEccentricity{}, "ground"});
     }
     const Mechanism<> m(b);
     REQUIRE(m.max_rank() == 2);
@@ -266,15 +272,26 @@ TEST_CASE("each role of an element names a DOF of its own, each element a name o
     b.add_dof("f", 0.5);
     b.add_dof("g", 0.2);
     b.add_spring("spring", "f", "ground", 2e4, 0.0, 300.0);
-    auto contact = [](const std::string& cam_x, const std::string& cam_y, const std::string& lateral, const std::string& twist) {
-        return ContactPairSpec{"cam", MotionProgram::paper_default(), TranslatingRoller(0.03, 0.008, 0.0), HertzContact{},
-                               0.0, cam_x, cam_y, "f", lateral, CamEccentricity{}, twist};
+    auto contact = [](const std::string& cam_x, const std::string& cam_y, const std::string& lateral,
+                      const std::string& twist) {
+        return ContactPairSpec{"cam",
+                               MotionProgram::paper_default(),
+                               TranslatingRoller(0.03, 0.008, 0.0),
+                               HertzContact{},
+                               0.0,
+                               cam_x,
+                               cam_y,
+                               "f",
+                               lateral,
+                               CamEccentricity{},
+                               twist};
     };
     CHECK_THROWS_WITH(b.add_contact(contact("ground", "ground", "f", "ground")),
                       Catch::Contains("contact 'cam': lateral and follower_dof both name DOF 'f'"));
     CHECK_THROWS_WITH(b.add_contact(contact("ground", "f", "ground", "ground")),
                       Catch::Contains("follower_dof and cam_y both name DOF 'f'"));
-    CHECK_THROWS_WITH(b.add_contact(contact("g", "g", "ground", "ground")), Catch::Contains("cam_y and cam_x both name DOF 'g'"));
+    CHECK_THROWS_WITH(b.add_contact(contact("g", "g", "ground", "ground")),
+                      Catch::Contains("cam_y and cam_x both name DOF 'g'"));
     CHECK_THROWS_WITH(b.add_contact(contact("ground", "ground", "g", "g")),
                       Catch::Contains("cam_twist and lateral both name DOF 'g'"));
     CHECK(b.contacts.empty());  // nothing half-added
@@ -285,8 +302,10 @@ TEST_CASE("each role of an element names a DOF of its own, each element a name o
     CHECK_THROWS_WITH(b.add_clearance(guide), Catch::Contains("sliding_dof 'g' is also a DOF of the gap coordinate"));
     b.add_contact(contact("ground", "ground", "ground", "ground"));
     ClearanceSpec same_name{"cam", {{"g", 1.0}}, 1e-4, HertzContact{1e8, 1.0, 0.0}, 0.0, "", 1e-3};
-    CHECK_THROWS_WITH(b.add_clearance(same_name), Catch::Contains("clearance 'cam': the name is taken by contact 'cam'"));
-    CHECK_THROWS_WITH(b.add_spring("cam", "g", "ground", 1.0), Catch::Contains("element 'cam': the name is taken by contact"));
+    CHECK_THROWS_WITH(b.add_clearance(same_name),
+                      Catch::Contains("clearance 'cam': the name is taken by contact 'cam'"));
+    CHECK_THROWS_WITH(b.add_spring("cam", "g", "ground", 1.0),
+                      Catch::Contains("element 'cam': the name is taken by contact"));
     CHECK_THROWS_WITH(b.add_contact(contact("ground", "ground", "ground", "ground")),
                       Catch::Contains("contact 'cam': the name is taken by contact 'cam'"));
 }

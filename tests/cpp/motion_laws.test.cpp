@@ -26,16 +26,14 @@ std::vector<Textbook> textbook_laws() {
         {"simple harmonic", MotionLaw::simple_harmonic(), pi / 2, pi * pi / 2, pi * pi * pi / 2},
         {"cycloidal", MotionLaw::cycloidal(), 2.0, 2 * pi, 4 * pi * pi},
         // modified trapezoid: S(1/2) = (2 + pi) / (16 pi) per unit Ca
-        {"modified trapezoid", MotionLaw::modified_trapezoid(), 2.0, 8 * pi / (pi + 2),
-         32 * pi * pi / (pi + 2)},
+        {"modified trapezoid", MotionLaw::modified_trapezoid(), 2.0, 8 * pi / (pi + 2), 32 * pi * pi / (pi + 2)},
         // modified sine: S(1/2) = (pi + 4) / (8 pi^2) per unit Ca
         {"modified sine", MotionLaw::modified_sine(), 4 * pi / (pi + 4), 4 * pi * pi / (pi + 4),
          16 * pi * pi * pi / (pi + 4)},
         // 3-4-5: A peaks where x(1-x) = 1/6, 1 - 2x = 1/sqrt(3)
         {"3-4-5 polynomial", MotionLaw::polynomial_345(), 15.0 / 8.0, 10.0 / std::sqrt(3.0), 60.0},
         // 4-5-6-7: A peaks where x(1-x) = 1/5, 1 - 2x = 1/sqrt(5)
-        {"4-5-6-7 polynomial", MotionLaw::polynomial_4567(), 35.0 / 16.0, 84.0 * std::sqrt(5.0) / 25.0,
-         52.5},
+        {"4-5-6-7 polynomial", MotionLaw::polynomial_4567(), 35.0 / 16.0, 84.0 * std::sqrt(5.0) / 25.0, 52.5},
         {"constant acceleration", MotionLaw::constant_acceleration(), 2.0, 4.0, inf},
     };
 }
@@ -105,15 +103,13 @@ TEST_CASE("V, A, J are the derivatives of S, V, A (central differences)") {
             const double x = (k + 0.37) / 51.0;
             // Skip points within h of a piece boundary of the SCC family (jerk may jump there).
             bool near_kink = false;
-            for (double xb : {0.125, 0.375, 0.5, 0.625, 0.875})
-                near_kink |= std::abs(x - xb) < 10 * h;
+            for (double xb : {0.125, 0.375, 0.5, 0.625, 0.875}) near_kink |= std::abs(x - xb) < 10 * h;
             if (near_kink) continue;
             const auto lo = t.law.evaluate(x - h), mid = t.law.evaluate(x), hi = t.law.evaluate(x + h);
             INFO("x = " << x);
             CHECK((hi.S - lo.S) / (2 * h) == Approx(mid.V).margin(1e-7 * (1 + t.cv)));
             CHECK((hi.V - lo.V) / (2 * h) == Approx(mid.A).margin(1e-6 * (1 + t.ca)));
-            if (std::isfinite(t.cj))
-                CHECK((hi.A - lo.A) / (2 * h) == Approx(mid.J).margin(1e-5 * (1 + t.cj)));
+            if (std::isfinite(t.cj)) CHECK((hi.A - lo.A) / (2 * h) == Approx(mid.J).margin(1e-5 * (1 + t.cj)));
         }
     }
 }
@@ -144,7 +140,7 @@ TEST_CASE("the sine-constant-cosine family reproduces the classical closed forms
 TEST_CASE("S, V and A are continuous across the SCC piece boundaries") {
     const double eps = 1e-10;
     for (const MotionLaw& law : {MotionLaw::modified_trapezoid(), MotionLaw::modified_sine(),
-                                MotionLaw::sine_constant_cosine(0.3, 0.3, 0.4)}) {
+                                 MotionLaw::sine_constant_cosine(0.3, 0.3, 0.4)}) {
         INFO(law.name());
         const double b = law.b(), d = law.d();
         for (double xb : {b / 2, (1 - d) / 2, 0.5, (1 + d) / 2, 1 - b / 2}) {
@@ -162,8 +158,7 @@ TEST_CASE("S, V and A are continuous across the SCC piece boundaries") {
 }
 
 TEST_CASE("bad law parameters name the parameter and range") {
-    CHECK_THROWS_WITH(MotionLaw::sine_constant_cosine(0.5, 0.5, 0.5),
-                      Catch::Contains("b + c + d must equal 1"));
+    CHECK_THROWS_WITH(MotionLaw::sine_constant_cosine(0.5, 0.5, 0.5), Catch::Contains("b + c + d must equal 1"));
     CHECK_THROWS_WITH(MotionLaw::sine_constant_cosine(-0.1, 0.6, 0.5),
                       Catch::Contains("b (sine fraction) must be in [0, 1]"));
     CHECK_THROWS_WITH(MotionLaw::sine_constant_cosine(0.25, std::nan(""), 0.25),

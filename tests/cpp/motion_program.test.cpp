@@ -102,9 +102,8 @@ TEST_CASE("invalid programs are rejected with the parameter named") {
                           Catch::Contains("segments[0] spans 0 rad") && Catch::Contains("must be at least 1e-06 rad"));
     }
     SECTION("levels do not chain") {
-        CHECK_THROWS_WITH(
-            MotionProgram({{mt, 0, pi, 0, 0.01}, {mt, pi, 2 * pi, 0.02, 0.0}}),
-            Catch::Contains("segments[1].h_start") && Catch::Contains("levels must chain"));
+        CHECK_THROWS_WITH(MotionProgram({{mt, 0, pi, 0, 0.01}, {mt, pi, 2 * pi, 0.02, 0.0}}),
+                          Catch::Contains("segments[1].h_start") && Catch::Contains("levels must chain"));
     }
     SECTION("does not close") {
         CHECK_THROWS_WITH(MotionProgram({{mt, 0, pi, 0, 0.01}, {dw, pi, 2 * pi, 0.01, 0.01}}),
@@ -124,7 +123,9 @@ TEST_CASE("invalid programs are rejected with the parameter named") {
         // Boundaries 4e-10 rad apart pass the 1e-9 rad tiling check; snapped, the rise would span
         // -5e-10 rad (or 0) and its 1 mm lift would be a step in h.
         const double r0 = pi - 9e-10, r1 = pi - 5e-10;
-        CHECK_THROWS_WITH(MotionProgram({{dw, 0, pi, 0, 0}, {mt, r0, r1, 0, 1e-3}, {dw, r1, 2 * pi - 0.5, 1e-3, 1e-3},
+        CHECK_THROWS_WITH(MotionProgram({{dw, 0, pi, 0, 0},
+                                         {mt, r0, r1, 0, 1e-3},
+                                         {dw, r1, 2 * pi - 0.5, 1e-3, 1e-3},
                                          {mt, 2 * pi - 0.5, 2 * pi, 1e-3, 0}}),
                           Catch::Contains("segments[1] spans") && Catch::Contains("at least 1e-06 rad"));
         CHECK_THROWS_WITH(MotionProgram({{mt, 0, 1e-300, 0, 1e-3}, {mt, 1e-300, 2 * pi, 1e-3, 0}}),
@@ -133,8 +134,10 @@ TEST_CASE("invalid programs are rejected with the parameter named") {
     }
     SECTION("a segment on its own, at construction and evaluation") {
         CHECK_THROWS_WITH(Segment({mt, 1.0, 0.5, 0, 1e-3}).validate(), Catch::Contains("segment spans -0.5 rad"));
-        CHECK_THROWS_WITH(Segment({mt, NAN, 0.5, 0, 1e-3}).validate(), Catch::Contains("theta_start/theta_end must be finite"));
-        CHECK_THROWS_WITH(Segment({dw, 0.0, 0.5, 0, 1e-3}).validate(), Catch::Contains("a dwell must have h_end == h_start"));
+        CHECK_THROWS_WITH(Segment({mt, NAN, 0.5, 0, 1e-3}).validate(),
+                          Catch::Contains("theta_start/theta_end must be finite"));
+        CHECK_THROWS_WITH(Segment({dw, 0.0, 0.5, 0, 1e-3}).validate(),
+                          Catch::Contains("a dwell must have h_end == h_start"));
         CHECK_THROWS_WITH(Segment::polynomial(0.0, 1e-300, {0.0, 0.0}, {1e-3, 0.0}),
                           Catch::Contains("polynomial segment: theta_end - theta_start"));
         const Segment rise{mt, 0.0, 1.0, 0.0, 1e-3};

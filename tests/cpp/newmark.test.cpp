@@ -133,9 +133,11 @@ TEST_CASE("bad settings and durations are rejected with the parameter named") {
     CHECK_THROWS_WITH((Newmark<LinearSystem<1>>(system, s)), Catch::Contains("hht_alpha applies to method 'hht' only"));
     s = SolverSettings::hht(-0.1);
     s.beta = 0.3;
-    CHECK_THROWS_WITH((Newmark<LinearSystem<1>>(system, s)), Catch::Contains("gamma and beta apply to method 'newmark' only"));
+    CHECK_THROWS_WITH((Newmark<LinearSystem<1>>(system, s)),
+                      Catch::Contains("gamma and beta apply to method 'newmark' only"));
     s = SolverSettings::named(Method::dop853, 1e-3, 1e-6);
-    CHECK_THROWS_WITH((Newmark<LinearSystem<1>>(system, s)), Catch::Contains("the Newmark stepper runs methods 'newmark'"));
+    CHECK_THROWS_WITH((Newmark<LinearSystem<1>>(system, s)),
+                      Catch::Contains("the Newmark stepper runs methods 'newmark'"));
     s = SolverSettings{};
     s.beta = 0.0;
     CHECK_THROWS_WITH((Newmark<LinearSystem<1>>(system, s)), Catch::Contains("beta must be in (0, 0.5]"));
@@ -144,7 +146,8 @@ TEST_CASE("bad settings and durations are rejected with the parameter named") {
     CHECK_THROWS_WITH(run(system, s, INFINITY), Catch::Contains("duration"));
     CHECK_THROWS_WITH(run(system, s, 1.0, 0), Catch::Contains("decimation must be >= 1"));
     CHECK_THROWS_WITH(run(system, s, 1e9), Catch::Contains("too many"));
-    CHECK_THROWS_WITH(run(system, s, 1e3, 1, 1e6), Catch::Contains("max_output_bytes") && Catch::Contains("increase decimation"));
+    CHECK_THROWS_WITH(run(system, s, 1e3, 1, 1e6),
+                      Catch::Contains("max_output_bytes") && Catch::Contains("increase decimation"));
 }
 
 TEST_CASE("a step that cannot converge halves, then reports time, step, iterations and residual") {
@@ -156,8 +159,8 @@ TEST_CASE("a step that cannot converge halves, then reports time, step, iteratio
     const auto system = sdof.system();
     CHECK_THROWS_AS(run(system, s, 0.01), ConvergenceError);
     CHECK_THROWS_WITH(run(system, s, 0.01), Catch::Contains("did not converge at t = 0 s") &&
-                                            Catch::Contains("time step 0.000125 s (3 halvings)") &&
-                                            Catch::Contains("after 1 iterations; residual"));
+                                                Catch::Contains("time step 0.000125 s (3 halvings)") &&
+                                                Catch::Contains("after 1 iterations; residual"));
 }
 
 TEST_CASE("Bathe's 2-DOF worked example (Finite Element Procedures, trapezoidal rule) to its printed digits") {

@@ -119,7 +119,9 @@ TEST_CASE("newmark under a tolerance refines for a fast transient and coarsens a
     system.K(0, 0) = fast * fast, system.C(0, 0) = 2.0 * 0.02 * fast;
     system.K(1, 1) = slow * slow;
     system.q0 << 1e-3, 0.0;
-    system.external = [slow](double t) { return LinearSystem<2>::Vector(0.0, slow * slow * 1e-2 * std::sin(slow * t)); };
+    system.external = [slow](double t) {
+        return LinearSystem<2>::Vector(0.0, slow * slow * 1e-2 * std::sin(slow * t));
+    };
     Newmark<LinearSystem<2>> stepper(system, under_tolerance("fox_goodwin", 1e-3, 1e-6, 12));
     auto state = stepper.start(0.0, system.q0, LinearSystem<2>::Vector::Zero());
     SolverStatistics stats;

@@ -5,8 +5,8 @@
 #include <stdexcept>
 #define EIGEN_RUNTIME_NO_MALLOC
 // A failed Eigen assertion (a forbidden allocation among them) throws here instead of aborting.
-#define eigen_assert(x) \
-    do {                \
+#define eigen_assert(x)                                                    \
+    do {                                                                   \
         if (!(x)) throw std::runtime_error("Eigen assertion failed: " #x); \
     } while (false)
 
@@ -97,7 +97,8 @@ TEST_CASE("Every method steps a dynamic-size model without heap allocation") {
             using Stepper = typename decltype(tag)::type;
             if (t.method != Method::hht) run_without_allocation<Stepper>(t.name);
             // (Fox-Goodwin's fixed 1 ms step is beyond its stability limit on this model.)
-            if (is_newmark_family(t.method) && t.method != Method::fox_goodwin) run_without_allocation<Stepper>(t.name, false);
+            if (is_newmark_family(t.method) && t.method != Method::fox_goodwin)
+                run_without_allocation<Stepper>(t.name, false);
         });
     }
 }

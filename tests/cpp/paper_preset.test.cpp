@@ -216,7 +216,8 @@ TEST_CASE("Sherman-Morrison and dense LU give the same trajectory") {
     REQUIRE(a.rows == b.rows);
     double dq = 0, df = 0;
     for (std::size_t i = 0; i < a.q.size(); ++i) dq = std::max(dq, std::abs(a.q[i] - b.q[i]));
-    for (std::size_t i = 0; i < a.rows; ++i) df = std::max(df, std::abs(a.channel("cam.force")[i] - b.channel("cam.force")[i]));
+    for (std::size_t i = 0; i < a.rows; ++i)
+        df = std::max(df, std::abs(a.channel("cam.force")[i] - b.channel("cam.force")[i]));
     CHECK(dq < 1e-14);
     CHECK(df < 1e-6);
 }
@@ -242,9 +243,9 @@ TEST_CASE("rigid limit: with stiffnesses x1e3 the follower acceleration approach
     const MotionProgram program = MotionProgram::paper_default();
     auto worst_error = [&](double scale, double dt) {
         CamFollowerParameters p;
-        for (const char* name : {"bearing_stiffness_vertical", "bearing_stiffness_horizontal", "contact_stiffness",
-                                 "roller_pin_stiffness_vertical", "roller_pin_stiffness_horizontal",
-                                 "guide_stiffness", "rod_stiffness"})
+        for (const char* name :
+             {"bearing_stiffness_vertical", "bearing_stiffness_horizontal", "contact_stiffness",
+              "roller_pin_stiffness_vertical", "roller_pin_stiffness_horizontal", "guide_stiffness", "rod_stiffness"})
             p.set(name, p.get(name) * scale);
         const Model m = presets::paper(p);
         SolverSettings s;
@@ -298,8 +299,8 @@ TEST_CASE("parameters: by name, validated, unknown names listed") {
     CHECK_THROWS_WITH(p.set("guide_stiffness", NAN), Catch::Contains("guide_stiffness must be finite"));
     CHECK_THROWS_WITH(p.set("contact_exponent", 0.5), Catch::Contains("contact_exponent must be in [1, 3]"));
     CHECK_THROWS_WITH(p.set("offset", 0.05), Catch::Contains("|offset| < base_radius + roller_radius"));
-    CHECK_THROWS_WITH(p.set("stiffnes", 1.0), Catch::Contains("unknown parameter 'stiffnes'") &&
-                                                 Catch::Contains("rod_stiffness"));
+    CHECK_THROWS_WITH(p.set("stiffnes", 1.0),
+                      Catch::Contains("unknown parameter 'stiffnes'") && Catch::Contains("rod_stiffness"));
     CamFollowerParameters bad;
     bad.follower_mass = 0.0;
     CHECK_THROWS_WITH(presets::paper(bad), Catch::Contains("follower_mass"));
@@ -388,7 +389,8 @@ TEST_CASE("penetration rate and Newton tangent against finite differences, with 
         for (double tc : {0.011, 0.0165, 0.027, 0.05, 0.071}) {
             INFO("t = " << tc);
             const double h = 1e-7;
-            const double fd = (penetration_along(m, tc + h, tc, q0, v0) - penetration_along(m, tc - h, tc, q0, v0)) / (2 * h);
+            const double fd =
+                (penetration_along(m, tc + h, tc, q0, v0) - penetration_along(m, tc - h, tc, q0, v0)) / (2 * h);
             auto w = m.workspace();
             m.prepare(tc, w);
             CHECK(ContactPair::penetration_rate(w.contact(0).terms, q0, v0) == Approx(fd).epsilon(1e-6).margin(1e-9));

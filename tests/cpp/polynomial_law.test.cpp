@@ -79,9 +79,8 @@ TEST_CASE("general boundary conditions and interior points are met to 1e-10") {
 TEST_CASE("a polynomial with zero net lift works inside a program") {
     // A bump over 60-120 deg returning to the dwell level, C2 both ends.
     const Segment bump = Segment::polynomial(60 * deg, 120 * deg, {0.001, 0, 0}, {0.001, 0, 0}, {{90 * deg, 0.003}});
-    const MotionProgram p({{MotionLaw::dwell(), 0, 60 * deg, 0.001, 0.001},
-                           bump,
-                           {MotionLaw::dwell(), 120 * deg, 2 * pi, 0.001, 0.001}});
+    const MotionProgram p(
+        {{MotionLaw::dwell(), 0, 60 * deg, 0.001, 0.001}, bump, {MotionLaw::dwell(), 120 * deg, 2 * pi, 0.001, 0.001}});
     CHECK(p.evaluate(90 * deg).h == Approx(0.003).epsilon(1e-12));
     CHECK(p.max_lift() >= 0.003);
     CHECK(p.max_lift() < 0.0031);
@@ -94,8 +93,10 @@ TEST_CASE("a polynomial with zero net lift works inside a program") {
 
 TEST_CASE("impossible or bad polynomial conditions are refused, naming the parameter") {
     const double a = 1.0, b = 2.0;
-    REQUIRE_THROWS_WITH(Segment::polynomial(a, a, {0}, {0}), Catch::Contains("theta_end - theta_start must be finite and at least 1e-06 rad"));
-    REQUIRE_THROWS_WITH(Segment::polynomial(b, a, {0}, {0}), Catch::Contains("theta_end - theta_start must be finite and at least 1e-06 rad"));
+    REQUIRE_THROWS_WITH(Segment::polynomial(a, a, {0}, {0}),
+                        Catch::Contains("theta_end - theta_start must be finite and at least 1e-06 rad"));
+    REQUIRE_THROWS_WITH(Segment::polynomial(b, a, {0}, {0}),
+                        Catch::Contains("theta_end - theta_start must be finite and at least 1e-06 rad"));
     REQUIRE_THROWS_WITH(Segment::polynomial(std::nan(""), b, {0}, {0}), Catch::Contains("theta_start"));
     REQUIRE_THROWS_WITH(Segment::polynomial(a, b, {}, {0}), Catch::Contains("start must hold at least"));
     REQUIRE_THROWS_WITH(Segment::polynomial(a, b, {0}, {}), Catch::Contains("end must hold at least"));

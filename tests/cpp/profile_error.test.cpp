@@ -210,7 +210,8 @@ TEST_CASE("table: a lower max_harmonic returns the least-squares projection") {
 TEST_CASE("table, Fourier: derivatives against finite differences") {
     const ProfileError f = ProfileError::fourier(1e-6, {2e-6, -1e-6, 0.0, 3e-7}, {0.0, 1e-6, 2e-6, -1e-7});
     const double scale[3] = {2e-5, 8e-5, 3e-4};
-    for (double t : {0.2, 1.1, 2.9, 4.4, 5.8}) check_derivatives([&](double x) { return as_array(f.evaluate(x)); }, t, 1e-5, scale);
+    for (double t : {0.2, 1.1, 2.9, 4.4, 5.8})
+        check_derivatives([&](double x) { return as_array(f.evaluate(x)); }, t, 1e-5, scale);
     // 40 harmonics: the restarted recurrence stays accurate.
     std::vector<double> a(40), b(40);
     for (int k = 1; k <= 40; ++k) a[k - 1] = 1e-6 / k, b[k - 1] = -0.5e-6 / k;
@@ -271,8 +272,8 @@ TEST_CASE("program with a profile error: design lift + e, derivatives, lift extr
 
 TEST_CASE("a program without a profile error evaluates bit-identically to the design formula") {
     const MotionProgram p = MotionProgram::paper_default();
-    const MotionProgram steep({{MotionLaw::cycloidal(), 0, 40 * deg, 0, 0.04},
-                               {MotionLaw::polynomial_345(), 40 * deg, 2 * pi, 0.04, 0.0}});
+    const MotionProgram steep(
+        {{MotionLaw::cycloidal(), 0, 40 * deg, 0, 0.04}, {MotionLaw::polynomial_345(), 40 * deg, 2 * pi, 0.04, 0.0}});
     for (const MotionProgram* prog : {&p, &steep})
         for (int i = -50; i < 800; ++i) {
             const double t = 0.00917 * i;
@@ -299,8 +300,8 @@ TEST_CASE("undercut check: a deep narrow dent is refused, the healthy cam and a 
     const double R = 0.040 + 0.0125 - d * std::pow(u, 4), dR = 8 * d * x * u * u * u * s,
                  d2R = 8 * d * u * u * (1 - 7 * x * x) * s * s;
     const double rho = pitch_radius(R, dR, d2R);
-    REQUIRE(rho > 0.0);       // convex there
-    REQUIRE(rho < 0.0125);    // tighter than the roller: undercut
+    REQUIRE(rho > 0.0);     // convex there
+    REQUIRE(rho < 0.0125);  // tighter than the roller: undercut
     const MotionProgram dented = healthy.with_profile_error(ProfileError::dent(15 * deg, w, d));
     const std::string message = message_of([&] { check_undercut(dented, roller); });
     CHECK_THAT(message, Contains("undercuts at theta = "));
@@ -316,7 +317,8 @@ TEST_CASE("undercut check: a deep narrow dent is refused, the healthy cam and a 
                                       m.d2h + 8 * dn * u * u * (1 - 7 * x * x) * sn * sn);
     REQUIRE(rho_n > 0.0);
     REQUIRE(rho_n < 0.0125);
-    const std::string narrow = message_of([&] { check_undercut(healthy.with_profile_error(ProfileError::dent(c, wn, dn)), roller); });
+    const std::string narrow =
+        message_of([&] { check_undercut(healthy.with_profile_error(ProfileError::dent(c, wn, dn)), roller); });
     CHECK_THAT(narrow, Contains("undercuts at theta = "));
     CHECK(std::abs(std::stod(narrow.substr(narrow.find("theta = ") + 8)) - 100.125) <= 0.05);
 
@@ -329,7 +331,8 @@ TEST_CASE("bad input names the parameter and the allowed range") {
     CHECK_THROWS_WITH(ProfileError::waviness(NAN, 3), Contains("waviness amplitude"));
     CHECK_THROWS_WITH(ProfileError::waviness(1e-6, 0), Contains("waviness order must be an integer >= 1"));
     CHECK_THROWS_WITH(ProfileError::waviness(1e-6, 2, INFINITY), Contains("waviness phase"));
-    CHECK_THROWS_WITH(ProfileError::dent(1.0, 0.0, 1e-5), Contains("dent width must be in [1e-06 rad, 180 deg], got 0"));
+    CHECK_THROWS_WITH(ProfileError::dent(1.0, 0.0, 1e-5),
+                      Contains("dent width must be in [1e-06 rad, 180 deg], got 0"));
     CHECK_THROWS_WITH(ProfileError::dent(1.0, 4.0, 1e-5), Contains("dent width must be in [1e-06 rad, 180 deg]"));
     CHECK_THROWS_WITH(ProfileError::dent(1.0, NAN, 1e-5), Contains("dent width"));
     CHECK_THROWS_WITH(ProfileError::dent(NAN, 0.1, 1e-5), Contains("dent centre"));
@@ -342,7 +345,8 @@ TEST_CASE("bad input names the parameter and the allowed range") {
     CHECK_THROWS_WITH(ProfileError::table({0.0, 1.0}, {0.0, 0.0}), Contains("at least 3 points"));
     CHECK_THROWS_WITH(ProfileError::table({0.0, 1.0, 1.0, 3.0}, {0, 0, 0, 0}),
                       Contains("theta must be strictly increasing in [0, 360) deg; point 2"));
-    CHECK_THROWS_WITH(ProfileError::table({-0.1, 1.0, 2.0}, {0, 0, 0}), Contains("strictly increasing in [0, 360) deg; point 0"));
+    CHECK_THROWS_WITH(ProfileError::table({-0.1, 1.0, 2.0}, {0, 0, 0}),
+                      Contains("strictly increasing in [0, 360) deg; point 0"));
     CHECK_THROWS_WITH(ProfileError::table({0.0, 1.0, 2 * pi}, {0, 0, 0}), Contains("point 2 is at 360 deg"));
     CHECK_THROWS_WITH(ProfileError::table({0.0, NAN, 2.0}, {0, 0, 0}), Contains("point 1 must be finite"));
     CHECK_THROWS_WITH(ProfileError::table(th, {0, 0, NAN, 0, 0}), Contains("point 2 must be finite"));

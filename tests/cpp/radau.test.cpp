@@ -54,7 +54,8 @@ TEST_CASE("Radau IIA tableau: order conditions B(5), C(3), the eigen-decompositi
     // i (3^(5/6) + 3^(7/6)) / 2 (Hairer & Wanner, IV.8).
     CHECK(t.mu_real == Approx(3.0 + std::cbrt(9.0) - std::cbrt(3.0)).epsilon(1e-13));
     CHECK(t.mu_pair.real() == Approx(3.0 + 0.5 * (std::cbrt(3.0) - std::cbrt(9.0))).epsilon(1e-13));
-    CHECK(std::abs(t.mu_pair.imag()) == Approx(0.5 * (std::pow(3.0, 5.0 / 6.0) + std::pow(3.0, 7.0 / 6.0))).epsilon(1e-13));
+    CHECK(std::abs(t.mu_pair.imag()) ==
+          Approx(0.5 * (std::pow(3.0, 5.0 / 6.0) + std::pow(3.0, 7.0 / 6.0))).epsilon(1e-13));
     // Z = v_real w_real + 2 Re(v_pair w_pair) inverts the transformation, and A^-1 Z maps like diag(mu).
     const Eigen::Vector3d Z(0.3, -1.7, 2.2);
     const double w_real = t.w_row_real.dot(Z);
@@ -70,7 +71,8 @@ TEST_CASE("Radau IIA tableau: order conditions B(5), C(3), the eigen-decompositi
     CHECK(t.e[2] == Approx(-1.0 / 3.0).epsilon(1e-12));
     // The collocation polynomial passes through the stages: sum_k c_i^(k+1) Q_k = Z_i.
     const Eigen::Vector3d Q = t.dense * Z;
-    for (int i = 0; i < 3; ++i) CHECK(t.c[i] * Q[0] + t.c[i] * t.c[i] * Q[1] + std::pow(t.c[i], 3) * Q[2] == Approx(Z[i]).epsilon(1e-13));
+    for (int i = 0; i < 3; ++i)
+        CHECK(t.c[i] * Q[0] + t.c[i] * t.c[i] * Q[1] + std::pow(t.c[i], 3) * Q[2] == Approx(Z[i]).epsilon(1e-13));
 }
 
 TEST_CASE("Radau IIA with fixed steps is fifth order on a driven damped oscillator") {
@@ -105,7 +107,9 @@ TEST_CASE("Radau IIA: the adaptive error follows the tolerance") {
     }
 }
 
-TEST_CASE("Radau IIA on a stiff system: exact to the tolerance in a few hundred steps, where explicit stability needs ~10^5") {
+TEST_CASE(
+    "Radau IIA on a stiff system: exact to the tolerance in a few hundred steps, where explicit stability needs "
+    "~10^5") {
     // A soft mode (~16 rad/s) driven at 6 rad/s, and a stiff, damped one (~1.4e5 rad/s, 35 % of critical).
     LinearSystem<2> stiff;
     stiff.M << 1.0, 0.0, 0.0, 1.0;
@@ -121,7 +125,8 @@ TEST_CASE("Radau IIA on a stiff system: exact to the tolerance in a few hundred 
     A.bottomRightCorner<2, 2>() = -stiff.C;
     const Eigen::Vector4cd g(0, 0, 1, 0);
     const std::complex<double> i6(0.0, 6.0);
-    const Eigen::Vector4cd P = (i6 * Eigen::Matrix4cd::Identity() - A.cast<std::complex<double>>()).partialPivLu().solve(g);
+    const Eigen::Vector4cd P =
+        (i6 * Eigen::Matrix4cd::Identity() - A.cast<std::complex<double>>()).partialPivLu().solve(g);
     const Eigen::EigenSolver<Eigen::Matrix4d> eig(A);
     const Eigen::Matrix4cd V = eig.eigenvectors();
     const Eigen::Vector4cd coeff = V.partialPivLu().solve(-P.imag().cast<std::complex<double>>());
@@ -160,12 +165,14 @@ TEST_CASE("Radau IIA on the paper preset agrees with DOP853 at tight tolerance")
         const double* x = dp.channel(channel);
         const double* y = ra.channel(channel);
         double peak = 0.0, diff = 0.0;
-        for (std::size_t i = 0; i < dp.rows; ++i) peak = std::max(peak, std::abs(x[i])), diff = std::max(diff, std::abs(x[i] - y[i]));
+        for (std::size_t i = 0; i < dp.rows; ++i)
+            peak = std::max(peak, std::abs(x[i])), diff = std::max(diff, std::abs(x[i] - y[i]));
         return diff / peak;
     };
     const double force = difference("cam.force"), accel = difference("a.y4");
-    INFO("force " << force << ", follower acceleration " << accel << " of the peak; radau " << ra.stats.steps << " steps, "
-                  << ra.stats.newton_iterations << " Newton iterations, " << ra.stats.rejected_steps << " rejected");
+    INFO("force " << force << ", follower acceleration " << accel << " of the peak; radau " << ra.stats.steps
+                  << " steps, " << ra.stats.newton_iterations << " Newton iterations, " << ra.stats.rejected_steps
+                  << " rejected");
     // Radau's global error at 1e-9 is ~9e-9 of the peak force (docs/benchmarks.md), DOP853's at 1e-10 ~1e-9.
     CHECK(force < 1e-7);
     CHECK(accel < 1e-7);

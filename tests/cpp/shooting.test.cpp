@@ -95,7 +95,8 @@ TEST_CASE("shooting: Floquet multipliers of a linear system are the scheme's amp
         const cd mu = std::pow((1.0 + lambda[i] * h / 2.0) / (1.0 - lambda[i] * h / 2.0), 1024.0);
         double nearest = 1e300;
         for (int j = 0; j < 4; ++j) nearest = std::min(nearest, std::abs(orbit.multipliers[j] - mu));
-        INFO("lambda = " << lambda[i] << ", scheme multiplier " << mu << ", exp(lambda T) " << std::exp(lambda[i] * f.period()));
+        INFO("lambda = " << lambda[i] << ", scheme multiplier " << mu << ", exp(lambda T) "
+                         << std::exp(lambda[i] * f.period()));
         CHECK(nearest < 1e-5);
         // the ODE's exp(lambda T) within the scheme's error
         CHECK(std::abs(std::exp(lambda[i] * f.period()) - mu) < 2e-2 * std::abs(mu) + 1e-6);
@@ -120,7 +121,8 @@ TEST_CASE("shooting: the paper mechanism's periodic orbit is the one a long tran
     SolverStatistics stats;
     for (int i = 0; i < 40 * 4096; ++i) stepper.step(state, stats);
     const double qs = orbit.q_scale, vs = orbit.v_scale;
-    const double dq = (state.q - orbit.q).cwiseAbs().maxCoeff() / qs, dv = (state.v - orbit.v).cwiseAbs().maxCoeff() / vs;
+    const double dq = (state.q - orbit.q).cwiseAbs().maxCoeff() / qs,
+                 dv = (state.v - orbit.v).cwiseAbs().maxCoeff() / vs;
     INFO("relative difference q " << dq << ", v " << dv);
     CHECK(dq < 1e-8);
     CHECK(dv < 1e-8);
@@ -151,7 +153,8 @@ TEST_CASE("shooting: bad options are refused naming the option") {
     one.tolerance = 1e-12;
     const PeriodicOrbit orbit = periodic_orbit(m, s, one);
     CHECK_FALSE(orbit.converged);
-    CHECK_THROWS_WITH(require_converged(orbit, one), Catch::Contains("did not converge") && Catch::Contains("mismatch"));
+    CHECK_THROWS_WITH(require_converged(orbit, one),
+                      Catch::Contains("did not converge") && Catch::Contains("mismatch"));
 }
 
 TEST_CASE("long runs keep time as t0 + n dt: no drift to excite lightly damped modes") {
@@ -161,7 +164,8 @@ TEST_CASE("long runs keep time as t0 + n dt: no drift to excite lightly damped m
     Newmark<LinearSystem<1>> stepper(sys, s);
     auto state = stepper.start(0.0, LinearSystem<1>::Vector::Zero(), LinearSystem<1>::Vector::Zero());
     const std::uint64_t n = 1u << 22;
-    const IntegrationReport report = integrate(stepper, state, double(n) * s.time_step, [](const auto&, std::uint64_t) { return true; });
+    const IntegrationReport report =
+        integrate(stepper, state, double(n) * s.time_step, [](const auto&, std::uint64_t) { return true; });
     REQUIRE(report.planned_steps == n);
     CHECK(state.t == double(n) * s.time_step);
     double sum = 0.0;  // what summing step by step gives

@@ -95,5 +95,6 @@ TEST_CASE("simulate_many refuses bad thread counts and option lists by name") {
     o.duration = 0.01;
     CHECK_THROWS_WITH(simulate_many<Paper>({&m}, fox_goodwin(m), {o}, 5000), Catch::Matchers::Contains("threads"));
     CHECK_THROWS_WITH(simulate_many<Paper>({&m}, fox_goodwin(m), {o, o}, 1), Catch::Matchers::Contains("options"));
-    CHECK_THROWS_WITH(simulate_many<Paper>({&m, nullptr}, fox_goodwin(m), {o}, 1), Catch::Matchers::Contains("system 1"));
+    CHECK_THROWS_WITH(simulate_many<Paper>({&m, nullptr}, fox_goodwin(m), {o}, 1),
+                      Catch::Matchers::Contains("system 1"));
 }

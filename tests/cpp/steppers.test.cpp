@@ -47,7 +47,8 @@ TEST_CASE("Every method with fixed steps converges at its order on the driven da
         // The coarsest step keeps the finest error well above rounding (DOP853's is 7e-16 m at T/40).
         const double coarsest = t.order >= 8 ? T / 5 : t.order >= 5 ? T / 20 : T / 40;
         double errors[3];
-        for (int i = 0; i < 3; ++i) errors[i] = max_error(sdof, fixed_steps(t.method, coarsest / double(1 << i)), 3 * T);
+        for (int i = 0; i < 3; ++i)
+            errors[i] = max_error(sdof, fixed_steps(t.method, coarsest / double(1 << i)), 3 * T);
         for (int i = 0; i < 2; ++i) {
             const double observed = std::log2(errors[i] / errors[i + 1]);
             INFO(t.name << ", h = T/" << T / coarsest * double(1 << i) << ": error " << errors[i] << ", observed order "

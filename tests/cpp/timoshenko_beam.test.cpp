@@ -101,23 +101,23 @@ PlanarShape planar_shape(double xi, double L, double phi) {
         s * L * (xi * xi * xi - (2 + phi / 2) * xi * xi + (1 + phi / 2) * xi),
         s * (-2 * xi * xi * xi + 3 * xi * xi + phi * xi),
         s * L * (xi * xi * xi - (1 - phi / 2) * xi * xi - phi / 2 * xi);
-    f.dN << s * (6 * xi * xi - 6 * xi - phi) / L,
-        s * (3 * xi * xi - (4 + phi) * xi + 1 + phi / 2),
-        s * (-6 * xi * xi + 6 * xi + phi) / L,
-        s * (3 * xi * xi - (2 - phi) * xi - phi / 2);
-    f.Psi << s * 6 * (xi * xi - xi) / L, s * (3 * xi * xi - (4 + phi) * xi + 1 + phi),
-        -s * 6 * (xi * xi - xi) / L, s * (3 * xi * xi - (2 - phi) * xi);
-    f.dPsi << s * 6 * (2 * xi - 1) / (L * L), s * (6 * xi - (4 + phi)) / L,
-        -s * 6 * (2 * xi - 1) / (L * L), s * (6 * xi - (2 - phi)) / L;
+    f.dN << s * (6 * xi * xi - 6 * xi - phi) / L, s * (3 * xi * xi - (4 + phi) * xi + 1 + phi / 2),
+        s * (-6 * xi * xi + 6 * xi + phi) / L, s * (3 * xi * xi - (2 - phi) * xi - phi / 2);
+    f.Psi << s * 6 * (xi * xi - xi) / L, s * (3 * xi * xi - (4 + phi) * xi + 1 + phi), -s * 6 * (xi * xi - xi) / L,
+        s * (3 * xi * xi - (2 - phi) * xi);
+    f.dPsi << s * 6 * (2 * xi - 1) / (L * L), s * (6 * xi - (4 + phi)) / L, -s * 6 * (2 * xi - 1) / (L * L),
+        s * (6 * xi - (2 - phi)) / L;
     return f;
 }
 
 // K = int E I Psi' Psi'^T + kappa G A (N' - Psi)(N' - Psi)^T dx, M = int rho A N N^T + rho I Psi Psi^T dx
 // by 5-point Gauss-Legendre (exact: the integrands are polynomials of degree <= 6).
-void planar_by_quadrature(double EI, double kGA, double rhoA, double rhoI, double L, Eigen::Matrix4d& K, Eigen::Matrix4d& M) {
+void planar_by_quadrature(double EI, double kGA, double rhoA, double rhoI, double L, Eigen::Matrix4d& K,
+                          Eigen::Matrix4d& M) {
     const double phi = 12.0 * EI / (kGA * L * L);
     const double g[5] = {0.0, -0.5384693101056831, 0.5384693101056831, -0.9061798459386640, 0.9061798459386640};
-    const double w[5] = {0.5688888888888889, 0.4786286704993665, 0.4786286704993665, 0.2369268850561891, 0.2369268850561891};
+    const double w[5] = {0.5688888888888889, 0.4786286704993665, 0.4786286704993665, 0.2369268850561891,
+                         0.2369268850561891};
     K.setZero();
     M.setZero();
     for (int q = 0; q < 5; ++q) {
@@ -271,10 +271,11 @@ TEST_CASE("cantilever with a tip load: P L^3 / (3 E I) + P L / (kappa G A), exac
 TEST_CASE("simply supported with a central load: P L^3 / (48 E I) + P L / (4 kappa G A)") {
     const double d = 0.04, L = 0.24, P = 2000.0;
     const BeamSection s = BeamSection::solid_circle(d, E_steel, nu_steel, rho_steel);
-    const double expected = P * L * L * L / (48.0 * E_steel * circle_I(d)) + P * L / (4.0 * kappa_solid * G_steel * circle_area(d));
+    const double expected =
+        P * L * L * L / (48.0 * E_steel * circle_I(d)) + P * L / (4.0 * kappa_solid * G_steel * circle_area(d));
     for (int n : {2, 8}) {
         const UniformShaft shaft(s, L, n);
-        const std::vector<int> fixed = {shaft_dof(0, ShaftDof::axial), shaft_dof(0, ShaftDof::lateral_y),
+        const std::vector<int> fixed = {shaft_dof(0, ShaftDof::axial),     shaft_dof(0, ShaftDof::lateral_y),
                                         shaft_dof(0, ShaftDof::lateral_z), shaft_dof(0, ShaftDof::torsion),
                                         shaft_dof(n, ShaftDof::lateral_y), shaft_dof(n, ShaftDof::lateral_z)};
         Eigen::VectorXd f = Eigen::VectorXd::Zero(shaft.dof_count());
@@ -373,7 +374,8 @@ TEST_CASE("free-free slender shaft: first bending at beta L = 4.7300407, and 6 r
     const BeamSection s = BeamSection::solid_circle(d, E_steel, nu_steel, rho_steel);
     const UniformShaft shaft(s, L, 32);
     const double bl = 4.7300407;
-    const double expected = bl * bl / (2.0 * PI * L * L) * std::sqrt(E_steel * circle_I(d) / (rho_steel * circle_area(d)));
+    const double expected =
+        bl * bl / (2.0 * PI * L * L) * std::sqrt(E_steel * circle_I(d) / (rho_steel * circle_area(d)));
     const Eigen::VectorXd f = frequencies_hz(shaft, {});
     for (int i = 0; i < 6; ++i) CHECK(f(i) < 1e-4 * expected);
     CHECK(relative(f(6), expected) < 2e-4);  // the Timoshenko correction at L/d = 200, ~7e-5
@@ -436,7 +438,8 @@ TEST_CASE("bad input throws naming the parameter") {
     CHECK_THROWS_WITH(BeamSection::solid_circle(0.02, E_steel, -0.1, rho_steel), Contains("poisson_ratio"));
     CHECK_THROWS_WITH(BeamSection::solid_circle(0.02, E_steel, nu_steel, 0.0), Contains("density"));
     CHECK_THROWS_WITH(BeamSection::hollow_circle(0.02, 0.02, E_steel, nu_steel, rho_steel), Contains("inner diameter"));
-    CHECK_THROWS_WITH(BeamSection::hollow_circle(0.02, -0.01, E_steel, nu_steel, rho_steel), Contains("inner diameter"));
+    CHECK_THROWS_WITH(BeamSection::hollow_circle(0.02, -0.01, E_steel, nu_steel, rho_steel),
+                      Contains("inner diameter"));
 
     const BeamSection good = BeamSection::solid_circle(0.02, E_steel, nu_steel, rho_steel);
     BeamSection bad = good;
@@ -490,10 +493,12 @@ TEST_CASE("convergence table", "[.table]") {
     }
     {
         const UniformShaft a(thick, Lt, 16), b(thick, Lt, 32);
-        const Eigen::VectorXd fa = frequencies_hz(a, simply_supported_xy(a)), fb = frequencies_hz(b, simply_supported_xy(b));
+        const Eigen::VectorXd fa = frequencies_hz(a, simply_supported_xy(a)),
+                              fb = frequencies_hz(b, simply_supported_xy(b));
         std::printf("Richardson 16/32:");
         for (int mode = 1; mode <= 4; ++mode)
-            std::printf("  mode %d %.3e", mode, relative((4 * fb(mode - 1) - fa(mode - 1)) / 3, timoshenko_ss_hz(mode, Lt, dt)));
+            std::printf("  mode %d %.3e", mode,
+                        relative((4 * fb(mode - 1) - fa(mode - 1)) / 3, timoshenko_ss_hz(mode, Lt, dt)));
         std::printf("\n");
     }
     for (int mode = 1; mode <= 4; ++mode)
@@ -502,8 +507,8 @@ TEST_CASE("convergence table", "[.table]") {
     const UniformShaft ff(s, L, 32);
     const double bl = 4.7300407;
     const double eb = bl * bl / (2.0 * PI * L * L) * std::sqrt(E_steel * circle_I(d) / (rho_steel * circle_area(d)));
-    std::printf("free-free 32 elements: f1 %.6f Hz, beta L closed form %.6f Hz, rel %.3e\n", frequencies_hz(ff, {})(6), eb,
-                relative(frequencies_hz(ff, {})(6), eb));
+    std::printf("free-free 32 elements: f1 %.6f Hz, beta L closed form %.6f Hz, rel %.3e\n", frequencies_hz(ff, {})(6),
+                eb, relative(frequencies_hz(ff, {})(6), eb));
     const UniformShaft tor(thick, 0.5, 32);
     std::vector<int> fixed = all_but(tor, {ShaftDof::torsion});
     fixed.push_back(0 * 6 + 3);

@@ -50,10 +50,12 @@ struct ClearanceSpec {
         detail::require_non_negative(wall.damping_factor, (who + " wall damping factor").c_str(), "(s/m)");
         detail::require_non_negative(friction, (who + " friction coefficient").c_str());
         if (friction > 0.0 && sliding_dof.empty())
-            detail::fail(who, ": friction coefficient ", friction, " > 0 needs the sliding DOF (the rod's axial coordinate)");
+            detail::fail(who, ": friction coefficient ", friction,
+                         " > 0 needs the sliding DOF (the rod's axial coordinate)");
         for (const auto& term : gap)
             if (friction > 0.0 && term.first == sliding_dof)
-                detail::fail(who, ": sliding_dof '", sliding_dof, "' is also a DOF of the gap coordinate; the rod slides "
+                detail::fail(who, ": sliding_dof '", sliding_dof,
+                             "' is also a DOF of the gap coordinate; the rod slides "
                              "along its axis, across the gap: each role needs a DOF of its own");
         detail::require_positive(slip_velocity, (who + " slip velocity").c_str(), "(m/s)");
     }
@@ -66,10 +68,10 @@ struct ClearanceSpec {
 struct GuideSpec {
     std::string name;
     std::string lateral_dof, tilt_dof, sliding_dof;
-    double length = 0.0;                  // m
-    std::vector<double> bushings;         // axial positions, m (one or two)
-    double tilt_reference = 0.0;          // m, where lateral_dof is measured
-    double clearance = 0.0;               // radial, m
+    double length = 0.0;           // m
+    std::vector<double> bushings;  // axial positions, m (one or two)
+    double tilt_reference = 0.0;   // m, where lateral_dof is measured
+    double clearance = 0.0;        // radial, m
     HertzContact wall{2.5e8, 1.0, 0.0};
     double friction = 0.0;
     double slip_velocity = 1e-3;
@@ -88,7 +90,12 @@ struct GuideSpec {
             if (!(z >= 0.0 && z <= length))
                 detail::fail(who, ": bushing position ", z, " m must lie in the guide, [0, ", length, "] m");
             ClearanceSpec c{name + (bushings.size() == 2 ? (i == 0 ? ".bushing1" : ".bushing2") : ""),
-                            {{lateral_dof, 1.0}}, clearance, wall, friction, sliding_dof, slip_velocity};
+                            {{lateral_dof, 1.0}},
+                            clearance,
+                            wall,
+                            friction,
+                            sliding_dof,
+                            slip_velocity};
             if (!tilt_dof.empty() && z != tilt_reference) c.gap.emplace_back(tilt_dof, z - tilt_reference);
             out.push_back(std::move(c));
         }
@@ -98,11 +105,11 @@ struct GuideSpec {
 
 // The state of one clearance at (q, v): what force() computes and tangent()/observe() reuse.
 struct ClearanceResponse {
-    double u = 0.0;        // gap coordinate, m
-    int side = 0;          // -1, 0 (free), +1
+    double u = 0.0;                                   // gap coordinate, m
+    int side = 0;                                     // -1, 0 (free), +1
     ContactResponse wall{0.0, 0.0, 0.0, false, 0.0};  // normal force magnitude and its derivatives
-    double slip = 0.0;     // tanh(w' / v_slip)
-    double dslip = 0.0;    // d slip / d w'
+    double slip = 0.0;                                // tanh(w' / v_slip)
+    double dslip = 0.0;                               // d slip / d w'
 };
 
 // A clearance with its DOFs resolved to indices.

@@ -55,25 +55,25 @@ struct ContactPairSpec {
     HertzContact law;
     double phase = 0.0;  // rad: cam angle = omega t + phase
     std::string cam_x = "ground", cam_y = "ground", follower_dof, lateral = "ground";
-    CamEccentricity eccentricity;  // none by default
+    CamEccentricity eccentricity;      // none by default
     std::string cam_twist = "ground";  // the shaft's twist DOF at the cam (ground: a rigid camshaft)
     PaperBacklash paper_backlash{};    // off by default
 
     // The roles in the order of require_distinct_roles' messages (and ContactPair's indices).
     static constexpr int role_count = 6;
     static constexpr const char* role_names[role_count] = {"cam_x",   "cam_y",     "follower_dof",
-                                                      "lateral", "cam_twist", "paper_backlash.guide_dof"};
+                                                           "lateral", "cam_twist", "paper_backlash.guide_dof"};
     // Each role is a coordinate of its own: two roles on one DOF would add two different kinematic
     // terms to the same coordinate and give meaningless forces.
     void require_distinct_roles() const {
-        const std::string* roles[ContactPairSpec::role_count] = {&cam_x, &cam_y, &follower_dof, &lateral, &cam_twist,
-                                                            &paper_backlash.guide_dof};
+        const std::string* roles[ContactPairSpec::role_count] = {&cam_x,   &cam_y,     &follower_dof,
+                                                                 &lateral, &cam_twist, &paper_backlash.guide_dof};
         if (follower_dof == ground_name) detail::fail("contact '", name, "': follower_dof must be a DOF, not ground");
         for (int a = 0; a < ContactPairSpec::role_count; ++a)
             for (int b = 0; b < a; ++b)
                 if (*roles[a] != ground_name && *roles[a] == *roles[b])
-                    detail::fail("contact '", name, "': ", role_names[a], " and ", role_names[b], " both name DOF '", *roles[a],
-                                 "'; each role needs a DOF of its own (or ground)");
+                    detail::fail("contact '", name, "': ", role_names[a], " and ", role_names[b], " both name DOF '",
+                                 *roles[a], "'; each role needs a DOF of its own (or ground)");
     }
 };
 
@@ -94,14 +94,19 @@ struct ContactTerms {
     double moment_arm = 0.0;
     double cos_alpha = 1.0, sin_alpha = 0.0;
     std::array<double, slots> p{}, p_dot{};  // time-only external loads on the same slots, N, N/s
-    bool loaded = false;                 // any p != 0
+    bool loaded = false;                     // any p != 0
 };
 
 // A pair with its DOFs resolved to indices (-1: ground), ready for the time loop.
 class ContactPair {
 public:
     ContactPair(ContactPairSpec spec, int cam_x, int cam_y, int follower, int lateral, int twist = -1, int guide = -1)
-        : spec_(std::move(spec)), cam_x_(cam_x), cam_y_(cam_y), follower_(follower), lateral_(lateral), twist_(twist),
+        : spec_(std::move(spec)),
+          cam_x_(cam_x),
+          cam_y_(cam_y),
+          follower_(follower),
+          lateral_(lateral),
+          twist_(twist),
           guide_(guide) {
         const std::string who = "contact '" + spec_.name + "'";
         if (follower_ < 0) detail::fail(who, ": follower_dof must be a DOF, not ground");
@@ -113,19 +118,22 @@ public:
                     detail::fail(who, ": ", ContactPairSpec::role_names[a], " and ", ContactPairSpec::role_names[b],
                                  " are the same DOF; each role needs a DOF of its own (or ground)");
         if (lateral_ >= 0 && !is_translating(spec_.follower))
-            detail::fail(who, ": lateral is defined for translating followers only (", follower_type_name(spec_.follower), ")");
+            detail::fail(who, ": lateral is defined for translating followers only (",
+                         follower_type_name(spec_.follower), ")");
         detail::require_positive(spec_.law.stiffness, (who + " contact stiffness").c_str(), "(N/m^n)");
         detail::require_in_range(spec_.law.exponent, 1.0, 3.0, (who + " contact exponent").c_str());
         detail::require_non_negative(spec_.law.damping_factor, (who + " contact damping factor").c_str(), "(s/m)");
         detail::require_finite(spec_.phase, (who + " phase").c_str());
         // The geometry must be followable: no undercut, no cusp, pressure angle below 90 deg.
-        std::visit([&](const auto& f) {
-            try {
-                check_undercut(spec_.program, f);
-            } catch (const std::invalid_argument& e) {
-                detail::fail(who, ": ", e.what());
-            }
-        }, spec_.follower);
+        std::visit(
+            [&](const auto& f) {
+                try {
+                    check_undercut(spec_.program, f);
+                } catch (const std::invalid_argument& e) {
+                    detail::fail(who, ": ", e.what());
+                }
+            },
+            spec_.follower);
         const CamEccentricity& ecc = spec_.eccentricity;
         ecc.validate(who);
         if (twist_ >= 0 && ecc.paper_force() && ecc.any())
@@ -134,7 +142,8 @@ public:
         if (ecc.paper_force() && ecc.any()) {
             if (!is_translating(spec_.follower))
                 detail::fail(who, ": the paper's eccentricity force (", eccentricity_formulation_name(ecc.formulation),
-                             ") acts along a translating follower's axis; use 'exact' for ", follower_type_name(spec_.follower));
+                             ") acts along a translating follower's axis; use 'exact' for ",
+                             follower_type_name(spec_.follower));
             if (ecc.formulation != EccentricityFormulation::paper_force_roller && cam_y_ < 0)
                 detail::fail(who, ": ", eccentricity_formulation_name(ecc.formulation),
                              " loads the camshaft, so cam_y must be a DOF, not ground");
@@ -272,12 +281,13 @@ private:
         }
         const auto* roller = std::get_if<TranslatingRoller>(&spec_.follower);
         if (!roller)
-            detail::fail(who, ": the paper backlash imposes a translating roller's offset; ", follower_type_name(spec_.follower),
-                         " has none (model the guide's clearance instead)");
+            detail::fail(who, ": the paper backlash imposes a translating roller's offset; ",
+                         follower_type_name(spec_.follower), " has none (model the guide's clearance instead)");
         if (twist_ >= 0) detail::fail(who, ": the paper backlash is not defined on a twisting camshaft");
         if (spec_.eccentricity.any() && !spec_.eccentricity.paper_force())
-            detail::fail(who, ": the paper backlash combines with the paper's eccentricity force only, not with 'exact' "
-                              "(both move the roller's offset)");
+            detail::fail(who,
+                         ": the paper backlash combines with the paper's eccentricity force only, not with 'exact' "
+                         "(both move the roller's offset)");
         const double rp = roller->base_radius() + roller->roller_radius();
         if (!(std::abs(roller->offset()) + b.backlash < rp))
             detail::fail(who, ": paper backlash ", b.backlash, " m with |offset| = ", std::abs(roller->offset()),

@@ -50,13 +50,15 @@ inline EccentricityFormulation eccentricity_formulation_from(const std::string& 
     for (auto f : {EccentricityFormulation::exact, EccentricityFormulation::paper_force_camshaft,
                    EccentricityFormulation::paper_force_roller, EccentricityFormulation::paper_force_both})
         if (name == eccentricity_formulation_name(f)) return f;
-    detail::fail("eccentricity formulation must be 'exact', 'paper_force_camshaft', 'paper_force_roller' or "
-                 "'paper_force_both', got '", name, "'");
+    detail::fail(
+        "eccentricity formulation must be 'exact', 'paper_force_camshaft', 'paper_force_roller' or "
+        "'paper_force_both', got '",
+        name, "'");
 }
 
 struct CamEccentricity {
-    double radius = 0.0;          // epsilon, m (>= 0)
-    double phase = 0.0;           // zeta, rad
+    double radius = 0.0;  // epsilon, m (>= 0)
+    double phase = 0.0;   // zeta, rad
     EccentricityFormulation formulation = EccentricityFormulation::exact;
     double unbalance_mass = 0.0;  // kg turning at radius epsilon (0: balanced)
 
@@ -105,8 +107,10 @@ inline ContactGeometry eccentric_contact(const TranslatingRoller& f, const Motio
         phi -= step;
         if (std::abs(step) <= 1e-15 * (1.0 + std::abs(phi))) break;
         if (it == 50 || !std::isfinite(phi))
-            detail::fail("eccentric cam at theta = ", radians_to_degrees(theta), " deg: no roller position on the "
-                         "displaced pitch curve (eccentricity radius ", ecc.radius, " m is too large for this cam)");
+            detail::fail("eccentric cam at theta = ", radians_to_degrees(theta),
+                         " deg: no roller position on the "
+                         "displaced pitch curve (eccentricity radius ",
+                         ecc.radius, " m is too large for this cam)");
     }
     m = program.evaluate(theta + phi);
     k = f.kinematics(m);
@@ -115,7 +119,8 @@ inline ContactGeometry eccentric_contact(const TranslatingRoller& f, const Motio
     const double g_phi = (k.dR - e) * s + k.R * c, g_theta = k.dR * s + du.x();
     const double dphi = -g_theta / g_phi;
     const double y_rel = (k.R - e1 * s) / c;
-    const double dy_rel = ((k.dR * (1.0 + dphi) + du.x() * s - e1 * c * dphi) * c + (k.R - e1 * s) * s * dphi) / (c * c);
+    const double dy_rel =
+        ((k.dR * (1.0 + dphi) + du.x() * s - e1 * c * dphi) * c + (k.R - e1 * s) * s * dphi) / (c * c);
     const double alpha = k.pressure_angle() - phi;
     const double dalpha = k.dalpha * (1.0 + dphi) - dphi;
     return detail::translating_geometry(alpha, dalpha, u.y() + y_rel - f.pitch_base(), du.y() + dy_rel);

@@ -18,8 +18,8 @@ struct ContactResponse {
 };
 
 struct HertzContact {
-    double stiffness = 1.9e8;  // K, N/m^n
-    double exponent = 1.0;     // n >= 1
+    double stiffness = 1.9e8;     // K, N/m^n
+    double exponent = 1.0;        // n >= 1
     double damping_factor = 0.0;  // chi, s/m
 
     ContactResponse operator()(double delta, double delta_dot) const {

@@ -71,8 +71,10 @@ inline double relative_radius(double r1, double r2) {
         detail::fail("radii of curvature must be non-zero and not NaN (inf: flat), got ", r1, " m and ", r2, " m");
     const double curvature = 1.0 / r1 + 1.0 / r2;
     if (!(curvature > 0.0))
-        detail::fail("the contact's effective radius must be > 0 (the cam surface is more concave than the "
-                     "roller, or both bodies are flat): radii ", r1, " m and ", r2, " m give 1/R = ", curvature, " 1/m");
+        detail::fail(
+            "the contact's effective radius must be > 0 (the cam surface is more concave than the "
+            "roller, or both bodies are flat): radii ",
+            r1, " m and ", r2, " m give 1/R = ", curvature, " 1/m");
     return 1.0 / curvature;
 }
 
@@ -90,8 +92,8 @@ struct ContactStress {
 };
 
 struct LineContact {
-    double length = 0.01;  // roller width L, m
-    Elastic roller, cam;   // materials (steel by default)
+    double length = 0.01;                                           // roller width L, m
+    Elastic roller, cam;                                            // materials (steel by default)
     double crown_radius = std::numeric_limits<double>::infinity();  // m; inf: straight roller
 
     bool crowned() const { return std::isfinite(crown_radius); }
@@ -119,7 +121,7 @@ struct LineContact {
         }
         // Crowned: across the width only the crown curves (the cam is straight along its axis).
         const double Rx = R, Ry = crown_radius;
-        const bool wide = Ry >= Rx;  // ellipse's long axis across the width (the usual case)
+        const bool wide = Ry >= Rx;                     // ellipse's long axis across the width (the usual case)
         const double alpha = wide ? Ry / Rx : Rx / Ry;  // the fits need alpha >= 1: swap otherwise
         const double k = 1.0339 * std::pow(alpha, 0.636);
         const double Ee = 1.0003 + 0.5968 / alpha;
@@ -142,7 +144,7 @@ inline double palmgren_stiffness(double length) {
     detail::require_positive(length, "roller width (length)", "(m)");
     const double L_mm = 1e3 * length;
     const double K_mm = std::pow(std::pow(L_mm, 0.8) / 3.84e-5, 10.0 / 9.0);  // N/mm^(10/9)
-    return K_mm * std::pow(1e3, 10.0 / 9.0);                                 // delta_mm = 1e3 delta_m
+    return K_mm * std::pow(1e3, 10.0 / 9.0);                                  // delta_mm = 1e3 delta_m
 }
 
 // Palmgren's law as a contact law for the dynamics (an alternative to a hand-picked K_h).

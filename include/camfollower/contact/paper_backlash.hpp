@@ -24,10 +24,10 @@
 namespace camfollower {
 
 struct PaperBacklash {
-    double backlash = 0.0;             // b, m (0: off)
-    double switch_width = 0.0;         // rad of cam angle
+    double backlash = 0.0;                // b, m (0: off)
+    double switch_width = 0.0;            // rad of cam angle
     std::string guide_dof = ground_name;  // the rod's lateral DOF at the guide
-    double guide_stiffness = 0.0;      // K_rb, N/m: the load K_rb b s on guide_dof
+    double guide_stiffness = 0.0;         // K_rb, N/m: the load K_rb b s on guide_dof
 
     bool any() const { return backlash != 0.0; }
     void validate(const std::string& who) const {
@@ -35,10 +35,10 @@ struct PaperBacklash {
         detail::require_in_range(switch_width, 0.0, pi, (who + " paper backlash switch_width (rad)").c_str());
         detail::require_non_negative(guide_stiffness, (who + " paper backlash guide_stiffness").c_str(), "(N/m)");
         if (guide_stiffness > 0.0 && guide_dof == ground_name)
-            detail::fail(who, ": the paper backlash's guide_stiffness loads guide_dof, which must be a DOF, not ground");
+            detail::fail(who,
+                         ": the paper backlash's guide_stiffness loads guide_dof, which must be a DOF, not ground");
     }
 };
-
 
 // The rod's side in the guide, s(theta) in [-1, 1] (+1: e + backlash), and ds/dtheta.
 class BacklashSide {
@@ -66,9 +66,8 @@ public:
             const double gap = MotionProgram::wrap(next - switches_[i].theta);
             const double spacing = gap == 0.0 ? two_pi : gap;
             if (width > spacing)
-                detail::fail("backlash_switch_width = ", radians_to_degrees(width),
-                             " deg must not exceed the ", radians_to_degrees(spacing),
-                             " deg between two switches of the rod's side");
+                detail::fail("backlash_switch_width = ", radians_to_degrees(width), " deg must not exceed the ",
+                             radians_to_degrees(spacing), " deg between two switches of the rod's side");
         }
     }
 

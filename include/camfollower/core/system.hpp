@@ -114,10 +114,10 @@ namespace detail {
 template <class...>
 using void_t = void;
 
-#define CAMFOLLOWER_DETECT(name, expr)                                   \
-    template <class S, class = void>                                     \
-    struct name : std::false_type {};                                    \
-    template <class S>                                                   \
+#define CAMFOLLOWER_DETECT(name, expr) \
+    template <class S, class = void>   \
+    struct name : std::false_type {};  \
+    template <class S>                 \
     struct name<S, void_t<decltype(expr)>> : std::true_type {};
 
 template <class S>
@@ -128,46 +128,39 @@ CAMFOLLOWER_DETECT(has_matrix_type, std::declval<typename S::Matrix>())
 CAMFOLLOWER_DETECT(has_size, int(std::declval<const S&>().size()))
 CAMFOLLOWER_DETECT(has_mass, static_cast<const typename S::Matrix&>(std::declval<const S&>().mass()))
 CAMFOLLOWER_DETECT(has_damping, static_cast<const typename S::Matrix&>(std::declval<const S&>().damping()))
-CAMFOLLOWER_DETECT(has_stiffness,
-                   static_cast<const typename S::Matrix&>(std::declval<const S&>().stiffness()))
+CAMFOLLOWER_DETECT(has_stiffness, static_cast<const typename S::Matrix&>(std::declval<const S&>().stiffness()))
 CAMFOLLOWER_DETECT(has_load, std::declval<const S&>().load(0.0, std::declval<vector_t<S>&>()))
 CAMFOLLOWER_DETECT(has_workspace_type, std::declval<typename S::Workspace>())
 CAMFOLLOWER_DETECT(has_workspace, std::declval<typename S::Workspace&>() = std::declval<const S&>().workspace())
 CAMFOLLOWER_DETECT(has_prepare, std::declval<const S&>().prepare(0.0, std::declval<typename S::Workspace&>()))
-CAMFOLLOWER_DETECT(has_force, std::declval<const S&>().force(std::declval<const typename S::Workspace&>(),
-                                                             std::declval<const vector_t<S>&>(),
-                                                             std::declval<const vector_t<S>&>(),
-                                                             std::declval<vector_t<S>&>()))
+CAMFOLLOWER_DETECT(has_force,
+                   std::declval<const S&>().force(std::declval<const typename S::Workspace&>(),
+                                                  std::declval<const vector_t<S>&>(),
+                                                  std::declval<const vector_t<S>&>(), std::declval<vector_t<S>&>()))
 CAMFOLLOWER_DETECT(has_max_rank, int(std::declval<const S&>().max_rank()))
-CAMFOLLOWER_DETECT(has_tangent,
-                   std::declval<const S&>().tangent(std::declval<const typename S::Workspace&>(),
-                                                    std::declval<const vector_t<S>&>(),
-                                                    std::declval<const vector_t<S>&>(), 0.0, 0.0,
-                                                    std::declval<LowRank<vector_t<S>>&>()))
+CAMFOLLOWER_DETECT(has_tangent, std::declval<const S&>().tangent(std::declval<const typename S::Workspace&>(),
+                                                                 std::declval<const vector_t<S>&>(),
+                                                                 std::declval<const vector_t<S>&>(), 0.0, 0.0,
+                                                                 std::declval<LowRank<vector_t<S>>&>()))
 CAMFOLLOWER_DETECT(has_accepted, std::declval<const S&>().accepted(std::declval<typename S::Workspace&>(),
                                                                    std::declval<const vector_t<S>&>(),
                                                                    std::declval<const vector_t<S>&>()))
 CAMFOLLOWER_DETECT(has_event_located,
                    std::declval<const S&>().event_located(std::declval<typename S::Workspace&>(), 0, 0.0, 0))
-CAMFOLLOWER_DETECT(has_channels,
-                   std::declval<std::vector<std::string>&>() = std::declval<const S&>().channel_names())
-CAMFOLLOWER_DETECT(has_dof_names,
-                   std::declval<std::vector<std::string>&>() = std::declval<const S&>().dof_names())
+CAMFOLLOWER_DETECT(has_channels, std::declval<std::vector<std::string>&>() = std::declval<const S&>().channel_names())
+CAMFOLLOWER_DETECT(has_dof_names, std::declval<std::vector<std::string>&>() = std::declval<const S&>().dof_names())
 CAMFOLLOWER_DETECT(has_initial_displacement,
                    std::declval<vector_t<S>&>() = std::declval<const S&>().initial_displacement())
-CAMFOLLOWER_DETECT(has_initial_velocity,
-                   std::declval<vector_t<S>&>() = std::declval<const S&>().initial_velocity())
-CAMFOLLOWER_DETECT(has_event_names,
-                   std::declval<std::vector<std::string>&>() = std::declval<const S&>().event_names())
+CAMFOLLOWER_DETECT(has_initial_velocity, std::declval<vector_t<S>&>() = std::declval<const S&>().initial_velocity())
+CAMFOLLOWER_DETECT(has_event_names, std::declval<std::vector<std::string>&>() = std::declval<const S&>().event_names())
 CAMFOLLOWER_DETECT(has_event_values,
                    std::declval<const S&>().event_values(std::declval<const typename S::Workspace&>(),
                                                          std::declval<const vector_t<S>&>(),
-                                                         std::declval<const vector_t<S>&>(),
-                                                         std::declval<double*>()))
-CAMFOLLOWER_DETECT(has_observe, std::declval<const S&>().observe(std::declval<const typename S::Workspace&>(),
-                                                                 std::declval<const vector_t<S>&>(),
-                                                                 std::declval<const vector_t<S>&>(),
-                                                                 std::declval<double*>()))
+                                                         std::declval<const vector_t<S>&>(), std::declval<double*>()))
+CAMFOLLOWER_DETECT(has_observe,
+                   std::declval<const S&>().observe(std::declval<const typename S::Workspace&>(),
+                                                    std::declval<const vector_t<S>&>(),
+                                                    std::declval<const vector_t<S>&>(), std::declval<double*>()))
 #undef CAMFOLLOWER_DETECT
 
 }  // namespace detail
@@ -193,7 +186,8 @@ constexpr bool check_system() {
     static_assert(detail::has_damping<S>::value, "system: missing `const Matrix& damping() const`");
     static_assert(detail::has_stiffness<S>::value, "system: missing `const Matrix& stiffness() const`");
     if constexpr (detail::has_workspace_type<S>::value) {
-        static_assert(detail::has_workspace<S>::value, "system with a Workspace: missing `Workspace workspace() const`");
+        static_assert(detail::has_workspace<S>::value,
+                      "system with a Workspace: missing `Workspace workspace() const`");
         static_assert(detail::has_prepare<S>::value,
                       "system with a Workspace: missing `void prepare(double t, Workspace&) const`");
         static_assert(detail::has_force<S>::value,
@@ -265,8 +259,7 @@ int max_rank(const S& s) {
 }
 
 template <class S, class V>
-void tangent(const S& s, const workspace_t<S>& ws, const V& q, const V& v, double cq, double cv,
-             LowRank<V>& uv) {
+void tangent(const S& s, const workspace_t<S>& ws, const V& q, const V& v, double cq, double cv, LowRank<V>& uv) {
     uv.clear();
     if constexpr (is_nonlinear_system_v<S>) s.tangent(ws, q, v, cq, cv, uv);
     else (void)s, (void)ws, (void)q, (void)v, (void)cq, (void)cv;
@@ -320,7 +313,7 @@ void observe(const S& s, const workspace_t<S>& ws, const V& q, const V& v, doubl
 }
 
 template <class S>
-inline constexpr bool has_events_v = detail::has_event_names<S>::value && detail::has_event_values<S>::value;
+inline constexpr bool has_events_v = detail::has_event_names<S>::value&& detail::has_event_values<S>::value;
 
 template <class S>
 std::vector<std::string> event_names(const S& s) {

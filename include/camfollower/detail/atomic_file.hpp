@@ -110,8 +110,8 @@ inline mode_t require_output_target(const std::string& path, const char* paramet
 
 // Replaces (or creates) `path` with exactly `content`. Throws std::invalid_argument naming
 // `parameter` on a bad target (require_output_target) or any I/O failure; the target is then untouched.
-inline void write_file_atomically(const std::string& path, const std::string& content,
-                                  const char* parameter = "path", const std::vector<std::string>& protect = {}) {
+inline void write_file_atomically(const std::string& path, const std::string& content, const char* parameter = "path",
+                                  const std::vector<std::string>& protect = {}) {
     using atomic_file::shown;
     const mode_t mode = require_output_target(path, parameter, protect);
     const auto [folder, name] = atomic_file::split_path(path);

@@ -67,8 +67,7 @@ inline std::size_t samples_for(double span, std::size_t samples, double max_step
 // Largest f over consecutive pieces [breaks[i], breaks[i + 1]]: f is smooth inside each piece, kinks
 // and narrow features sit on the breaks. Ties keep the earliest piece.
 template <class F>
-Extremum maximize_piecewise(const F& f, const std::vector<double>& breaks, std::size_t samples,
-                            double max_step) {
+Extremum maximize_piecewise(const F& f, const std::vector<double>& breaks, std::size_t samples, double max_step) {
     Extremum best{breaks.front(), -std::numeric_limits<double>::infinity()};
     for (std::size_t i = 0; i + 1 < breaks.size(); ++i) {
         const double a = breaks[i], b = breaks[i + 1];
@@ -86,8 +85,8 @@ Extremum maximize_piecewise(const F& f, const std::vector<double>& breaks, std::
 // Same result as N maximize_piecewise calls, at about 1/N of the evaluations. Allocates (checks at
 // model construction, not the time loop).
 template <std::size_t N, class G>
-std::array<Extremum, N> maximize_piecewise_together(const G& g, const std::vector<double>& breaks,
-                                                    std::size_t samples, double max_step) {
+std::array<Extremum, N> maximize_piecewise_together(const G& g, const std::vector<double>& breaks, std::size_t samples,
+                                                    double max_step) {
     struct Candidate {
         std::size_t best = 0;
         double value = -std::numeric_limits<double>::infinity(), slack = 0.0;

@@ -32,12 +32,12 @@
 namespace camfollower {
 
 struct ContactGeometry {
-    Eigen::Vector2d normal;   // unit, cam -> follower, ground frame
-    Eigen::Vector2d dnormal;  // d normal / d theta, 1/rad
-    double lever;             // m per unit of s (translating: cos alpha; oscillating: moment arm, m)
-    double dlever;            // d lever / d theta, per rad
-    double lift;              // s(theta): m (translating) or rad (oscillating)
-    double dlift;             // ds / d theta
+    Eigen::Vector2d normal;       // unit, cam -> follower, ground frame
+    Eigen::Vector2d dnormal;      // d normal / d theta, 1/rad
+    double lever;                 // m per unit of s (translating: cos alpha; oscillating: moment arm, m)
+    double dlever;                // d lever / d theta, per rad
+    double lift;                  // s(theta): m (translating) or rad (oscillating)
+    double dlift;                 // ds / d theta
     double cos_alpha, sin_alpha;  // pressure angle
 
     double pressure_angle() const { return std::atan2(sin_alpha, cos_alpha); }

@@ -43,12 +43,11 @@ public:
     // |r_b - f| < |P| so the face can touch the base circle), turn: the arm's lifting sense.
     OscillatingFlat(double base_radius, const Eigen::Vector2d& pivot, double face_offset = 0.0,
                     ArmTurn turn = ArmTurn::counter_clockwise)
-        : base_radius_(base_radius), pivot_(pivot), face_offset_(face_offset), turn_(turn),
-          sigma_(turn_sign(turn)) {
+        : base_radius_(base_radius), pivot_(pivot), face_offset_(face_offset), turn_(turn), sigma_(turn_sign(turn)) {
         detail::require_length(base_radius, "base_radius");
         if (!(std::isfinite(pivot.x()) && std::isfinite(pivot.y()) && pivot.norm() <= detail::max_part_length))
-            detail::fail("pivot must be finite and within ", detail::max_part_length, " m of the cam centre, got (", pivot.x(),
-                         ", ", pivot.y(), ")");
+            detail::fail("pivot must be finite and within ", detail::max_part_length, " m of the cam centre, got (",
+                         pivot.x(), ", ", pivot.y(), ")");
         detail::require_offset(face_offset, "face_offset");
         const double d = pivot.norm();
         if (!(d > base_radius))
@@ -81,8 +80,7 @@ public:
         const double da = (-sigma_ * m.dh * nP * w - JnP * sigma_ * m.d2h) / (w * w);
         const Eigen::Vector2d arm = face_offset_ * n + a * Jn;  // X - P
         const Eigen::Vector2d v = sigma_ * planar::perp(arm) / arm.norm();
-        return {n,          sigma_ * m.dh * Jn, -sigma_ * a,          -sigma_ * da,
-                m.h,        m.dh,               v.dot(n),             planar::cross(v, n)};
+        return {n, sigma_ * m.dh * Jn, -sigma_ * a, -sigma_ * da, m.h, m.dh, v.dot(n), planar::cross(v, n)};
     }
 
     FollowerProfilePoint profile(double theta, const FollowerMotion& m) const {
@@ -96,13 +94,9 @@ public:
         const double rho = p + (d2p * w - dp * dw) / (w * w * w);
         const Eigen::Vector2d foot = pivot_ + face_offset_ * n;
         const Eigen::Vector2d v = sigma_ * planar::perp(contact_point - pivot_);
-        return {theta,
-                planar::to_cam_frame(theta, contact_point),
-                planar::to_cam_frame(theta, foot),
-                contact_point,
-                rho,
-                rho,
-                std::atan2(planar::cross(v, n), v.dot(n))};
+        return {
+            theta, planar::to_cam_frame(theta, contact_point), planar::to_cam_frame(theta, foot), contact_point, rho,
+            rho,   std::atan2(planar::cross(v, n), v.dot(n))};
     }
 
     // Signed distance (m) along J m from the pivot's foot F = P + f m to the contact: how long the

@@ -34,16 +34,20 @@ public:
     // base_radius r_b (m, > 0), roller_radius r_r (m, > 0), pivot P (m, ground frame, outside the
     // base circle), arm_length L (m, > 0, with | |P| - (r_b + r_r) | < L < |P| + r_b + r_r),
     // turn: the arm's lifting sense.
-    OscillatingRoller(double base_radius, double roller_radius, const Eigen::Vector2d& pivot,
-                      double arm_length, ArmTurn turn = ArmTurn::counter_clockwise)
-        : base_radius_(base_radius), roller_radius_(roller_radius), pivot_(pivot),
-          arm_length_(arm_length), turn_(turn), sigma_(turn_sign(turn)) {
+    OscillatingRoller(double base_radius, double roller_radius, const Eigen::Vector2d& pivot, double arm_length,
+                      ArmTurn turn = ArmTurn::counter_clockwise)
+        : base_radius_(base_radius),
+          roller_radius_(roller_radius),
+          pivot_(pivot),
+          arm_length_(arm_length),
+          turn_(turn),
+          sigma_(turn_sign(turn)) {
         detail::require_length(base_radius, "base_radius");
         detail::require_length(roller_radius, "roller_radius");
         detail::require_length(arm_length, "arm_length");
         if (!(std::isfinite(pivot.x()) && std::isfinite(pivot.y()) && pivot.norm() <= detail::max_part_length))
-            detail::fail("pivot must be finite and within ", detail::max_part_length, " m of the cam centre, got (", pivot.x(),
-                         ", ", pivot.y(), ")");
+            detail::fail("pivot must be finite and within ", detail::max_part_length, " m of the cam centre, got (",
+                         pivot.x(), ", ", pivot.y(), ")");
         const double d = pivot.norm(), r = base_radius + roller_radius;
         if (!(d > base_radius))
             detail::fail("pivot must lie outside the base circle: |pivot| = ", d,
@@ -51,8 +55,9 @@ public:
         if (!(std::abs(d - r) < arm_length && arm_length < d + r))
             detail::fail("arm_length = ", arm_length,
                          " m cannot put the roller on the base pitch circle (radius base_radius + "
-                         "roller_radius = ", r, " m) from the pivot at |pivot| = ", d,
-                         " m: arm_length must lie in (", std::abs(d - r), ", ", d + r, ") m");
+                         "roller_radius = ",
+                         r, " m) from the pivot at |pivot| = ", d, " m: arm_length must lie in (", std::abs(d - r),
+                         ", ", d + r, ") m");
         const double projection = (r * r - d * d - arm_length * arm_length) / (2.0 * arm_length);
         phi0_ = detail::arm_angle_with_projection(pivot, std::clamp(projection, -d, d), sigma_);
     }
@@ -71,8 +76,7 @@ public:
     RollerPath roller_path(const FollowerMotion& m) const {
         const Eigen::Vector2d u = planar::unit(arm_angle(m)), Ju = planar::perp(u);
         const double L = arm_length_;
-        return {pivot_ + L * u, sigma_ * L * m.dh * Ju,
-                sigma_ * L * m.d2h * Ju - L * m.dh * m.dh * u};
+        return {pivot_ + L * u, sigma_ * L * m.dh * Ju, sigma_ * L * m.d2h * Ju - L * m.dh * m.dh * u};
     }
 
     // theta is not needed: the arm's position follows from the lift alone.
@@ -83,8 +87,7 @@ public:
         const double cos_a = v.dot(rn.normal), sin_a = planar::cross(v, rn.normal);
         // d(v . n)/d theta with dv/d theta = sigma J (sigma s' J u) = -s' u.
         const double dcos_a = -m.dh * u.dot(rn.normal) + v.dot(rn.dnormal);
-        return {rn.normal, rn.dnormal, arm_length_ * cos_a, arm_length_ * dcos_a,
-                m.h,       m.dh,       cos_a,               sin_a};
+        return {rn.normal, rn.dnormal, arm_length_ * cos_a, arm_length_ * dcos_a, m.h, m.dh, cos_a, sin_a};
     }
 
     FollowerProfilePoint profile(double theta, const FollowerMotion& m) const {

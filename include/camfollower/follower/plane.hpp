@@ -13,9 +13,7 @@ namespace camfollower::planar {
 inline Eigen::Vector2d perp(const Eigen::Vector2d& v) { return {-v.y(), v.x()}; }
 
 // a x b (z component): positive when b lies counter-clockwise of a.
-inline double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    return a.x() * b.y() - a.y() * b.x();
-}
+inline double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 // Unit vector at `angle` rad from the x axis.
 inline Eigen::Vector2d unit(double angle) { return {std::cos(angle), std::sin(angle)}; }
@@ -27,8 +25,6 @@ inline Eigen::Vector2d rotate(double angle, const Eigen::Vector2d& v) {
 }
 
 // The cam turns counter-clockwise by theta, so a ground point seen from the cam turns back by theta.
-inline Eigen::Vector2d to_cam_frame(double theta, const Eigen::Vector2d& ground) {
-    return rotate(-theta, ground);
-}
+inline Eigen::Vector2d to_cam_frame(double theta, const Eigen::Vector2d& ground) { return rotate(-theta, ground); }
 
 }  // namespace camfollower::planar

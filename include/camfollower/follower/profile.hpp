@@ -50,7 +50,8 @@ namespace detail {
 // the piece ends). detail::maximize skips a NaN silently (NaN > x is false), so a non-finite sample
 // is recorded and refused here: an undefined geometry must not pass a check.
 [[noreturn]] inline void fail_not_finite(const char* what, double theta) {
-    fail(what, " is not finite at theta = ", radians_to_degrees(theta), " deg: the follower geometry is undefined "
+    fail(what, " is not finite at theta = ", radians_to_degrees(theta),
+         " deg: the follower geometry is undefined "
          "there (check the motion program's speed and the follower parameters)");
 }
 
@@ -73,9 +74,7 @@ AngleExtremum max_over_revolution(const MotionProgram& program, const F& f, cons
 // Pressure angle of largest magnitude over the revolution, reported signed, with its cam angle.
 template <class Follower>
 AngleExtremum max_pressure_angle(const MotionProgram& program, const Follower& follower) {
-    const auto angle = [&](double theta) {
-        return follower.profile(theta, program.evaluate(theta)).pressure_angle;
-    };
+    const auto angle = [&](double theta) { return follower.profile(theta, program.evaluate(theta)).pressure_angle; };
     const AngleExtremum e = detail::max_over_revolution(
         program, [&](double theta) { return std::abs(angle(theta)); }, "the pressure angle");
     return {e.theta, angle(e.theta)};
@@ -85,8 +84,7 @@ AngleExtremum max_pressure_angle(const MotionProgram& program, const Follower& f
 template <class Follower>
 AngleExtremum min_effective_radius(const MotionProgram& program, const Follower& follower) {
     const AngleExtremum e = detail::max_over_revolution(
-        program,
-        [&](double theta) { return -follower.profile(theta, program.evaluate(theta)).effective_radius; },
+        program, [&](double theta) { return -follower.profile(theta, program.evaluate(theta)).effective_radius; },
         "the cam surface curvature");
     return {e.theta, -e.value};
 }
@@ -134,7 +132,8 @@ void check_undercut(const MotionProgram& program, const Follower& follower) {
                      " m (reduce roller_radius, enlarge base_radius or soften the motion law)");
     }
     const double steepest_theta = e[1].x;
-    const AngleExtremum steepest{steepest_theta, follower.profile(steepest_theta, program.evaluate(steepest_theta)).pressure_angle};
+    const AngleExtremum steepest{steepest_theta,
+                                 follower.profile(steepest_theta, program.evaluate(steepest_theta)).pressure_angle};
     if (std::abs(steepest.value) >= 0.5 * pi)
         detail::fail("the pressure angle reaches ", radians_to_degrees(steepest.value),
                      " deg at theta = ", radians_to_degrees(steepest.theta),

@@ -50,8 +50,7 @@ inline double roller_pitch_curvature(const RollerPath& path) {
 // Cam surface radius of curvature (signed, +inf at a pitch-curve inflection) and the effective
 // contact radius 1/(1/rho_surface + 1/r_r) = r_r (1 - r_r kappa), finite everywhere.
 inline double roller_surface_radius(double pitch_curvature, double roller_radius) {
-    return pitch_curvature == 0.0 ? std::numeric_limits<double>::infinity()
-                                  : 1.0 / pitch_curvature - roller_radius;
+    return pitch_curvature == 0.0 ? std::numeric_limits<double>::infinity() : 1.0 / pitch_curvature - roller_radius;
 }
 inline double roller_effective_radius(double pitch_curvature, double roller_radius) {
     return roller_radius * (1.0 - roller_radius * pitch_curvature);

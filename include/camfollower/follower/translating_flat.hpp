@@ -38,8 +38,8 @@ public:
         : base_radius_(base_radius), face_angle_(face_angle), offset_(offset) {
         detail::require_length(base_radius, "base_radius");
         if (!(std::isfinite(face_angle) && std::abs(face_angle) < 0.5 * pi))
-            detail::fail("face_angle must satisfy |face_angle| < pi/2 rad (90 deg), got ", face_angle,
-                         " rad (", radians_to_degrees(face_angle), " deg)");
+            detail::fail("face_angle must satisfy |face_angle| < pi/2 rad (90 deg), got ", face_angle, " rad (",
+                         radians_to_degrees(face_angle), " deg)");
         detail::require_offset(offset, "offset");
         cos_g_ = std::cos(face_angle);
         sin_g_ = std::sin(face_angle);

@@ -46,8 +46,7 @@ public:
         detail::require_length(roller_radius, "roller_radius");
         const double rp = base_radius + roller_radius;
         if (!(std::isfinite(offset) && std::abs(offset) < rp))
-            detail::fail("offset must satisfy |offset| < base_radius + roller_radius = ", rp,
-                         " m, got ", offset, " m");
+            detail::fail("offset must satisfy |offset| < base_radius + roller_radius = ", rp, " m, got ", offset, " m");
         pitch_base_ = std::sqrt(rp * rp - offset * offset);
     }
 
@@ -99,9 +98,7 @@ public:
     }
 
     // Signed curvature of the pitch curve (roller-centre path in the cam frame), 1/m, > 0 convex.
-    double pitch_curvature(const FollowerMotion& m) const {
-        return curvature(kinematics(m), offset_);
-    }
+    double pitch_curvature(const FollowerMotion& m) const { return curvature(kinematics(m), offset_); }
 
 private:
     double base_radius_, roller_radius_, offset_;

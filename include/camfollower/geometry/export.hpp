@@ -36,12 +36,12 @@
 namespace camfollower {
 
 struct CamOutline {
-    LengthUnit unit = LengthUnit::mm;           // of surface and cutter
-    std::optional<double> cutter_radius;        // m; none: no cutter path
-    std::vector<double> theta;                  // rad, 2 pi k / n
-    std::vector<Eigen::Vector2d> surface;       // cam surface, cam frame, in `unit`
-    std::vector<Eigen::Vector2d> normal;        // outward unit normal of the surface, cam frame
-    std::vector<Eigen::Vector2d> cutter;        // cutter-centre path, cam frame, in `unit` (or empty)
+    LengthUnit unit = LengthUnit::mm;      // of surface and cutter
+    std::optional<double> cutter_radius;   // m; none: no cutter path
+    std::vector<double> theta;             // rad, 2 pi k / n
+    std::vector<Eigen::Vector2d> surface;  // cam surface, cam frame, in `unit`
+    std::vector<Eigen::Vector2d> normal;   // outward unit normal of the surface, cam frame
+    std::vector<Eigen::Vector2d> cutter;   // cutter-centre path, cam frame, in `unit` (or empty)
 };
 
 // Smallest radius of curvature of the concave part of the cam surface (m, > 0) and its cam angle;
@@ -51,8 +51,7 @@ template <class F>
 AngleExtremum min_concave_radius(const MotionProgram& program, const F& follower) {
     // Concave curvature -1/rho (rho < 0 concave, +inf at an inflection: curvature 0).
     const AngleExtremum e = detail::max_over_revolution(
-        program,
-        [&](double theta) { return -1.0 / follower.profile(theta, program.evaluate(theta)).surface_radius; },
+        program, [&](double theta) { return -1.0 / follower.profile(theta, program.evaluate(theta)).surface_radius; },
         "the cam surface curvature");
     return {e.theta, e.value > 0.0 ? 1.0 / e.value : std::numeric_limits<double>::infinity()};
 }
@@ -70,7 +69,8 @@ CamOutline cam_outline(const F& follower, const MotionProgram& program, std::siz
     if (cutter_radius && *cutter_radius > 0.0) {
         const AngleExtremum concave = min_concave_radius(program, follower);
         if (*cutter_radius > concave.value)
-            detail::fail("cutter_radius = ", *cutter_radius, " m cannot cut this cam: the surface is concave at theta = ",
+            detail::fail("cutter_radius = ", *cutter_radius,
+                         " m cannot cut this cam: the surface is concave at theta = ",
                          radians_to_degrees(concave.theta), " deg with radius of curvature ", concave.value,
                          " m there, and a larger cutter gouges it; cutter_radius must be <= ", concave.value, " m");
     }
@@ -102,9 +102,7 @@ inline CamOutline cam_outline(const Follower& follower, const MotionProgram& pro
 
 namespace detail {
 
-inline const char* turn_text(ArmTurn t) {
-    return t == ArmTurn::counter_clockwise ? "counter_clockwise" : "clockwise";
-}
+inline const char* turn_text(ArmTurn t) { return t == ArmTurn::counter_clockwise ? "counter_clockwise" : "clockwise"; }
 
 // "name = value unit" for a length given in m, expressed in `unit`.
 inline std::string length_text(const char* name, double metres, LengthUnit unit) {
@@ -137,17 +135,16 @@ inline std::string describe_follower(const TranslatingFlat& f, LengthUnit unit) 
                           detail::length_text("offset", f.offset(), unit));
 }
 inline std::string describe_follower(const OscillatingRoller& f, LengthUnit unit) {
-    return detail::concat("oscillating_roller: ", detail::length_text("base_radius", f.base_radius(), unit), ", ",
-                          detail::length_text("roller_radius", f.roller_radius(), unit), ", ",
-                          detail::pivot_text(f.pivot(), unit), ", ",
-                          detail::length_text("arm_length", f.arm_length(), unit), ", turn = ",
-                          detail::turn_text(f.turn()));
+    return detail::concat(
+        "oscillating_roller: ", detail::length_text("base_radius", f.base_radius(), unit), ", ",
+        detail::length_text("roller_radius", f.roller_radius(), unit), ", ", detail::pivot_text(f.pivot(), unit), ", ",
+        detail::length_text("arm_length", f.arm_length(), unit), ", turn = ", detail::turn_text(f.turn()));
 }
 inline std::string describe_follower(const OscillatingFlat& f, LengthUnit unit) {
     return detail::concat("oscillating_flat: ", detail::length_text("base_radius", f.base_radius(), unit), ", ",
                           detail::pivot_text(f.pivot(), unit), ", ",
-                          detail::length_text("face_offset", f.face_offset(), unit), ", turn = ",
-                          detail::turn_text(f.turn()));
+                          detail::length_text("face_offset", f.face_offset(), unit),
+                          ", turn = ", detail::turn_text(f.turn()));
 }
 inline std::string describe_follower(const Follower& f, LengthUnit unit) {
     return std::visit([&](const auto& x) { return describe_follower(x, unit); }, f);
@@ -161,7 +158,8 @@ std::vector<std::string> cam_export_notes(const F& follower, const MotionProgram
     const char* u = length_unit_name(outline.unit);
     const bool oscillating = detail::lifts_in_radians(follower);
     const auto lift_text = [&](double h) {
-        return oscillating ? concat(radians_to_degrees(h), " deg of arm rotation") : concat(metres_to(outline.unit, h), " ", u);
+        return oscillating ? concat(radians_to_degrees(h), " deg of arm rotation")
+                           : concat(metres_to(outline.unit, h), " ", u);
     };
     const Segment& s = program.segments()[program.segment_index(0.0)];
     // The program tiles [0, 2 pi), so theta = 0 starts its first segment.

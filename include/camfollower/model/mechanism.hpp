@@ -65,8 +65,11 @@ public:
         n_ = net.size();
         if (n_ == 0) detail::fail("a mechanism needs at least one DOF");
         if (n_ > max_dofs)
-            detail::fail("the mechanism has ", n_, " DOFs, more than the ", max_dofs, " a Mechanism assembles (dense n x n "
-                         "matrices: ", 24.0 * double(n_) * double(n_) / 1e9, " GB for M, C and K alone); coarsen the shafts' "
+            detail::fail("the mechanism has ", n_, " DOFs, more than the ", max_dofs,
+                         " a Mechanism assembles (dense n x n "
+                         "matrices: ",
+                         24.0 * double(n_) * double(n_) / 1e9,
+                         " GB for M, C and K alone); coarsen the shafts' "
                          "meshes (max_element_length) or split the model");
         if (N != Eigen::Dynamic && n_ != N)
             detail::fail("Mechanism<", N, "> built from a description with ", n_, " DOFs");
@@ -91,7 +94,8 @@ public:
             if (amplitude > held)
                 warnings_.push_back(detail::concat(
                     "contact '", c.name(), "': the paper's literal eccentricity force K_h epsilon = ", amplitude,
-                    " N exceeds the static contact force ", held, " N (what the return spring's preload holds): "
+                    " N exceeds the static contact force ", held,
+                    " N (what the return spring's preload holds): "
                     "the formulation, not the defect, would open the contact"));
         }
     }
@@ -221,8 +225,8 @@ public:
         for (int it = 0; it < 200; ++it) {
             static_residual(w, q, r, Kt);
             // 1e-12 of the load, or the rounding floor of K q when the lift makes q large.
-            const double tolerance =
-                std::max(1e-12 * scale, 64.0 * std::numeric_limits<double>::epsilon() * norm_K * q.cwiseAbs().maxCoeff());
+            const double tolerance = std::max(
+                1e-12 * scale, 64.0 * std::numeric_limits<double>::epsilon() * norm_K * q.cwiseAbs().maxCoeff());
             if (r.cwiseAbs().maxCoeff() <= tolerance) return q;
             // A follower held only by its contact (gravity or a load, no spring) starts with the
             // contact just touching, where the law has no stiffness: take the step as if every
@@ -232,12 +236,14 @@ public:
             // a spring far too soft for its preload; treat it as singular.
             const auto plausible = [&] { return dq.allFinite() && dq.cwiseAbs().maxCoeff() < 1e3; };
             if (!solve_static(Kt, r, dq) || !plausible()) {
-                elements_.for_each(w.states, [&](const auto& e, const auto& s) { e.add_active_set_guess(s, q, r, Kt); });
+                elements_.for_each(w.states,
+                                   [&](const auto& e, const auto& s) { e.add_active_set_guess(s, q, r, Kt); });
                 if (!solve_static(Kt, r, dq) || !plausible())
                     detail::fail("static equilibrium at theta = ", radians_to_degrees(theta),
                                  " deg: the structure with its active contacts is not held in place (a DOF with no "
                                  "spring to ground and no contact, e.g. a follower without a return spring or load, "
-                                 "or a shaft without bearings or drive); unconstrained: ", unconstrained_dofs(dq));
+                                 "or a shaft without bearings or drive); unconstrained: ",
+                                 unconstrained_dofs(dq));
             }
             q -= dq;
             // A very stiff contact (1e13 N/m) turns the rounding of its gap into newtons above the

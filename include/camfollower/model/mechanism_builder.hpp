@@ -66,7 +66,8 @@ struct MechanismBuilder {
         const int node = structure.shaft(shaft).spec.node_at(x);
         for (const Mount& b : bearings_)
             if (b.shaft == shaft && b.node == node)
-                detail::fail("bearings '", b.name, "' and '", name, "' are at the same station x = ", x, " m of shaft '", shaft, "'");
+                detail::fail("bearings '", b.name, "' and '", name, "' are at the same station x = ", x,
+                             " m of shaft '", shaft, "'");
         detail::require_positive(radial_stiffness, ("radial stiffness of bearing '" + name + "'").c_str(), "(N/m)");
         add_spring(name + ".y", structure.shaft_dof_at(shaft, x, 1), ground_name, radial_stiffness, radial_damping);
         add_spring(name + ".z", structure.shaft_dof_at(shaft, x, 2), ground_name, radial_stiffness, radial_damping);
@@ -75,7 +76,8 @@ struct MechanismBuilder {
 
     // The drive as an imposed speed through a compliance: a torsional spring-damper (N m/rad, N m s/rad)
     // from the shaft's twist at station x to the rigid rotation omega t.
-    void add_drive(const std::string& name, const std::string& shaft, double x, double stiffness, double damping = 0.0) {
+    void add_drive(const std::string& name, const std::string& shaft, double x, double stiffness,
+                   double damping = 0.0) {
         detail::require_positive(stiffness, ("stiffness of drive '" + name + "'").c_str(), "(N m/rad)");
         add_spring(name, structure.shaft_dof_at(shaft, x, 3), ground_name, stiffness, damping);
     }
@@ -103,17 +105,19 @@ struct MechanismBuilder {
                    double inertia = 0.0) {
         const ShaftEntry& s = structure.shaft(shaft);
         if (!(std::isfinite(x) && x >= 0.0 && x <= s.spec.length))
-            detail::fail("cam '", contact.name, "' at x = ", x, " m is outside shaft '", shaft, "' [0, ", s.spec.length, "] m");
+            detail::fail("cam '", contact.name, "' at x = ", x, " m is outside shaft '", shaft, "' [0, ", s.spec.length,
+                         "] m");
         detail::require_non_negative(width, ("width of cam '" + contact.name + "'").c_str(), "(m)");
         detail::require_non_negative(mass, ("mass of cam '" + contact.name + "'").c_str(), "(kg)");
         detail::require_non_negative(inertia, ("inertia of cam '" + contact.name + "'").c_str(), "(kg m^2)");
         if (x - 0.5 * width < -ShaftSpec::merge_distance || x + 0.5 * width > s.spec.length + ShaftSpec::merge_distance)
-            detail::fail("cam '", contact.name, "' (x = ", x, " m, width ", width, " m) reaches past the ends of shaft '", shaft, "'");
+            detail::fail("cam '", contact.name, "' (x = ", x, " m, width ", width,
+                         " m) reaches past the ends of shaft '", shaft, "'");
         const int node = s.spec.node_at(x);
         for (const Mount& o : cams_)
             if (o.shaft == shaft && (o.node == node || std::abs(o.x - x) < 0.5 * (o.width + width)))
-                detail::fail("cams '", o.name, "' (x = ", o.x, " m, width ", o.width, " m) and '", contact.name, "' (x = ", x,
-                             " m, width ", width, " m) overlap on shaft '", shaft, "'");
+                detail::fail("cams '", o.name, "' (x = ", o.x, " m, width ", o.width, " m) and '", contact.name,
+                             "' (x = ", x, " m, width ", width, " m) overlap on shaft '", shaft, "'");
         contact.cam_x = structure.shaft_dof_at(shaft, x, 1);
         contact.cam_y = structure.shaft_dof_at(shaft, x, 2);
         contact.cam_twist = structure.shaft_dof_at(shaft, x, 3);

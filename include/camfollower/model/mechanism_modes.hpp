@@ -22,8 +22,8 @@
 namespace camfollower {
 
 struct MechanismModes {
-    Eigen::VectorXd frequencies_hz;  // ascending
-    Eigen::MatrixXd shapes;          // columns, mass-normalized (phi^T M phi = I)
+    Eigen::VectorXd frequencies_hz;     // ascending
+    Eigen::MatrixXd shapes;             // columns, mass-normalized (phi^T M phi = I)
     Eigen::MatrixXd tangent_stiffness;  // K_t, N/m (and N m/rad on rotations)
 };
 
@@ -41,7 +41,8 @@ MechanismModes lowest_modes(const Mechanism<N>& m, double theta, int count = 0) 
     MechanismModes r;
     r.tangent_stiffness = Kt;
     if (n <= dense_modes_limit || count <= 0) {
-        const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(Eigen::MatrixXd(Kt), Eigen::MatrixXd(m.mass()));
+        const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(Eigen::MatrixXd(Kt),
+                                                                            Eigen::MatrixXd(m.mass()));
         if (eig.info() != Eigen::Success) detail::fail("modal analysis: the eigen solver did not converge");
         const int keep = count > 0 ? count : n;
         r.frequencies_hz = eig.eigenvalues().head(keep).cwiseMax(0.0).cwiseSqrt() / two_pi;

@@ -19,8 +19,7 @@ using BasisDerivatives = std::array<std::array<double, spline_order_capacity>, s
 
 // Index i in [degree, basis_count - 1] with knots[i] <= x < knots[i + 1] (the last non-empty span
 // for x at or beyond the right end).
-inline std::size_t find_knot_span(const std::vector<double>& knots, int degree, std::size_t basis_count,
-                                  double x) {
+inline std::size_t find_knot_span(const std::vector<double>& knots, int degree, std::size_t basis_count, double x) {
     const auto first = knots.begin() + degree + 1, last = knots.begin() + static_cast<std::ptrdiff_t>(basis_count);
     const auto it = std::upper_bound(first, last, x);
     return static_cast<std::size_t>(it - knots.begin()) - 1;
@@ -28,8 +27,8 @@ inline std::size_t find_knot_span(const std::vector<double>& knots, int degree, 
 
 // The non-zero basis functions of span `span` and their first `derivatives` derivatives at x. The
 // formulas are the span's polynomial pieces, so x may also sit on the span's right end.
-inline BasisDerivatives basis_derivatives(const std::vector<double>& knots, std::size_t span, double x,
-                                          int degree, int derivatives) {
+inline BasisDerivatives basis_derivatives(const std::vector<double>& knots, std::size_t span, double x, int degree,
+                                          int derivatives) {
     const int p = degree;
     std::array<std::array<double, spline_order_capacity>, spline_order_capacity> ndu{};
     std::array<double, spline_order_capacity> left{}, right{};

@@ -73,10 +73,10 @@ public:
         detail::require_in_range(b, 0.0, 1.0, "b (sine fraction)");
         detail::require_in_range(c, 0.0, 1.0, "c (constant fraction)");
         detail::require_in_range(d, 0.0, 1.0, "d (cosine fraction)");
-        if (std::abs(b + c + d - 1.0) > 1e-12)
-            detail::fail("b + c + d must equal 1 (to 1e-12), got ", b + c + d);
+        if (std::abs(b + c + d - 1.0) > 1e-12) detail::fail("b + c + d must equal 1 (to 1e-12), got ", b + c + d);
         // A part's jerk grows as 1 / fraction^2: a sliver of a part is an overflow, not a law.
-        for (const auto& [value, name] : {std::pair{b, "b (sine fraction)"}, {c, "c (constant fraction)"}, {d, "d (cosine fraction)"}})
+        for (const auto& [value, name] :
+             {std::pair{b, "b (sine fraction)"}, {c, "c (constant fraction)"}, {d, "d (cosine fraction)"}})
             if (value != 0.0 && value < min_fraction)
                 detail::fail(name, " must be 0 or at least ", min_fraction, ", got ", value);
         MotionLaw law(LawKind::sine_constant_cosine);
@@ -173,14 +173,13 @@ public:
             }
             case LawKind::polynomial_345: {
                 const double x2 = x * x, u = 1.0 - x;
-                return {x2 * x * (10.0 - 15.0 * x + 6.0 * x2), 30.0 * x2 * u * u,
-                        60.0 * x * u * (1.0 - 2.0 * x), 60.0 * (1.0 - 6.0 * x + 6.0 * x2)};
+                return {x2 * x * (10.0 - 15.0 * x + 6.0 * x2), 30.0 * x2 * u * u, 60.0 * x * u * (1.0 - 2.0 * x),
+                        60.0 * (1.0 - 6.0 * x + 6.0 * x2)};
             }
             case LawKind::polynomial_4567: {
                 const double x2 = x * x, u = 1.0 - x, xu = x * u;
-                return {x2 * x2 * (35.0 - 84.0 * x + 70.0 * x2 - 20.0 * x2 * x),
-                        140.0 * xu * xu * xu, 420.0 * xu * xu * (1.0 - 2.0 * x),
-                        840.0 * xu * (1.0 - 5.0 * x + 5.0 * x2)};
+                return {x2 * x2 * (35.0 - 84.0 * x + 70.0 * x2 - 20.0 * x2 * x), 140.0 * xu * xu * xu,
+                        420.0 * xu * xu * (1.0 - 2.0 * x), 840.0 * xu * (1.0 - 5.0 * x + 5.0 * x2)};
             }
             case LawKind::constant_acceleration:
                 if (x <= 0.5) return {2.0 * x * x, 4.0 * x, 4.0, 0.0};
@@ -254,8 +253,7 @@ public:
                 const double scale =
                     std::fmax(lift_peaks().acceleration.value, std::abs(custom_lift()) / (beta * beta));
                 const double tolerance = 1e-9 * scale;
-                return std::abs(evaluate_lift(0.0).d2h) <= tolerance &&
-                       std::abs(evaluate_lift(beta).d2h) <= tolerance;
+                return std::abs(evaluate_lift(0.0).d2h) <= tolerance && std::abs(evaluate_lift(beta).d2h) <= tolerance;
             }
             default: return true;
         }
@@ -278,16 +276,16 @@ private:
         if (b_ > 0.0 && x <= x1) {
             const double u = pi * x / b_;
             const double k = b_ / pi;
-            return {ca_ * k * (x - k * std::sin(u)), ca_ * k * (1.0 - std::cos(u)),
-                    ca_ * std::sin(u), ca_ / k * std::cos(u)};
+            return {ca_ * k * (x - k * std::sin(u)), ca_ * k * (1.0 - std::cos(u)), ca_ * std::sin(u),
+                    ca_ / k * std::cos(u)};
         }
         if (d_ == 0.0 || x <= x2) {
             const double t = x - x1;
             return {ca_ * (s1_ + v1_ * t + 0.5 * t * t), ca_ * (v1_ + t), ca_, 0.0};
         }
         const double t = x - x2, u = pi * t / d_, k = d_ / pi;
-        return {ca_ * (s2_ + v2_ * t + k * k * (1.0 - std::cos(u))), ca_ * (v2_ + k * std::sin(u)),
-                ca_ * std::cos(u), -ca_ / k * std::sin(u)};
+        return {ca_ * (s2_ + v2_ * t + k * k * (1.0 - std::cos(u))), ca_ * (v2_ + k * std::sin(u)), ca_ * std::cos(u),
+                -ca_ / k * std::sin(u)};
     }
 
     LawKind kind_;

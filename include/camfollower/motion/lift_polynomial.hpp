@@ -92,8 +92,8 @@ public:
     // h and its derivatives at an absolute theta in [theta_start, theta_end] (1e-9 rad clamped).
     FollowerMotion evaluate(double theta) const {
         if (!(theta >= theta_start_ - 1e-9 && theta <= theta_end_ + 1e-9))
-            detail::fail("theta = ", theta, " rad is outside the polynomial's span [", theta_start_, ", ",
-                         theta_end_, "] rad");
+            detail::fail("theta = ", theta, " rad is outside the polynomial's span [", theta_start_, ", ", theta_end_,
+                         "] rad");
         const double beta = span();
         const double x = std::fmin(std::fmax((theta - theta_start_) / beta, 0.0), 1.0);
         const std::size_t n = coefficients_.size();
@@ -136,7 +136,8 @@ private:
             for (Eigen::Index k = 1; k <= r; ++k) scale *= beta / static_cast<double>(k);
             for (Eigen::Index k = r; k < n; ++k) {
                 double binomial = 1.0;  // C(k, r)
-                for (Eigen::Index j = 1; j <= r; ++j) binomial *= static_cast<double>(k - r + j) / static_cast<double>(j);
+                for (Eigen::Index j = 1; j <= r; ++j)
+                    binomial *= static_cast<double>(k - r + j) / static_cast<double>(j);
                 a(row, k) = binomial * std::pow(x0, static_cast<double>(k - r));
             }
             rhs(row++) = scale * value;

@@ -67,7 +67,8 @@ public:
         const std::size_t n = theta.size();
         for (std::size_t i = 0; i < n; ++i)
             if (theta[i] < 0.0 || theta[i] >= period)
-                detail::fail("theta[", i, "] = ", theta[i] * 180.0 / pi_, " deg must be in [0, 360) deg: a periodic "
+                detail::fail("theta[", i, "] = ", theta[i] * 180.0 / pi_,
+                             " deg must be in [0, 360) deg: a periodic "
                              "table covers one revolution (the spline repeats it)");
         const std::size_t p = static_cast<std::size_t>(options.degree);
         if (n < p + 1)
@@ -251,8 +252,7 @@ private:
             const double a = knots[k], b = knots[k + 1], half = 0.5 * (b - a);
             if (!(b > a)) continue;
             for (int g = 0; g < 4; ++g) {
-                const detail::BasisDerivatives d =
-                    detail::basis_derivatives(knots, k, a + half * (1.0 + gx[g]), p, m);
+                const detail::BasisDerivatives d = detail::basis_derivatives(knots, k, a + half * (1.0 + gx[g]), p, m);
                 for (int i = 0; i <= p; ++i)
                     for (int j = 0; j <= p; ++j)
                         t.emplace_back(column(k, i), column(k, j), smoothing_ * gw[g] * half * d[m][i] * d[m][j]);
@@ -262,8 +262,8 @@ private:
 
     // Taylor coefficients of every non-empty piece from the B-spline coefficients.
     template <class Column>
-    void to_pieces(const std::vector<double>& knots, std::size_t first, std::size_t last,
-                   const Eigen::VectorXd& c, const Column& column) {
+    void to_pieces(const std::vector<double>& knots, std::size_t first, std::size_t last, const Eigen::VectorXd& c,
+                   const Column& column) {
         const int p = degree_;
         for (std::size_t k = first; k < last; ++k) {
             if (!(knots[k + 1] > knots[k])) continue;
@@ -341,10 +341,12 @@ private:
         };
         std::vector<Condition> conditions;
         conditions.push_back({theta_.front(), 0, h_.front()});
-        for (std::size_t k = 0; k < ns; ++k) conditions.push_back({theta_.front(), static_cast<int>(k + 1), start_derivatives_[k]});
+        for (std::size_t k = 0; k < ns; ++k)
+            conditions.push_back({theta_.front(), static_cast<int>(k + 1), start_derivatives_[k]});
         for (std::size_t i = 1; i + 1 < points; ++i) conditions.push_back({theta_[i], 0, h_[i]});
         conditions.push_back({theta_.back(), 0, h_.back()});
-        for (std::size_t k = 0; k < ne; ++k) conditions.push_back({theta_.back(), static_cast<int>(k + 1), end_derivatives_[k]});
+        for (std::size_t k = 0; k < ne; ++k)
+            conditions.push_back({theta_.back(), static_cast<int>(k + 1), end_derivatives_[k]});
         const std::size_t n = conditions.size();  // basis functions
         std::vector<double> sites;
         for (const Condition& q : conditions) sites.push_back(q.theta);
@@ -362,7 +364,8 @@ private:
         const auto add_row = [&](Triplets& t, Eigen::Index row, const Condition& q) {
             const std::size_t span = detail::find_knot_span(knots, degree_, n, q.theta);
             const detail::BasisDerivatives d = detail::basis_derivatives(knots, span, q.theta, degree_, q.order);
-            for (int j = 0; j <= degree_; ++j) t.emplace_back(row, column(span, j), d[static_cast<std::size_t>(q.order)][j]);
+            for (int j = 0; j <= degree_; ++j)
+                t.emplace_back(row, column(span, j), d[static_cast<std::size_t>(q.order)][j]);
         };
         const Eigen::Index size = static_cast<Eigen::Index>(n);
         Eigen::VectorXd c;
@@ -390,7 +393,8 @@ private:
                     y.push_back(q.value);
                 }
             }
-            const Eigen::Index fits = static_cast<Eigen::Index>(y.size()), imposed = static_cast<Eigen::Index>(d.size());
+            const Eigen::Index fits = static_cast<Eigen::Index>(y.size()),
+                               imposed = static_cast<Eigen::Index>(d.size());
             Eigen::SparseMatrix<double> b(fits, size), constraints(imposed, size);
             b.setFromTriplets(fit_rows.begin(), fit_rows.end());
             constraints.setFromTriplets(constraint_rows.begin(), constraint_rows.end());

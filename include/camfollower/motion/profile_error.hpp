@@ -73,8 +73,8 @@ public:
         detail::require_finite(centre, "dent centre (rad)");
         // The dent's slopes grow as depth / width^k: below min_dent_width its derivatives overflow.
         if (!(std::isfinite(width) && width >= min_dent_width && width <= pi))
-            detail::fail("dent width must be in [", min_dent_width, " rad, 180 deg], got ", width * 180.0 / pi, " deg (", width,
-                         " rad)");
+            detail::fail("dent width must be in [", min_dent_width, " rad, 180 deg], got ", width * 180.0 / pi,
+                         " deg (", width, " rad)");
         detail::require_finite(depth, "dent depth (m)");
         return ProfileError(Dent{wrap(centre), width, depth});
     }
@@ -82,12 +82,12 @@ public:
     static ProfileError fourier(double mean, std::vector<double> cos, std::vector<double> sin) {
         detail::require_finite(mean, "Fourier mean (m)");
         if (cos.size() != sin.size())
-            detail::fail("Fourier cos and sin must have the same length (harmonics 1..K), got ", cos.size(),
-                         " and ", sin.size());
+            detail::fail("Fourier cos and sin must have the same length (harmonics 1..K), got ", cos.size(), " and ",
+                         sin.size());
         for (std::size_t k = 0; k < cos.size(); ++k)
             if (!std::isfinite(cos[k]) || !std::isfinite(sin[k]))
-                detail::fail("Fourier coefficients of harmonic ", k + 1, " must be finite, got cos ", cos[k],
-                             ", sin ", sin[k]);
+                detail::fail("Fourier coefficients of harmonic ", k + 1, " must be finite, got cos ", cos[k], ", sin ",
+                             sin[k]);
         return ProfileError(Fourier{mean, std::move(cos), std::move(sin)});
     }
 
@@ -99,8 +99,7 @@ public:
                               std::optional<int> max_harmonic = std::nullopt) {
         const std::size_t n = theta.size();
         if (error.size() != n)
-            detail::fail("lift-error table: theta and error must have the same length, got ", n, " and ",
-                         error.size());
+            detail::fail("lift-error table: theta and error must have the same length, got ", n, " and ", error.size());
         if (n < 3) detail::fail("lift-error table: needs at least 3 points, got ", n);
         for (std::size_t i = 0; i < n; ++i) {
             if (!std::isfinite(theta[i]) || !std::isfinite(error[i]))
@@ -115,8 +114,8 @@ public:
         const int limit = static_cast<int>((n - 1) / 2);
         const int K = max_harmonic.value_or(limit);
         if (K < 1 || K > limit)
-            detail::fail("lift-error table: max_harmonic must be in [1, ", limit, "] (floor((N - 1) / 2) for N = ",
-                         n, " points), got ", K);
+            detail::fail("lift-error table: max_harmonic must be in [1, ", limit, "] (floor((N - 1) / 2) for N = ", n,
+                         " points), got ", K);
         return equally_spaced(theta) ? fit_equally_spaced(theta, error, K) : fit_least_squares(theta, error, K);
     }
 
@@ -220,8 +219,7 @@ private:
         return true;
     }
 
-    static ProfileError fit_equally_spaced(const std::vector<double>& theta, const std::vector<double>& error,
-                                           int K) {
+    static ProfileError fit_equally_spaced(const std::vector<double>& theta, const std::vector<double>& error, int K) {
         const double n = static_cast<double>(theta.size());
         const std::size_t harmonics = static_cast<std::size_t>(K);
         Fourier f{0.0, std::vector<double>(harmonics, 0.0), std::vector<double>(harmonics, 0.0)};
@@ -235,8 +233,7 @@ private:
         return ProfileError(std::move(f));
     }
 
-    static ProfileError fit_least_squares(const std::vector<double>& theta, const std::vector<double>& error,
-                                          int K) {
+    static ProfileError fit_least_squares(const std::vector<double>& theta, const std::vector<double>& error, int K) {
         const Eigen::Index n = static_cast<Eigen::Index>(theta.size()), cols = 2 * K + 1;
         Eigen::MatrixXd A(n, cols);
         for (Eigen::Index i = 0; i < n; ++i) {

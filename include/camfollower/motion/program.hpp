@@ -59,18 +59,21 @@ struct Segment {
             detail::fail(at, ".h_start/h_end must be in [", -detail::max_part_length, ", ", detail::max_part_length,
                          "] m, got ", h_start, ", ", h_end);
         if (!(span() >= min_span))
-            detail::fail(at, " spans ", span(), " rad (", span() * 180.0 / pi, " deg): span theta_end - theta_start must be "
-                         "at least ", min_span, " rad");
+            detail::fail(at, " spans ", span(), " rad (", span() * 180.0 / pi,
+                         " deg): span theta_end - theta_start must be "
+                         "at least ",
+                         min_span, " rad");
         if (h_scale < 0.0) h_scale = 1e-12 + 1e-9 * std::max(std::abs(h_start), std::abs(h_end));
         if (law.is_dwell() && std::abs(lift()) > h_scale)
             detail::fail(at, ": a dwell must have h_end == h_start, got a lift of ", lift(), " m");
         if (law.is_custom()) {
             if (std::abs(span() - law.custom_span()) > angle_tolerance)
-                detail::fail(at, ": its ", law.name(), " law spans ", law.custom_span() * 180.0 / pi, " deg but the segment spans ",
-                             span() * 180.0 / pi, " deg (theta_end - theta_start must match the law)");
+                detail::fail(at, ": its ", law.name(), " law spans ", law.custom_span() * 180.0 / pi,
+                             " deg but the segment spans ", span() * 180.0 / pi,
+                             " deg (theta_end - theta_start must match the law)");
             if (std::abs(lift() - law.custom_lift()) > h_scale)
-                detail::fail(at, ": its ", law.name(), " law lifts by ", law.custom_lift(), " m but h_end - h_start = ", lift(),
-                             " m (the segment's levels must match the law)");
+                detail::fail(at, ": its ", law.name(), " law lifts by ", law.custom_lift(),
+                             " m but h_end - h_start = ", lift(), " m (the segment's levels must match the law)");
         }
     }
 
@@ -90,11 +93,11 @@ struct Segment {
     // The polynomial meeting start = {h, h', h'', ...} at theta_start, end likewise at theta_end (m,
     // m/rad^k; at least h each) and passing through the interior (theta, h) points (lift_polynomial.hpp).
     // Degree = number of conditions - 1: {h0, 0, 0} / {h1, 0, 0} gives the 3-4-5 polynomial.
-    static Segment polynomial(double theta_start, double theta_end, std::vector<double> start,
-                              std::vector<double> end, std::vector<std::pair<double, double>> interior = {}) {
+    static Segment polynomial(double theta_start, double theta_end, std::vector<double> start, std::vector<double> end,
+                              std::vector<std::pair<double, double>> interior = {}) {
         if (!(std::isfinite(theta_start) && std::isfinite(theta_end) && theta_end - theta_start >= min_span))
-            detail::fail("polynomial segment: theta_end - theta_start must be finite and at least ", min_span, " rad, got [",
-                         theta_start, ", ", theta_end, "] rad");
+            detail::fail("polynomial segment: theta_end - theta_start must be finite and at least ", min_span,
+                         " rad, got [", theta_start, ", ", theta_end, "] rad");
         auto law = std::make_shared<const LiftPolynomial>(LiftPolynomial::from_conditions(
             theta_start, theta_end, std::move(start), std::move(end), std::move(interior)));
         const double h0 = law->start().front(), h1 = law->end().front();
@@ -123,9 +126,7 @@ public:
     // The shortest segment (Segment::min_span), checked again after snapping.
     static constexpr double min_span = Segment::min_span;
 
-    explicit MotionProgram(std::vector<Segment> segments) : segments_(std::move(segments)) {
-        validate();
-    }
+    explicit MotionProgram(std::vector<Segment> segments) : segments_(std::move(segments)) { validate(); }
 
     // Paper Table 1: dwell 0-30 deg, modified-trapezoid rise 30-180 deg by `total_rise` (default
     // 10 mm), dwell 180-210 deg, modified-trapezoid return 210-360 deg.
@@ -249,7 +250,8 @@ public:
             for (int k = 3; k >= 0; --k) {
                 const std::size_t q = static_cast<std::size_t>(k);
                 c.jump[q] = c.right[q] - c.left[q];
-                const double scale = std::max({stroke / std::pow(beta_min, k), std::abs(c.left[q]), std::abs(c.right[q])});
+                const double scale =
+                    std::max({stroke / std::pow(beta_min, k), std::abs(c.left[q]), std::abs(c.right[q])});
                 c.tolerance[q] = 1e-6 * scale;
                 if (!(std::abs(c.jump[q]) <= c.tolerance[q])) c.continuous_through = k - 1;
             }
@@ -261,8 +263,7 @@ public:
     // Throws std::invalid_argument naming the first boundary (segments, angle in degrees) where one of
     // h .. h^(order) jumps. order in [0, 3]: 0 the lift, 1 velocity, 2 acceleration, 3 jerk.
     void require_continuity(int order) const {
-        if (order < 0 || order > 3)
-            detail::fail("order must be in [0, 3] (0: h, 1: h', 2: h'', 3: h'''), got ", order);
+        if (order < 0 || order > 3) detail::fail("order must be in [0, 3] (0: h, 1: h', 2: h'', 3: h'''), got ", order);
         for (const BoundaryContinuity& b : continuity().boundaries) {
             if (b.continuous_through >= order) continue;
             const std::size_t k = static_cast<std::size_t>(b.continuous_through + 1);
@@ -309,13 +310,13 @@ private:
                              i == 0 ? "" : detail::concat(radians_to_degrees(expected_start), " deg"),
                              "; segments must tile [0, 360) deg exactly");
             if (i > 0 && std::abs(s.h_start - segments_[i - 1].h_end) > h_scale)
-                detail::fail(at, ".h_start = ", s.h_start, " m must equal the previous segment's h_end = ",
-                             segments_[i - 1].h_end, " m (levels must chain)");
+                detail::fail(at, ".h_start = ", s.h_start,
+                             " m must equal the previous segment's h_end = ", segments_[i - 1].h_end,
+                             " m (levels must chain)");
         }
         const Segment& last = segments_.back();
         if (std::abs(last.theta_end - two_pi) > angle_tolerance)
-            detail::fail("segments[", segments_.size() - 1, "].theta_end = ",
-                         radians_to_degrees(last.theta_end),
+            detail::fail("segments[", segments_.size() - 1, "].theta_end = ", radians_to_degrees(last.theta_end),
                          " deg: the last segment must end at 360 deg (segments must tile [0, 360) deg)");
         if (std::abs(last.h_end - segments_.front().h_start) > h_scale)
             detail::fail("the last segment's h_end = ", last.h_end,
@@ -331,9 +332,10 @@ private:
         segments_.back().h_end = segments_.front().h_start;
         for (std::size_t i = 0; i < segments_.size(); ++i)
             if (!(segments_[i].span() >= min_span))
-                detail::fail("segments[", i, "] spans ", radians_to_degrees(segments_[i].span()),
-                             " deg once the boundaries are snapped to tile the revolution; a segment must span at least ",
-                             min_span, " rad (", radians_to_degrees(min_span), " deg)");
+                detail::fail(
+                    "segments[", i, "] spans ", radians_to_degrees(segments_[i].span()),
+                    " deg once the boundaries are snapped to tile the revolution; a segment must span at least ",
+                    min_span, " rad (", radians_to_degrees(min_span), " deg)");
         max_lift_ = design_max_lift(), min_lift_ = design_min_lift();
     }
 

@@ -8,8 +8,8 @@
 //     e_i = |J_i - J*_i|,  J*_i the value at theta_i of the straight line through the neighbours' jerks
 // (a second difference: O(step^2) for a smooth jerk, the full oscillation amplitude for noise). It
 // lists the largest local maxima of e_i (angle, size) and the roughness RMS(e) / peak |J|: below 0.01
-// for a smooth lift, 0.1 - 0.5 when noise dominates the jerk (pure noise: about 0.25). A built-in law whose jerk jumps (modified
-// trapezoid, a segment boundary) also shows an excursion there: it is a real jerk step, not noise.
+// for a smooth lift, 0.1 - 0.5 when noise dominates the jerk (pure noise: about 0.25). A built-in law whose jerk jumps
+// (modified trapezoid, a segment boundary) also shows an excursion there: it is a real jerk step, not noise.
 #pragma once
 
 #include <algorithm>
@@ -29,10 +29,10 @@ struct JerkExcursion {
 };
 
 struct SmoothnessReport {
-    LiftPeaks peaks;               // peak |h'|, |h''|, |h'''| (m/rad^k) and their angles (rad)
-    std::size_t table_points = 0;  // points of the program's spline tables (0: none)
-    FitResidual residual;          // misses at those points (m): zero to rounding when interpolating
-    double jerk_roughness = 0.0;   // RMS jerk excursion / peak |h'''| (dimensionless)
+    LiftPeaks peaks;                             // peak |h'|, |h''|, |h'''| (m/rad^k) and their angles (rad)
+    std::size_t table_points = 0;                // points of the program's spline tables (0: none)
+    FitResidual residual;                        // misses at those points (m): zero to rounding when interpolating
+    double jerk_roughness = 0.0;                 // RMS jerk excursion / peak |h'''| (dimensionless)
     std::vector<JerkExcursion> jerk_excursions;  // the largest local excursions, largest first
 };
 
@@ -45,7 +45,8 @@ inline SmoothnessReport smoothness(const MotionProgram& program, std::size_t exc
     double squared = 0.0;
     for (const Segment& s : program.segments()) {
         if (const LiftSpline* spline = s.law.spline()) {
-            for (double b : spline->breaks()) sites.push_back(MotionProgram::wrap(s.theta_start + (b - spline->origin())));
+            for (double b : spline->breaks())
+                sites.push_back(MotionProgram::wrap(s.theta_start + (b - spline->origin())));
             const FitResidual r = spline->residual();
             const std::size_t n = spline->theta().size();
             squared += r.rms * r.rms * static_cast<double>(n);
@@ -60,7 +61,8 @@ inline SmoothnessReport smoothness(const MotionProgram& program, std::size_t exc
     }
     if (report.table_points > 0) report.residual.rms = std::sqrt(squared / static_cast<double>(report.table_points));
     std::sort(sites.begin(), sites.end());
-    sites.erase(std::unique(sites.begin(), sites.end(), [](double a, double b) { return b - a <= 1e-12; }), sites.end());
+    sites.erase(std::unique(sites.begin(), sites.end(), [](double a, double b) { return b - a <= 1e-12; }),
+                sites.end());
 
     // Peaks: 8 samples between consecutive sites, refined around the best.
     std::vector<double> pieces = sites;
@@ -88,7 +90,8 @@ inline SmoothnessReport smoothness(const MotionProgram& program, std::size_t exc
         const double e = excursion[i];
         if (e > 0.0 && e >= excursion[(i + n - 1) % n] && e >= excursion[(i + 1) % n]) local.push_back({sites[i], e});
     }
-    std::sort(local.begin(), local.end(), [](const JerkExcursion& a, const JerkExcursion& b) { return a.excursion > b.excursion; });
+    std::sort(local.begin(), local.end(),
+              [](const JerkExcursion& a, const JerkExcursion& b) { return a.excursion > b.excursion; });
     if (local.size() > excursions) local.resize(excursions);
     report.jerk_excursions = std::move(local);
     return report;

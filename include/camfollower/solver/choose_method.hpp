@@ -116,8 +116,9 @@ MethodChoice choose_method(const System& system, SolverSettings s, const State<S
                                       " DOFs, above 200 the highest mode is not computed")};
         const double omega = highest_angular_frequency(system, start);
         const double limit = newmark_step_limit(0.5, 1.0 / 12.0, omega);
-        const std::string where = "time_step " + detail::figure(s.time_step) + " s against Fox-Goodwin's stability limit " +
-                                  detail::figure(limit) + " s (highest mode " + detail::figure(omega / (2.0 * pi)) + " Hz)";
+        const std::string where = "time_step " + detail::figure(s.time_step) +
+                                  " s against Fox-Goodwin's stability limit " + detail::figure(limit) +
+                                  " s (highest mode " + detail::figure(omega / (2.0 * pi)) + " Hz)";
         if (omega >= 0.0 && s.time_step <= limit) {
             s.method = Method::fox_goodwin;
             return {s, "fox_goodwin: " + where};
@@ -141,19 +142,20 @@ MethodChoice choose_method(const System& system, SolverSettings s, const State<S
         s.method = Method::radau;
         if (*s.tolerance <= radau_long_step_tolerance || s.max_step > 0.0) return MethodChoice{s, why};
         s.max_step = s.time_step;
-        return MethodChoice{s, why + "; max_step = the output interval " + figure(s.time_step) + " s (tolerance above " +
-                                   figure(radau_long_step_tolerance) + ")"};
+        return MethodChoice{s, why + "; max_step = the output interval " + figure(s.time_step) +
+                                   " s (tolerance above " + figure(radau_long_step_tolerance) + ")"};
     };
     if (modes.damped.rate > 0.0 && modes.damped.rate >= 0.5 * modes.ringing.rate)
-        return take_radau("radau: the fastest modes are damped: " + mode(modes.damped) + " (>= " + figure(ringing_damping_ratio) +
-                     "), the fastest ringing mode " + mode(modes.ringing) + units);
+        return take_radau("radau: the fastest modes are damped: " + mode(modes.damped) + " (>= " +
+                          figure(ringing_damping_ratio) + "), the fastest ringing mode " + mode(modes.ringing) + units);
     const double isolation = modes.next_ringing.rate > 0.0 ? modes.ringing.rate / modes.next_ringing.rate : 0.0;
     const std::string ringing = mode(modes.ringing) + ", " + figure(isolation) + " times the next ringing mode (" +
                                 figure(modes.next_ringing.rate / (2.0 * pi)) + " Hz)";
     const bool isolated = isolation >= isolated_mode_ratio;
     if (isolated && *s.tolerance >= isolated_mode_tolerance)
-        return take_radau("radau: the fastest mode rings alone, a stiff spring loaded quasi-statically: " + ringing + " (>= " +
-                     figure(isolated_mode_ratio) + ", tolerance >= " + figure(isolated_mode_tolerance) + ")" + units);
+        return take_radau("radau: the fastest mode rings alone, a stiff spring loaded quasi-statically: " + ringing +
+                          " (>= " + figure(isolated_mode_ratio) + ", tolerance >= " + figure(isolated_mode_tolerance) +
+                          ")" + units);
     s.method = Method::dop853;
     return {s, "dop853: the fastest modes ring: " + ringing +
                    (modes.damped.rate > 0.0 ? ", the fastest damped mode (>= " + figure(ringing_damping_ratio) + ") " +

@@ -44,10 +44,13 @@ public:
             system.stiffness().rows() != n_ || system.stiffness().cols() != n_)
             detail::fail("system: mass, damping and stiffness must be ", n_, " x ", n_, " (size())");
         for (int k = 0; k < n_; ++k)
-            if (!(M(k, k) > 0.0)) detail::fail("system: mass matrix diagonal must be > 0, got M(", k, ", ", k, ") = ", M(k, k));
+            if (!(M(k, k) > 0.0))
+                detail::fail("system: mass matrix diagonal must be > 0, got M(", k, ", ", k, ") = ", M(k, k));
         if (n_ > max_dofs)
-            detail::fail("linear_solver '", linear_solver_name(s_), "' (dense) is limited to ", max_dofs, " DOFs (it factorizes n x n "
-                         "matrices for every step size); this system has ", n_, ": use 'sparse' or 'auto'");
+            detail::fail("linear_solver '", linear_solver_name(s_), "' (dense) is limited to ", max_dofs,
+                         " DOFs (it factorizes n x n "
+                         "matrices for every step size); this system has ",
+                         n_, ": use 'sparse' or 'auto'");
         // The cheap refusal first: sqrt(K_kk / M_kk), a Rayleigh quotient, bounds omega_max from below,
         // so a fixed step beyond the scheme's limit for it is beyond the true limit too; O(n), before the
         // O(n^3) factorizations below (start() checks the exact limit).
@@ -57,8 +60,10 @@ public:
                 omega_low = std::max(omega_low, std::sqrt(std::max(system.stiffness()(k, k), 0.0) / M(k, k)));
             const double limit = newmark_step_limit(p_.gamma, p_.beta, omega_low);
             if (s_.time_step > limit)
-                detail::fail("time_step = ", s_.time_step, " s exceeds the stability limit of Newmark with beta = ", p_.beta,
-                             " < gamma / 2: at most ", limit, " s (a mode at ", omega_low / (2.0 * pi), " Hz or faster); reduce "
+                detail::fail("time_step = ", s_.time_step,
+                             " s exceeds the stability limit of Newmark with beta = ", p_.beta,
+                             " < gamma / 2: at most ", limit, " s (a mode at ", omega_low / (2.0 * pi),
+                             " Hz or faster); reduce "
                              "time_step, use beta = 1/4 or method 'auto'");
         }
         const int levels = s_.max_halvings + 1;
@@ -72,7 +77,8 @@ public:
             A0_inv_[level] = A0_[level].partialPivLu().inverse();
             // 1 / lambda_min(A0) when A0 is symmetric positive definite (0 disables the bound).
             inverse_bound_[level] = 0.0;
-            if (n_ <= max_eigen_dofs && (A0_[level] - A0_[level].transpose()).cwiseAbs().maxCoeff() <= 1e-14 * A0_[level].cwiseAbs().maxCoeff()) {
+            if (n_ <= max_eigen_dofs && (A0_[level] - A0_[level].transpose()).cwiseAbs().maxCoeff() <=
+                                            1e-14 * A0_[level].cwiseAbs().maxCoeff()) {
                 const Eigen::SelfAdjointEigenSolver<Matrix> eig(A0_[level], Eigen::EigenvaluesOnly);
                 if (eig.info() == Eigen::Success && eig.eigenvalues()[0] > 0.0)
                     inverse_bound_[level] = 1.0 / eig.eigenvalues()[0];
@@ -156,14 +162,16 @@ public:
         if (!std::isfinite(omega_max)) return;
         const double limit = newmark_step_limit(p_.gamma, p_.beta, omega_max);
         if (s_.time_step > limit)
-            detail::fail("time_step = ", s_.time_step, " s exceeds the stability limit ", limit, " s of Newmark with beta = ",
-                         p_.beta, " < gamma / 2 (highest mode ", omega_max / (2.0 * pi),
+            detail::fail("time_step = ", s_.time_step, " s exceeds the stability limit ", limit,
+                         " s of Newmark with beta = ", p_.beta, " < gamma / 2 (highest mode ", omega_max / (2.0 * pi),
                          " Hz); reduce time_step, use beta = 1/4 or method 'auto'");
     }
 
     // Highest undamped natural angular frequency (rad/s) at state s0, contacts linearized.
     template <class StateType>
-    double highest_angular_frequency(const StateType& s0) const { return camfollower::highest_angular_frequency(system_, s0); }
+    double highest_angular_frequency(const StateType& s0) const {
+        return camfollower::highest_angular_frequency(system_, s0);
+    }
 
 private:
     // Z = A0^-1 (1 + alpha) U for the active columns; a column is recomputed only when U changed

@@ -30,8 +30,8 @@ namespace detail {
 template <class S, class = void>
 struct has_sparse_matrices : std::false_type {};
 template <class S>
-struct has_sparse_matrices<S, void_t<decltype(std::declval<const S&>().sparse_mass()),
-                                     decltype(std::declval<const S&>().tangent_pattern())>>
+struct has_sparse_matrices<
+    S, void_t<decltype(std::declval<const S&>().sparse_mass()), decltype(std::declval<const S&>().tangent_pattern())>>
     : std::bool_constant<S::Vector::RowsAtCompileTime == Eigen::Dynamic> {};
 }  // namespace detail
 
@@ -43,8 +43,9 @@ bool uses_sparse_backend(const System& system, const SolverSettings& settings) {
         return settings.backend == Backend::automatic && system.size() >= sparse_backend_threshold;
     } else {
         if (settings.backend == Backend::sparse)
-            detail::fail("linear_solver 'sparse' or 'klu' (the sparse backend) needs a dynamic-size system with sparse "
-                         "matrices (a Mechanism of other than the paper preset's 7 DOFs)");
+            detail::fail(
+                "linear_solver 'sparse' or 'klu' (the sparse backend) needs a dynamic-size system with sparse "
+                "matrices (a Mechanism of other than the paper preset's 7 DOFs)");
         return false;
     }
 }

@@ -62,11 +62,12 @@ inline constexpr double a[7][6] = {
     {9017.0 / 3168.0, -355.0 / 33.0, 46732.0 / 5247.0, 49.0 / 176.0, -5103.0 / 18656.0, 0},
     {35.0 / 384.0, 0.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0}};
 // Fifth-order weights are the last row of a; e = b5 - b4 gives the embedded error estimate.
-inline constexpr std::array<double, 7> e{71.0 / 57600.0, 0.0, -71.0 / 16695.0, 71.0 / 1920.0,
+inline constexpr std::array<double, 7> e{71.0 / 57600.0,      0.0,          -71.0 / 16695.0, 71.0 / 1920.0,
                                          -17253.0 / 339200.0, 22.0 / 525.0, -1.0 / 40.0};
-inline constexpr std::array<double, 7> d{-12715105075.0 / 11282082432.0, 0.0, 87487479700.0 / 32700410799.0,
-                                         -10690763975.0 / 1880347072.0, 701980252875.0 / 199316789632.0,
-                                         -1453857185.0 / 822651844.0, 69997945.0 / 29380423.0};
+inline constexpr std::array<double, 7> d{-12715105075.0 / 11282082432.0,  0.0,
+                                         87487479700.0 / 32700410799.0,   -10690763975.0 / 1880347072.0,
+                                         701980252875.0 / 199316789632.0, -1453857185.0 / 822651844.0,
+                                         69997945.0 / 29380423.0};
 
 // What EmbeddedRungeKutta needs of a scheme. The stages are numbered from 0; the last of a step's
 // `stages` is f at the solution (its input row of `a` holds the weights b), the next step's first
@@ -74,9 +75,9 @@ inline constexpr std::array<double, 7> d{-12715105075.0 / 11282082432.0, 0.0, 87
 struct Scheme {
     static constexpr const char* name = "Dormand-Prince";  // in error messages
     static constexpr Method method = Method::dormand_prince;
-    static constexpr int order = 5;                         // of the solution
-    static constexpr int stages = 7;                        // evaluated each step (the first reused)
-    static constexpr int dense_stages = 0;                  // more, for the dense output
+    static constexpr int order = 5;         // of the solution
+    static constexpr int stages = 7;        // evaluated each step (the first reused)
+    static constexpr int dense_stages = 0;  // more, for the dense output
     static constexpr auto& c = dopri5::c;
     static constexpr auto& a = dopri5::a;
     // The error estimates, h sum_i e[k][i] k_i, and their norms' combination.
@@ -121,8 +122,8 @@ class EmbeddedRungeKutta : public FirstOrderStepper<EmbeddedRungeKutta<System, S
     friend Base;
     static constexpr std::size_t S = std::size_t(Scheme::stages);            // a step's stages
     static constexpr std::size_t K = S + std::size_t(Scheme::dense_stages);  // with the dense output's
-    static constexpr std::size_t E = std::size(Scheme::e);                  // error estimates
-    static constexpr std::size_t R = 4 + std::size(Scheme::d);              // dense-output coefficients
+    static constexpr std::size_t E = std::size(Scheme::e);                   // error estimates
+    static constexpr std::size_t R = 4 + std::size(Scheme::d);               // dense-output coefficients
 
 public:
     using typename Base::Matrix;
@@ -137,7 +138,11 @@ public:
         : Base(system, settings, Scheme::method, Scheme::name) {
         for (Vector* x : {&qs_, &vs_, &ql_, &vl_, &qd_, &vd_, &ef_, &dq_, &dv_, &cq_, &cv_, &cq_trial_, &cv_trial_})
             x->resize(n_);
-        auto resize = [this](auto&... sets) { (..., [this](auto& set) { for (Vector& x : set) x.resize(n_); }(sets)); };
+        auto resize = [this](auto&... sets) {
+            (..., [this](auto& set) {
+                for (Vector& x : set) x.resize(n_);
+            }(sets));
+        };
         resize(eq_, ev_, kq_, kv_, rq_, rv_);
     }
     EmbeddedRungeKutta(System&&, const SolverSettings&) = delete;
@@ -253,9 +258,9 @@ private:
             if (s_.max_step > 0.0) h = std::min(h, s_.max_step);
             if (!adaptive_) h = s_.max_step;  // fixed steps (FirstOrderStepper requires max_step without a tolerance)
             if (!(h >= min_step))
-                throw ConvergenceError(detail::concat(Scheme::name, ": the step fell to ", h, " s at t = ", t_,
-                                                      " s without meeting tolerance = ", tolerance_,
-                                                      " (the response is not smooth there, or the tolerance is below rounding)"));
+                throw ConvergenceError(detail::concat(
+                    Scheme::name, ": the step fell to ", h, " s at t = ", t_, " s without meeting tolerance = ",
+                    tolerance_, " (the response is not smooth there, or the tolerance is below rounding)"));
             dense_ready_ = false;
             // Stages 1 ... S - 1 (stage 0 is the previous step's last: FSAL); the one before the last
             // is kept for the stiffness test, the last's input is the solution.
@@ -282,7 +287,8 @@ private:
             if (!adaptive_) {
                 if (err == 1e10)
                     throw ConvergenceError(detail::concat(Scheme::name, ": the state became non-finite at t = ", t_,
-                                                          " s with the fixed step ", h, " s: the step is beyond the stability limit"));
+                                                          " s with the fixed step ", h,
+                                                          " s: the step is beyond the stability limit"));
                 err = 0.5;
             }
             // Hairer's PI step-size controller.

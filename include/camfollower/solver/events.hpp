@@ -46,8 +46,12 @@ public:
     using Vector = typename System::Vector;
 
     explicit EventWatch(const System& system)
-        : system_(system), count_(int(event_names(system).size())), g_(std::size_t(count_)),
-          g_scan_(std::size_t(count_)), side_(std::size_t(count_)), scratch_(make_workspace(system)) {
+        : system_(system),
+          count_(int(event_names(system).size())),
+          g_(std::size_t(count_)),
+          g_scan_(std::size_t(count_)),
+          side_(std::size_t(count_)),
+          scratch_(make_workspace(system)) {
         q_.resize(system.size()), v_.resize(system.size()), f_.resize(system.size());
         events_.reserve(64);
     }
@@ -98,14 +102,14 @@ public:
         event_located(system_, ws, c.index, c.time, side_[k]);
     }
 
-
     // Newmark's path: the cubic Hermite interpolant through (q0, v0) at t0 and (q1, v1) at t1 (third-
     // order accurate in q, like the scheme), its derivative for v.
     static void hermite(double t, double t0, double t1, const Vector& q0, const Vector& v0, const Vector& q1,
                         const Vector& v1, Vector& q, Vector& v) {
         const double h = t1 - t0, s = (t - t0) / h, s2 = s * s, s3 = s2 * s;
         const double h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s, h01 = -2 * s3 + 3 * s2, h11 = s3 - s2;
-        const double d00 = (6 * s2 - 6 * s) / h, d10 = 3 * s2 - 4 * s + 1, d01 = (-6 * s2 + 6 * s) / h, d11 = 3 * s2 - 2 * s;
+        const double d00 = (6 * s2 - 6 * s) / h, d10 = 3 * s2 - 4 * s + 1, d01 = (-6 * s2 + 6 * s) / h,
+                     d11 = 3 * s2 - 2 * s;
         q = h00 * q0 + (h10 * h) * v0 + h01 * q1 + (h11 * h) * v1;
         v = d00 * q0 + d10 * v0 + d01 * q1 + d11 * v1;
     }

@@ -87,19 +87,26 @@ public:
     std::vector<Event> take_events() { return events_.take_events(); }
 
     // Highest natural angular frequency at a state (rad/s), contacts linearized.
-    double highest_angular_frequency(const StateType& s) const { return camfollower::highest_angular_frequency(system_, s); }
+    double highest_angular_frequency(const StateType& s) const {
+        return camfollower::highest_angular_frequency(system_, s);
+    }
 
 protected:
     // `method`: the one this stepper runs (another is refused); `name` for messages.
     FirstOrderStepper(const System& system, const SolverSettings& settings, Method method, const char* name)
-        : system_(system), s_(validated(settings, method, name)), adaptive_(settings.tolerance.has_value()),
-          tolerance_(settings.tolerance.value_or(runge_kutta_default_tolerance)), n_(system.size()),
-          uvq_(n_, std::max(1, max_rank(system))), uvv_(n_, std::max(1, max_rank(system))) {
+        : system_(system),
+          s_(validated(settings, method, name)),
+          adaptive_(settings.tolerance.has_value()),
+          tolerance_(settings.tolerance.value_or(runge_kutta_default_tolerance)),
+          n_(system.size()),
+          uvq_(n_, std::max(1, max_rank(system))),
+          uvv_(n_, std::max(1, max_rank(system))) {
         const Matrix& M = system.mass();
         if (M.rows() != n_ || M.cols() != n_ || system.damping().rows() != n_ || system.stiffness().rows() != n_)
             detail::fail("system: mass, damping and stiffness must be ", n_, " x ", n_, " (size())");
         for (int k = 0; k < n_; ++k)
-            if (!(M(k, k) > 0.0)) detail::fail("system: mass matrix diagonal must be > 0, got M(", k, ", ", k, ") = ", M(k, k));
+            if (!(M(k, k) > 0.0))
+                detail::fail("system: mass matrix diagonal must be > 0, got M(", k, ", ", k, ") = ", M(k, k));
         M_inv_ = M.partialPivLu().inverse();
         for (Vector* x : {&q_, &v_, &f_, &rhs_}) x->resize(n_);
     }
@@ -143,8 +150,10 @@ private:
             detail::fail("the ", name, " stepper runs method '", method_name(method), "', got '", method_name(s.method),
                          "' (simulate() and periodic_orbit() run every method)");
         if (!s.tolerance && s.max_step == 0.0)
-            detail::fail("method '", method_name(method), "' adapts its steps under a tolerance: set tolerance (Python and the "
-                         "config default to ", runge_kutta_default_tolerance, "), or max_step for fixed steps of max_step");
+            detail::fail("method '", method_name(method),
+                         "' adapts its steps under a tolerance: set tolerance (Python and the "
+                         "config default to ",
+                         runge_kutta_default_tolerance, "), or max_step for fixed steps of max_step");
         return s;
     }
 };

@@ -28,14 +28,16 @@ inline std::uint64_t steps_for(double duration, double dt) {
     // 1e10 steps is about an hour at the paper model's 3-4 million steps/s: a longer run is a typo in
     // the duration or the step far more often than a plan (recorded rows are capped separately).
     if (!(steps <= 1e10))
-        detail::fail("duration / time_step = ", steps, " steps is too many (limit 1e10); shorten the duration or "
+        detail::fail("duration / time_step = ", steps,
+                     " steps is too many (limit 1e10); shorten the duration or "
                      "lengthen the time step");
     return static_cast<std::uint64_t>(std::max(steps, 1.0));
 }
 
 // observer(const State&, std::uint64_t step_index) -> bool (continue?); step 0 is the start state.
 template <class Stepper, class Observer>
-IntegrationReport integrate(Stepper& stepper, typename Stepper::StateType& state, double duration, Observer&& observer) {
+IntegrationReport integrate(Stepper& stepper, typename Stepper::StateType& state, double duration,
+                            Observer&& observer) {
     IntegrationReport report;
     report.planned_steps = steps_for(duration, stepper.time_step());
     if (!observer(state, std::uint64_t(0))) {

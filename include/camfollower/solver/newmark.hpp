@@ -48,8 +48,7 @@ template <class V>
 CAMFOLLOWER_FORCE_INLINE void copy_vector(const V& from, V& to) {
     if constexpr (V::SizeAtCompileTime != Eigen::Dynamic)
         std::memcpy(to.data(), from.data(), sizeof(typename V::Scalar) * std::size_t(V::SizeAtCompileTime));
-    else
-        to = from;
+    else to = from;
 }
 }  // namespace detail
 
@@ -65,7 +64,11 @@ public:
     using StateType = State<System>;
 
     Newmark(const System& system, const SolverSettings& settings)
-        : system_(system), s_(validated(settings)), p_(newmark_parameters(s_)), n_(system.size()), linear_(system, s_),
+        : system_(system),
+          s_(validated(settings)),
+          p_(newmark_parameters(s_)),
+          n_(system.size()),
+          linear_(system, s_),
           control_error_(s_.tolerance.has_value()) {
         norm_M_ = row_sum_norm(linear_.mass());
         norm_C_ = row_sum_norm(linear_.damping());
@@ -140,12 +143,15 @@ private:
             if (!std::isfinite(residual))
                 throw ConvergenceError(detail::concat(
                     "the state became non-finite at t = ", state.t, " s with time step ", dt, " s (", level,
-                    " halvings): the integration is unstable", p_.beta < 0.25 ? " (beta < 1/4 is only conditionally "
-                    "stable: reduce time_step below 2 / (omega_max sqrt(1 - 4 beta)) or use beta = 1/4)" : ""));
-            throw ConvergenceError(detail::concat(
-                "Newton-Raphson did not converge at t = ", state.t, " s with time step ", dt, " s (", level,
-                " halvings) after ", iterations, " iterations; residual ", residual, " N (tolerance ",
-                s_.residual_tolerance * force_scale_, " N)"));
+                    " halvings): the integration is unstable",
+                    p_.beta < 0.25
+                        ? " (beta < 1/4 is only conditionally "
+                          "stable: reduce time_step below 2 / (omega_max sqrt(1 - 4 beta)) or use beta = 1/4)"
+                        : ""));
+            throw ConvergenceError(detail::concat("Newton-Raphson did not converge at t = ", state.t,
+                                                  " s with time step ", dt, " s (", level, " halvings) after ",
+                                                  iterations, " iterations; residual ", residual, " N (tolerance ",
+                                                  s_.residual_tolerance * force_scale_, " N)"));
         }
         stats.halvings += 1;
         step_at_level(state, stats, level + 1);
@@ -155,8 +161,8 @@ private:
     static SolverSettings validated(const SolverSettings& s) {
         s.validate();
         if (!is_newmark_family(s.method))
-            detail::fail("the Newmark stepper runs methods 'newmark', 'fox_goodwin' and 'hht', got '", method_name(s.method),
-                         "' (simulate() and periodic_orbit() run every method)");
+            detail::fail("the Newmark stepper runs methods 'newmark', 'fox_goodwin' and 'hht', got '",
+                         method_name(s.method), "' (simulate() and periodic_orbit() run every method)");
         return s;
     }
     template <class A>
@@ -260,7 +266,9 @@ private:
     // The crossings in the step from s to (t1, q_, v_), in time order, located on the cubic through
     // both ends (rare: out of line).
     CAMFOLLOWER_NOINLINE void record_crossings(StateType& s, double t1) {
-        auto path = [&](double t, Vector& q, Vector& v) { EventWatch<System>::hermite(t, s.t, t1, s.q, s.v, q_, v_, q, v); };
+        auto path = [&](double t, Vector& q, Vector& v) {
+            EventWatch<System>::hermite(t, s.t, t1, s.q, s.v, q_, v_, q, v);
+        };
         while (const Crossing c = events_.earliest(s.t, t1, path)) events_.record(c, s.workspace);
     }
 
@@ -297,7 +305,8 @@ private:
             }
         }
         coarsest_level_ = 0;
-        while (coarsest_level_ <= s_.max_halvings && s_.time_step / double(1 << coarsest_level_) > largest * (1.0 + 1e-12))
+        while (coarsest_level_ <= s_.max_halvings &&
+               s_.time_step / double(1 << coarsest_level_) > largest * (1.0 + 1e-12))
             ++coarsest_level_;
         if (coarsest_level_ > s_.max_halvings)
             detail::fail("Newmark under a tolerance: the largest step allowed by ", bound, " (", largest,
@@ -332,10 +341,12 @@ private:
             if (level >= finest) {
                 const double dt = s_.time_step / double(1 << level);
                 if (newton_failed)
-                    throw ConvergenceError(detail::concat(
-                        "Newton-Raphson did not converge at t = ", s.t, " s with time step ", dt, " s (the smallest, "
-                        "time_step / 2^max_halvings) after ", iterations, " iterations; residual ", residual,
-                        " N (tolerance ", s_.residual_tolerance * force_scale_, " N)"));
+                    throw ConvergenceError(
+                        detail::concat("Newton-Raphson did not converge at t = ", s.t, " s with time step ", dt,
+                                       " s (the smallest, "
+                                       "time_step / 2^max_halvings) after ",
+                                       iterations, " iterations; residual ", residual, " N (tolerance ",
+                                       s_.residual_tolerance * force_scale_, " N)"));
                 throw ConvergenceError(detail::concat(
                     method_name(s_.method), " under tolerance = ", *s_.tolerance, ": the error estimate is ", error_,
                     " times the tolerance at t = ", s.t, " s with the smallest step time_step / 2^max_halvings = ", dt,

@@ -17,9 +17,9 @@
 namespace camfollower {
 
 struct RecordOptions {
-    std::size_t decimation = 1;                               // one row every `decimation` steps
+    std::size_t decimation = 1;                                   // one row every `decimation` steps
     double from_time = -std::numeric_limits<double>::infinity();  // s: record only from here on (a window)
-    double max_bytes = 4.0 * 1024 * 1024 * 1024;              // refuse runs that would store more
+    double max_bytes = 4.0 * 1024 * 1024 * 1024;                  // refuse runs that would store more
 
     void validate() const {
         if (decimation < 1) detail::fail("decimation must be >= 1, got ", decimation);
@@ -68,8 +68,9 @@ public:
         for (std::size_t a = 0; a < out_.names.size(); ++a)
             for (std::size_t b = a + 1; b < out_.names.size(); ++b)
                 if (out_.names[a] == out_.names[b])
-                    detail::fail("two recorded channels are both named '", out_.names[a],
-                                 "': rename a DOF or a contact (channels: t, q.<dof>, v.<dof>, a.<dof>, then the system's)");
+                    detail::fail(
+                        "two recorded channels are both named '", out_.names[a],
+                        "': rename a DOF or a contact (channels: t, q.<dof>, v.<dof>, a.<dof>, then the system's)");
         // From the window's start on (+inf: nothing), on multiples of the decimation.
         const double first = options.from_time == -std::numeric_limits<double>::infinity()
                                  ? 0.0
@@ -77,20 +78,24 @@ public:
         const bool none = first > double(planned_steps);
         first_step_ = none ? planned_steps + 1 : first <= 0.0 ? 0 : static_cast<std::uint64_t>(first);
         first_step_ = (first_step_ + decimation_ - 1) / decimation_ * decimation_;
-        const std::uint64_t rows = none || first_step_ > planned_steps ? 0 : (planned_steps - first_step_) / decimation_ + 1;
+        const std::uint64_t rows =
+            none || first_step_ > planned_steps ? 0 : (planned_steps - first_step_) / decimation_ + 1;
         // A run that records nothing (or one row, nothing to draw) was asked wrongly: say so now, by the
         // option's name, rather than hand back an empty table.
         if (planned_steps > 0 && rows == 0)
-            detail::fail("record_from = ", options.from_time, " s: the recording window starts after the run ends (t = ",
-                         t0 + double(planned_steps) * dt, " s); nothing would be recorded");
+            detail::fail("record_from = ", options.from_time,
+                         " s: the recording window starts after the run ends (t = ", t0 + double(planned_steps) * dt,
+                         " s); nothing would be recorded");
         if (planned_steps > 0 && rows == 1)
             detail::fail("decimation = ", decimation_, " steps with the recording window from step ", first_step_,
-                         " of ", planned_steps, " leaves a single row to record; lower decimation or record a longer window");
+                         " of ", planned_steps,
+                         " leaves a single row to record; lower decimation or record a longer window");
         const double bytes = double(rows) * 8.0 * double(out_.names.size());
         if (bytes > options.max_bytes)
             detail::fail(planned_steps, " steps at decimation ", decimation_, " would store ", rows, " rows of ",
-                         out_.names.size(), " channels (", bytes / 1073741824.0, " GiB) > max_output_bytes = ",
-                         options.max_bytes / 1073741824.0, " GiB; increase decimation, record a shorter window "
+                         out_.names.size(), " channels (", bytes / 1073741824.0,
+                         " GiB) > max_output_bytes = ", options.max_bytes / 1073741824.0,
+                         " GiB; increase decimation, record a shorter window "
                          "or shorten the run");
         out_.capacity = std::size_t(rows);
         out_.data.assign(out_.capacity * out_.names.size(), 0.0);

@@ -16,8 +16,8 @@
 //
 // Error control as the explicit methods' (solver/error_scales.hpp): the mixed displacement/velocity
 // norm and the force-weighted norm |K_t e_q + C_t e_v|_inf / (tol force_scale), both <= 1 (the latter
-// floored at the rounding of the state through K_t and C_t), on Hairer's embedded third-order estimate e = (mu_real/h - J)^-1 (f(y0) + sum_i e_i Z_i / h). Steps by
-// Gustafsson's predictive controller (exponent 1/4), as RADAU5.
+// floored at the rounding of the state through K_t and C_t), on Hairer's embedded third-order estimate e = (mu_real/h -
+// J)^-1 (f(y0) + sum_i e_i Z_i / h). Steps by Gustafsson's predictive controller (exponent 1/4), as RADAU5.
 #pragma once
 
 #include <algorithm>
@@ -67,7 +67,7 @@ inline Tableau tableau() {
     const double s6 = std::sqrt(6.0);
     Tableau t;
     t.A << (88 - 7 * s6) / 360, (296 - 169 * s6) / 1800, (-2 + 3 * s6) / 225,  //
-        (296 + 169 * s6) / 1800, (88 + 7 * s6) / 360, (-2 - 3 * s6) / 225,    //
+        (296 + 169 * s6) / 1800, (88 + 7 * s6) / 360, (-2 - 3 * s6) / 225,     //
         (16 - s6) / 36, (16 + s6) / 36, 1.0 / 9.0;
     t.c << (4 - s6) / 10, (4 + s6) / 10, 1.0;
     const Eigen::Matrix3d A_inv = t.A.inverse();
@@ -133,7 +133,8 @@ public:
         for (ComplexVector* x : {&w_pair_q_, &w_pair_v_, &rcq_, &rcv_, &xcq_, &xcv_, &tc_, &csum_}) x->resize(n_);
         for (auto* set : {&zq_, &zv_, &fq_, &fv_, &Qq_, &Qv_, &Pq_, &Pv_})
             for (Vector& x : *set) x.resize(n_);
-        Kt_.resize(n_, n_), Ct_.resize(n_, n_), G_real_.resize(n_, n_), G_pair_.resize(n_, n_), Ct_complex_.resize(n_, n_);
+        Kt_.resize(n_, n_), Ct_.resize(n_, n_), G_real_.resize(n_, n_), G_pair_.resize(n_, n_),
+            Ct_complex_.resize(n_, n_);
     }
     Radau(System&&, const SolverSettings&) = delete;
 
@@ -152,7 +153,9 @@ private:
         has_polynomial_ = false, rejected_last_ = false, event_retake_ = false, first_step_ = true;
     }
     void advance(double /*target*/, SolverStatistics& stats) { take_step(stats); }
-    void dense_output(double t, Vector& q, Vector& v) const { polynomial(Qq_, Qv_, t, t_old_, h_last_, q_old_, v_old_, q, v); }
+    void dense_output(double t, Vector& q, Vector& v) const {
+        polynomial(Qq_, Qv_, t, t_old_, h_last_, q_old_, v_old_, q, v);
+    }
 
     // y' at (t, q, v) into (kq, kv) = (v, a); the workspace prepared at t with the force there.
     void derivative(double t, const Vector& q, const Vector& v, Vector& kq, Vector& kv, SolverStatistics& stats) {
@@ -179,13 +182,15 @@ private:
     double initial_step() {
         SolverStatistics scratch;
         const double q_ref = scales_.q_ref, v_ref = scales_.v_ref;
-        const double d1 = std::max(v_.cwiseAbs().maxCoeff() / (q_ref + 1e-12), a_.cwiseAbs().maxCoeff() / (v_ref + 1e-12));
+        const double d1 =
+            std::max(v_.cwiseAbs().maxCoeff() / (q_ref + 1e-12), a_.cwiseAbs().maxCoeff() / (v_ref + 1e-12));
         const double h0 = std::min(s_.time_step, 1e-6);
         qs_ = q_ + h0 * v_;
         vs_ = v_ + h0 * a_;
         derivative(t_ + h0, qs_, vs_, dq_, dv_, scratch);
         const double d2 = std::max((dq_ - v_).cwiseAbs().maxCoeff() / (q_ref + 1e-12),
-                                   (dv_ - a_).cwiseAbs().maxCoeff() / (v_ref + 1e-12)) / h0;
+                                   (dv_ - a_).cwiseAbs().maxCoeff() / (v_ref + 1e-12)) /
+                          h0;
         const double rate = std::max({d1, std::sqrt(d2), scales_.omega_ref});
         derivative(t_, q_, v_, dq_, a_, scratch);  // the workspace back at the start, its force there
         return std::min(s_.time_step, 0.1 * std::pow(tolerance_, 0.25) / rate);
@@ -232,7 +237,8 @@ private:
         x_q = lu_real_.solve(rhs_);
         x_v = lr * x_q - r_q;
     }
-    void solve_pair(double h, const ComplexVector& r_q, const ComplexVector& r_v, ComplexVector& x_q, ComplexVector& x_v) {
+    void solve_pair(double h, const ComplexVector& r_q, const ComplexVector& r_v, ComplexVector& x_q,
+                    ComplexVector& x_v) {
         const Complex lc = tab_.mu_pair / h;
         csum_ = r_v + lc * r_q;
         tc_.noalias() = M_complex_ * csum_;
@@ -244,8 +250,8 @@ private:
     // Simplified Newton on the stage equations of the step [t_, t_ + h] from the guess in zq_, zv_;
     // false when it diverges or is too slow (the step is then retried at half the size).
     bool newton(double h, SolverStatistics& stats, int& iterations) {
-        const double kappa = std::max(10.0 * std::numeric_limits<double>::epsilon() / tolerance_,
-                                      std::min(0.03, std::sqrt(tolerance_)));
+        const double kappa =
+            std::max(10.0 * std::numeric_limits<double>::epsilon() / tolerance_, std::min(0.03, std::sqrt(tolerance_)));
         w_real_q_.setZero(), w_real_v_.setZero(), w_pair_q_.setZero(), w_pair_v_.setZero();
         for (int i = 0; i < 3; ++i) {
             w_real_q_ += tab_.w_row_real[i] * zq_[i], w_real_v_ += tab_.w_row_real[i] * zv_[i];
@@ -332,9 +338,9 @@ private:
             if (s_.max_step > 0.0) h = std::min(h, s_.max_step);
             if (!adaptive_) h = s_.max_step;  // fixed steps (FirstOrderStepper requires max_step without a tolerance)
             if (!(h >= min_step))
-                throw ConvergenceError(detail::concat("Radau IIA: the step fell to ", h, " s at t = ", t_,
-                                                      " s without meeting tolerance = ", tolerance_,
-                                                      " (the response is not smooth there, or the tolerance is below rounding)"));
+                throw ConvergenceError(detail::concat(
+                    "Radau IIA: the step fell to ", h, " s at t = ", t_, " s without meeting tolerance = ", tolerance_,
+                    " (the response is not smooth there, or the tolerance is below rounding)"));
             if (h != factored) factor(h), factored = h;
             // Start from the last step's collocation polynomial, extrapolated.
             for (int i = 0; i < 3; ++i) {
@@ -424,8 +430,8 @@ private:
         }
     }
     // A collocation polynomial (Qq, Qv) of the step [t0, t0 + h] from (q0, v0), at t.
-    static void polynomial(const std::array<Vector, 3>& Qq, const std::array<Vector, 3>& Qv, double t, double t0, double h,
-                           const Vector& q0, const Vector& v0, Vector& q, Vector& v) {
+    static void polynomial(const std::array<Vector, 3>& Qq, const std::array<Vector, 3>& Qv, double t, double t0,
+                           double h, const Vector& q0, const Vector& v0, Vector& q, Vector& v) {
         const double x = h > 0.0 ? (t - t0) / h : 1.0;
         q = q0 + x * (Qq[0] + x * (Qq[1] + x * Qq[2]));
         v = v0 + x * (Qv[0] + x * (Qv[1] + x * Qv[2]));
@@ -439,8 +445,7 @@ private:
     double h_before_event_ = 0.0;
     bool has_polynomial_ = false, rejected_last_ = false, event_retake_ = false, first_step_ = true;
     // Scratch, sized once: nothing is allocated inside the time loop.
-    Vector a_, qs_, vs_, as_, q_old_, v_old_, eq_, ev_, tq_, tv_, dq_, dv_, w_real_q_, w_real_v_, rq_, rv_,
-        sum_;
+    Vector a_, qs_, vs_, as_, q_old_, v_old_, eq_, ev_, tq_, tv_, dq_, dv_, w_real_q_, w_real_v_, rq_, rv_, sum_;
     ComplexVector w_pair_q_, w_pair_v_, rcq_, rcv_, xcq_, xcv_, tc_, csum_;
     std::array<Vector, 3> zq_, zv_, fq_, fv_, Qq_, Qv_, Pq_, Pv_;  // Q: the last accepted step's polynomial
     Eigen::PartialPivLU<Matrix> lu_real_;

@@ -24,15 +24,15 @@ enum class Method { newmark, fox_goodwin, hht, dormand_prince, dop853, radau, au
 
 // How a method steps; the dispatcher (solver/dispatch.hpp) picks the stepper by it.
 enum class StepperKind {
-    newmark,        // implicit Newmark family (solver/newmark.hpp; sparse backend: solver/sparse_newton.hpp)
-    explicit_rk,    // embedded explicit Runge-Kutta (solver/dormand_prince.hpp)
-    radau,          // implicit Radau IIA (solver/radau.hpp)
-    automatic,      // chosen at the start of the run (solver/choose_method.hpp)
+    newmark,      // implicit Newmark family (solver/newmark.hpp; sparse backend: solver/sparse_newton.hpp)
+    explicit_rk,  // embedded explicit Runge-Kutta (solver/dormand_prince.hpp)
+    radau,        // implicit Radau IIA (solver/radau.hpp)
+    automatic,    // chosen at the start of the run (solver/choose_method.hpp)
 };
 
 struct MethodTraits {
     Method method;
-    const char* name;     // in config files, Python, the command line and RunResult::method
+    const char* name;  // in config files, Python, the command line and RunResult::method
     StepperKind stepper;
     int order;            // global order on smooth problems (0: the chosen method's)
     const char* summary;  // one line for lists and --help
@@ -125,12 +125,12 @@ inline void check_newmark_parameters_apply(Method method, bool gamma_or_beta_giv
 
 struct SolverSettings {
     Method method = Method::newmark;
-    double time_step = 3e-6;         // s: the fixed step, or under a tolerance the output interval
-    std::optional<double> tolerance;  // set: adaptive steps, relative error per step (displacements, forces)
-    double max_step = 0.0;           // s, 0: unbounded. Under a tolerance the largest step (Newmark: at most
-                                     // time_step); a Runge-Kutta method without one: its fixed step (required)
-    double gamma = 0.5, beta = 0.25;  // method newmark only
-    std::optional<double> hht_alpha;  // method hht only, in [-1/3, 0]; unset: default_hht_alpha
+    double time_step = 3e-6;             // s: the fixed step, or under a tolerance the output interval
+    std::optional<double> tolerance;     // set: adaptive steps, relative error per step (displacements, forces)
+    double max_step = 0.0;               // s, 0: unbounded. Under a tolerance the largest step (Newmark: at most
+                                         // time_step); a Runge-Kutta method without one: its fixed step (required)
+    double gamma = 0.5, beta = 0.25;     // method newmark only
+    std::optional<double> hht_alpha;     // method hht only, in [-1/3, 0]; unset: default_hht_alpha
     double residual_tolerance = 1e-10;   // Newton, relative to the system's force scale
     double increment_tolerance = 1e-10;  // Newton, relative to max |q| (+ 1 nm floor)
     int max_iterations = 25;
@@ -165,9 +165,11 @@ struct SolverSettings {
         check_newmark_parameters_apply(method, gamma != 0.5 || beta != 0.25, hht_alpha.has_value());
         if (method == Method::newmark) {
             detail::require_in_range(gamma, 0.5, 1.0, "gamma (below 1/2 the scheme adds negative damping)");
-            if (!(std::isfinite(beta) && beta > 0.0 && beta <= 0.5)) detail::fail("beta must be in (0, 0.5], got ", beta);
+            if (!(std::isfinite(beta) && beta > 0.0 && beta <= 0.5))
+                detail::fail("beta must be in (0, 0.5], got ", beta);
         }
-        if (method == Method::hht) detail::require_in_range(hht_alpha.value_or(default_hht_alpha), -1.0 / 3.0, 0.0, "hht_alpha");
+        if (method == Method::hht)
+            detail::require_in_range(hht_alpha.value_or(default_hht_alpha), -1.0 / 3.0, 0.0, "hht_alpha");
         detail::require_positive(residual_tolerance, "residual_tolerance");
         detail::require_positive(increment_tolerance, "increment_tolerance");
         if (max_iterations < 1 || max_iterations > 1000)
@@ -184,8 +186,9 @@ struct SolverSettings {
                          "' without one runs fixed steps of time_step)");
         // The error estimate is Newmark's (Zienkiewicz & Xie); HHT-alpha's differs.
         if (method == Method::hht && tolerance)
-            detail::fail("method 'hht' takes no tolerance (error control for HHT-alpha is not implemented): use "
-                         "'newmark', 'fox_goodwin' or 'auto' with a tolerance");
+            detail::fail(
+                "method 'hht' takes no tolerance (error control for HHT-alpha is not implemented): use "
+                "'newmark', 'fox_goodwin' or 'auto' with a tolerance");
     }
 };
 

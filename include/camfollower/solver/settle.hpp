@@ -19,9 +19,9 @@ namespace camfollower {
 
 struct SettleOptions {
     bool enabled = false;
-    double period = 0.0;          // s, one revolution; the time step must divide it
-    std::vector<int> dofs;        // watched accelerations (empty: every DOF)
-    double tolerance = 1e-4;      // relative change per revolution
+    double period = 0.0;      // s, one revolution; the time step must divide it
+    std::vector<int> dofs;    // watched accelerations (empty: every DOF)
+    double tolerance = 1e-4;  // relative change per revolution
     int min_revolutions = 2;
     int max_revolutions = 200;
 
@@ -30,20 +30,22 @@ struct SettleOptions {
         if (!(tolerance > 0.0 && tolerance < 1.0)) detail::fail("settle tolerance must be in (0, 1), got ", tolerance);
         if (min_revolutions < 2) detail::fail("settle min_revolutions must be >= 2, got ", min_revolutions);
         if (max_revolutions < min_revolutions)
-            detail::fail("settle max_revolutions (", max_revolutions, ") must be >= min_revolutions (", min_revolutions, ")");
+            detail::fail("settle max_revolutions (", max_revolutions, ") must be >= min_revolutions (", min_revolutions,
+                         ")");
         for (int d : dofs)
             if (d < 0 || d >= n) detail::fail("settle DOF index ", d, " is out of range [0, ", n, ")");
         const double steps = std::round(period / dt);
         if (!(steps >= 1.0 && std::abs(steps * dt - period) <= 1e-9 * period))
-            detail::fail("to settle revolution by revolution the time step must divide the period: period / time_step = ",
-                         period / dt, " is not a whole number");
+            detail::fail(
+                "to settle revolution by revolution the time step must divide the period: period / time_step = ",
+                period / dt, " is not a whole number");
     }
 };
 
 struct SettleReport {
     bool requested = false;
     bool settled = false;
-    int revolutions = 0;  // simulated while settling
+    int revolutions = 0;                                                // simulated while settling
     double change = std::numeric_limits<double>::quiet_NaN();           // relative, last revolution
     double change_absolute = std::numeric_limits<double>::quiet_NaN();  // m/s^2 (units of a)
     std::vector<double> history;  // relative change per revolution, from the second on

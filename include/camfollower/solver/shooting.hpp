@@ -35,14 +35,14 @@
 namespace camfollower {
 
 struct ShootingOptions {
-    double period = 0.0;            // s, one revolution; the time step must divide it
-    double start_time = 0.0;        // s, where the orbit's revolution starts (its phase)
+    double period = 0.0;      // s, one revolution; the time step must divide it
+    double start_time = 0.0;  // s, where the orbit's revolution starts (its phase)
     // Converged when max |Phi(z) - z| <= tolerance, displacements relative to the largest |q| on the
     // revolution, velocities to the largest |v| (each with a floor: 1e-9 and 1e-9 * 2 pi / period).
     double tolerance = 1e-9;
-    int max_iterations = 30;        // Newton and chord iterations
-    int warmup_revolutions = 1;     // transient revolutions from the initial state before shooting
-    double perturbation = 1e-6;     // forward-difference step, relative to those scales
+    int max_iterations = 30;     // Newton and chord iterations
+    int warmup_revolutions = 1;  // transient revolutions from the initial state before shooting
+    double perturbation = 1e-6;  // forward-difference step, relative to those scales
     // Rebuild the monodromy at the converged orbit when the last one was built elsewhere, so that the
     // Floquet multipliers are the orbit's own (2n more revolutions).
     bool multipliers = true;
@@ -54,7 +54,8 @@ struct ShootingOptions {
     void validate(int n, double dt) const {
         detail::require_positive(period, "shooting period", "(s)");
         detail::require_finite(start_time, "shooting start_time");
-        if (!(tolerance > 0.0 && tolerance < 1.0)) detail::fail("shooting tolerance must be in (0, 1), got ", tolerance);
+        if (!(tolerance > 0.0 && tolerance < 1.0))
+            detail::fail("shooting tolerance must be in (0, 1), got ", tolerance);
         if (max_iterations < 1 || max_iterations > 1000)
             detail::fail("shooting max_iterations must be in [1, 1000], got ", max_iterations);
         if (warmup_revolutions < 0 || warmup_revolutions > 10000)
@@ -65,8 +66,8 @@ struct ShootingOptions {
             detail::fail("shooting builds a dense monodromy by 2n = ", 2 * n, " revolutions: at most ", max_state_size,
                          " (", max_state_size / 2, " DOFs); use the transient route (settle) for larger models");
         if (monodromy.size() != 0 && (monodromy.rows() != 2 * n || monodromy.cols() != 2 * n || !monodromy.allFinite()))
-            detail::fail("shooting monodromy guess must be a finite ", 2 * n, " x ", 2 * n, " matrix, got ", monodromy.rows(),
-                         " x ", monodromy.cols());
+            detail::fail("shooting monodromy guess must be a finite ", 2 * n, " x ", 2 * n, " matrix, got ",
+                         monodromy.rows(), " x ", monodromy.cols());
         const double steps = std::round(period / dt);
         if (!(steps >= 1.0 && std::abs(steps * dt - period) <= 1e-9 * period))
             detail::fail("shooting needs a time step that divides the period: period / time_step = ", period / dt,
@@ -77,19 +78,21 @@ struct ShootingOptions {
 struct PeriodicOrbit {
     bool converged = false;
     bool cancelled = false;
-    int iterations = 0;              // Newton / chord iterations
-    int monodromies = 0;             // monodromy matrices built (2n revolutions each)
+    int iterations = 0;                                          // Newton / chord iterations
+    int monodromies = 0;                                         // monodromy matrices built (2n revolutions each)
     double mismatch = std::numeric_limits<double>::quiet_NaN();  // relative, at the returned state
-    std::vector<double> history;     // mismatch per iterate, the first after the warm-up
-    Eigen::VectorXd q, v;            // the orbit's state at start_time (when converged; else the last iterate)
+    std::vector<double> history;                                 // mismatch per iterate, the first after the warm-up
+    Eigen::VectorXd q, v;                 // the orbit's state at start_time (when converged; else the last iterate)
     double q_scale = 0.0, v_scale = 0.0;  // largest |q| (m or rad), |v| on the revolution
-    Eigen::MatrixXd monodromy;       // d(q, v)(start + T) / d(q, v)(start), 2n x 2n
-    bool monodromy_at_orbit = false; // built at the returned state (else at an earlier iterate)
-    Eigen::VectorXcd multipliers;    // eigenvalues of the monodromy, largest magnitude first
-    double revolutions = 0.0;        // cost: revolutions simulated in all
+    Eigen::MatrixXd monodromy;            // d(q, v)(start + T) / d(q, v)(start), 2n x 2n
+    bool monodromy_at_orbit = false;      // built at the returned state (else at an earlier iterate)
+    Eigen::VectorXcd multipliers;         // eigenvalues of the monodromy, largest magnitude first
+    double revolutions = 0.0;             // cost: revolutions simulated in all
     SolverStatistics stats;
 
-    double spectral_radius() const { return multipliers.size() ? std::abs(multipliers[0]) : std::numeric_limits<double>::quiet_NaN(); }
+    double spectral_radius() const {
+        return multipliers.size() ? std::abs(multipliers[0]) : std::numeric_limits<double>::quiet_NaN();
+    }
 };
 
 namespace detail {
@@ -100,13 +103,16 @@ class RevolutionMap {
 public:
     using Vector = typename Stepper::Vector;
     RevolutionMap(Stepper& stepper, const ShootingOptions& o, int n)
-        : stepper_(stepper), t0_(o.start_time), n_(n),
+        : stepper_(stepper),
+          t0_(o.start_time),
+          n_(n),
           steps_(static_cast<std::uint64_t>(std::round(o.period / stepper.time_step()))),
           v_floor_(1e-9 * 2.0 * pi / o.period) {
         q_.resize(n), v_.resize(n);
     }
     // out = Phi(z); scales of the run in q_max, v_max.
-    void operator()(const Eigen::VectorXd& z, Eigen::VectorXd& out, SolverStatistics& stats, double& q_max, double& v_max) {
+    void operator()(const Eigen::VectorXd& z, Eigen::VectorXd& out, SolverStatistics& stats, double& q_max,
+                    double& v_max) {
         q_ = z.head(n_);
         v_ = z.tail(n_);
         auto s = stepper_.start(t0_, q_, v_);
@@ -147,19 +153,20 @@ inline void require_converged(const PeriodicOrbit& orbit, const ShootingOptions&
     std::string history;
     for (double h : orbit.history) history += (history.empty() ? "" : ", ") + detail::concat(h);
     if (orbit.cancelled) throw ConvergenceError("shooting was cancelled");
-    throw ConvergenceError(detail::concat(
-        "shooting did not converge to the periodic steady state in ", orbit.iterations, " iterations (",
-        orbit.revolutions, " revolutions): mismatch ", orbit.mismatch, " > tolerance ", options.tolerance,
-        "; history [", history, "]. The response may not be periodic (contact loss, chatter, period doubling: "
-        "multipliers outside the unit circle) -- use the transient route (settle) instead"));
+    throw ConvergenceError(
+        detail::concat("shooting did not converge to the periodic steady state in ", orbit.iterations, " iterations (",
+                       orbit.revolutions, " revolutions): mismatch ", orbit.mismatch, " > tolerance ",
+                       options.tolerance, "; history [", history,
+                       "]. The response may not be periodic (contact loss, chatter, period doubling: "
+                       "multipliers outside the unit circle) -- use the transient route (settle) instead"));
 }
 
 // Shooting from (q0, v0) at options.start_time. keep_going() is polled every revolution (false
 // cancels: the orbit comes back with cancelled set). Stepper errors (Newton failure within a step)
 // propagate; non-convergence of the shooting itself is reported in the result (see periodic_orbit()).
 template <class Stepper, class KeepGoing>
-PeriodicOrbit shoot(Stepper& stepper, const Eigen::VectorXd& q0, const Eigen::VectorXd& v0, const ShootingOptions& options,
-                    KeepGoing&& keep_going) {
+PeriodicOrbit shoot(Stepper& stepper, const Eigen::VectorXd& q0, const Eigen::VectorXd& v0,
+                    const ShootingOptions& options, KeepGoing&& keep_going) {
     const int n = int(q0.size());
     options.validate(n, stepper.time_step());
     if (v0.size() != n) detail::fail("shooting: initial q and v must have the same size, got ", n, " and ", v0.size());
@@ -256,8 +263,9 @@ PeriodicOrbit shoot(Stepper& stepper, const Eigen::VectorXd& q0, const Eigen::Ve
         const Eigen::EigenSolver<Eigen::MatrixXd> eig(J, false);
         if (eig.info() == Eigen::Success) {
             orbit.multipliers = eig.eigenvalues();
-            std::sort(orbit.multipliers.data(), orbit.multipliers.data() + m,
-                      [](const std::complex<double>& a, const std::complex<double>& b) { return std::abs(a) > std::abs(b); });
+            std::sort(
+                orbit.multipliers.data(), orbit.multipliers.data() + m,
+                [](const std::complex<double>& a, const std::complex<double>& b) { return std::abs(a) > std::abs(b); });
         }
     }
     return finish();

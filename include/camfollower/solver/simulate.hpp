@@ -48,9 +48,9 @@ struct RunResult {
     // Contact losses and re-contacts of the recorded run, in time order; Event::index names the
     // switching function in event_names(system) (solver/events.hpp).
     std::vector<Event> events;
-    const char* backend = "dense";  // the Newton algebra used: "dense" or "sparse"
+    const char* backend = "dense";                              // the Newton algebra used: "dense" or "sparse"
     const char* method = method_name(SolverSettings{}.method);  // the method that ran
-    const char* requested_method = method;  // as asked: "auto" when choose_method picked `method`
+    const char* requested_method = method;                      // as asked: "auto" when choose_method picked `method`
     std::string method_choice;  // with "auto": what choose_method picked and why, in words; else empty
     // Highest natural frequency at the start (Hz, contacts linearized), for reading the step against
     // the shortest period: dense backend up to 200 DOFs only, else NaN (an eigen solve too costly).
@@ -78,17 +78,19 @@ RunResult<System> run(const System& system, const SolverSettings& settings, cons
     result.method = result.requested_method = method_name(settings.method);
     result.final_state = stepper.start(0.0, q, v);
     if constexpr (!std::is_same_v<Stepper, SparseNewmark<System>>)
-        if (system.size() <= 200) result.highest_mode_hz = highest_angular_frequency(system, result.final_state) / (2.0 * pi);
+        if (system.size() <= 200)
+            result.highest_mode_hz = highest_angular_frequency(system, result.final_state) / (2.0 * pi);
     RecordOptions record = options.record;
     if (options.settle.enabled) {
-        const std::uint64_t planned = std::uint64_t(options.settle.max_revolutions) *
-                                      steps_for(options.settle.period, settings.time_step);
-        result.settle = settle(stepper, result.final_state, options.settle, result.report.stats, [&](std::uint64_t done) {
-            return !options.progress || options.progress(done, planned);
-        });
+        const std::uint64_t planned =
+            std::uint64_t(options.settle.max_revolutions) * steps_for(options.settle.period, settings.time_step);
+        result.settle =
+            settle(stepper, result.final_state, options.settle, result.report.stats,
+                   [&](std::uint64_t done) { return !options.progress || options.progress(done, planned); });
         if (!result.settle.settled && result.settle.revolutions < options.settle.max_revolutions) {  // cancelled
             result.report.cancelled = true;
-            result.recording = Recorder<System>(system, options.record, 0, result.final_state.t, settings.time_step).take();
+            result.recording =
+                Recorder<System>(system, options.record, 0, result.final_state.t, settings.time_step).take();
             return result;
         }
         // Restart at the settled state: path memory (contact losses) covers the recorded run only.
@@ -103,13 +105,13 @@ RunResult<System> run(const System& system, const SolverSettings& settings, cons
     std::uint64_t done = 0;  // output steps, for the polls within an interval
     if constexpr (has_set_interrupt<Stepper>::value)
         if (options.progress) stepper.set_interrupt([&] { return options.progress(done, steps); });
-    result.report = integrate(stepper, result.final_state, options.duration,
-                              [&](const State<System>& s, std::uint64_t n) {
-                                  recorder(s, n);
-                                  done = n;
-                                  if (every && n % every == 0 && n > 0) return options.progress(n, steps);
-                                  return true;
-                              });
+    result.report =
+        integrate(stepper, result.final_state, options.duration, [&](const State<System>& s, std::uint64_t n) {
+            recorder(s, n);
+            done = n;
+            if (every && n % every == 0 && n > 0) return options.progress(n, steps);
+            return true;
+        });
     result.report.stats.add(settling);
     result.recording = recorder.take();
     result.events = stepper.take_events();
@@ -130,13 +132,16 @@ void check_time_step(const System& system, const SolverSettings& settings, doubl
     if (settings.time_step > duration)
         detail::fail("time_step = ", settings.time_step, " s is longer than the duration ", duration, " s");
     // A run whose steps are bounded by max_step is bounded like a fixed-step run (1e10 steps).
-    if ((settings.tolerance || is_runge_kutta(settings.method)) && settings.max_step > 0.0 && !(duration / settings.max_step <= 1e10))
-        detail::fail("duration / max_step = ", duration / settings.max_step, " steps is too many (limit 1e10); raise "
+    if ((settings.tolerance || is_runge_kutta(settings.method)) && settings.max_step > 0.0 &&
+        !(duration / settings.max_step <= 1e10))
+        detail::fail("duration / max_step = ", duration / settings.max_step,
+                     " steps is too many (limit 1e10); raise "
                      "max_step or shorten the run");
     if constexpr (detail::has_period<System>::value) {
         const double limit = system.period() / 12.0;
         if (settings.time_step > limit)
-            detail::fail("time_step = ", settings.time_step, " s cannot resolve the cam's motion: it must be <= ", limit,
+            detail::fail("time_step = ", settings.time_step,
+                         " s cannot resolve the cam's motion: it must be <= ", limit,
                          " s (a twelfth of the camshaft period ", system.period(), " s)");
     }
 }
@@ -175,7 +180,8 @@ RunResult<System> simulate(const System& system, const SolverSettings& requested
 namespace detail {
 template <class Stepper, class System>
 PeriodicOrbit shoot_with(const System& system, const SolverSettings& settings, const ShootingOptions& options,
-                         const Eigen::VectorXd& q0, const Eigen::VectorXd& v0, const std::function<bool()>& keep_going) {
+                         const Eigen::VectorXd& q0, const Eigen::VectorXd& v0,
+                         const std::function<bool()>& keep_going) {
     Stepper stepper(system, settings);
     return shoot(stepper, q0, v0, options, [&] { return !keep_going || keep_going(); });
 }

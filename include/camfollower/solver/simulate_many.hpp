@@ -51,7 +51,7 @@ void parallel_for(std::size_t count, unsigned threads, Job&& job) {
 template <class System>
 struct CaseRun {
     std::optional<RunResult<System>> result;  // empty when the case failed
-    std::exception_ptr error;                 // what it threw (ValueError-like std::invalid_argument, ConvergenceError, ...)
+    std::exception_ptr error;  // what it threw (ValueError-like std::invalid_argument, ConvergenceError, ...)
     bool ok() const { return result.has_value(); }
 };
 

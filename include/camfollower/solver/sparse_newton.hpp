@@ -38,7 +38,8 @@ public:
     using Tangent = SparseLowRank;
     static_assert(Vector::RowsAtCompileTime == Eigen::Dynamic, "the sparse backend needs a dynamic-size system");
 
-    SparseNewtonSolve(const System& system, const SolverSettings& s) : system_(system), s_(s), p_(newmark_parameters(s)), n_(system.size()) {
+    SparseNewtonSolve(const System& system, const SolverSettings& s)
+        : system_(system), s_(s), p_(newmark_parameters(s)), n_(system.size()) {
         const Sparse& M = system.sparse_mass();
         const Sparse& C = system.sparse_damping();
         const Sparse& K = system.sparse_stiffness();
@@ -46,10 +47,11 @@ public:
             if (A->rows() != n_ || A->cols() != n_)
                 detail::fail("system: sparse mass, damping and stiffness must be ", n_, " x ", n_, " (size())");
         for (int k = 0; k < n_; ++k)
-            if (!(M.coeff(k, k) > 0.0)) detail::fail("system: mass matrix diagonal must be > 0, got M(", k, ", ", k, ") = ", M.coeff(k, k));
+            if (!(M.coeff(k, k) > 0.0))
+                detail::fail("system: mass matrix diagonal must be > 0, got M(", k, ", ", k, ") = ", M.coeff(k, k));
         if (p_.beta < 0.5 * p_.gamma)
-            detail::fail("the sparse backend needs an unconditionally stable scheme (beta >= gamma / 2), got beta = ", p_.beta,
-                         ", gamma = ", p_.gamma);
+            detail::fail("the sparse backend needs an unconditionally stable scheme (beta >= gamma / 2), got beta = ",
+                         p_.beta, ", gamma = ", p_.gamma);
 
         // The fixed pattern: M, C, K and every DOF pair a tangent column can couple.
         std::vector<Eigen::Triplet<double>> t;
@@ -151,7 +153,8 @@ public:
                 const double u = one_alpha * uv_.u[std::size_t(a)];
                 if (u == 0.0) continue;
                 for (int b = uv_.begin(k); b < uv_.end(k); ++b)
-                    J_.valuePtr()[position(uv_.dof[std::size_t(a)], uv_.dof[std::size_t(b)])] += u * uv_.v[std::size_t(b)];
+                    J_.valuePtr()[position(uv_.dof[std::size_t(a)], uv_.dof[std::size_t(b)])] +=
+                        u * uv_.v[std::size_t(b)];
             }
         const bool spd = symmetric_[level] && tangent_is_spd() && s_.sparse_factorization != SparseFactorization::klu;
         if (spd) {
@@ -200,7 +203,8 @@ private:
     double inverse_of_smallest_eigenvalue(const Sparse& A0) const {
         if (n_ < 3) return 0.0;
         Spectra::SparseSymShiftSolve<double> op(A0);
-        Spectra::SymEigsShiftSolver<Spectra::SparseSymShiftSolve<double>> eigs(op, 1, std::min<Eigen::Index>(n_, 20), 0.0);
+        Spectra::SymEigsShiftSolver<Spectra::SparseSymShiftSolve<double>> eigs(op, 1, std::min<Eigen::Index>(n_, 20),
+                                                                               0.0);
         eigs.init();
         eigs.compute(Spectra::SortRule::LargestMagn, 1000, 1e-10);
         if (eigs.info() != Spectra::CompInfo::Successful) return 0.0;

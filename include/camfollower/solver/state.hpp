@@ -23,9 +23,9 @@ struct SolverStatistics {
     std::uint64_t steps = 0;              // accepted steps, substeps included
     std::uint64_t newton_iterations = 0;  // linear solves
     std::uint64_t halvings = 0;
-    std::uint64_t evaluations = 0;        // adaptive methods: force evaluations
-    std::uint64_t rejected_steps = 0;     // adaptive methods: steps retried smaller
-    std::uint64_t stiff_steps = 0;        // explicit methods: steps bounded by stability, not accuracy
+    std::uint64_t evaluations = 0;     // adaptive methods: force evaluations
+    std::uint64_t rejected_steps = 0;  // adaptive methods: steps retried smaller
+    std::uint64_t stiff_steps = 0;     // explicit methods: steps bounded by stability, not accuracy
     int max_iterations_in_a_step = 0;
     double mean_iterations() const { return steps ? double(newton_iterations) / double(steps) : 0.0; }
     void add(const SolverStatistics& o) {
@@ -69,7 +69,8 @@ State<System> state_at(const System& system, double t, const typename System::Ve
                        const typename System::Vector& v) {
     detail::require_finite(t, "start time");
     const int n = system.size();
-    if (q.size() != n || v.size() != n) detail::fail("initial q and v must have size ", n, ", got ", q.size(), ", ", v.size());
+    if (q.size() != n || v.size() != n)
+        detail::fail("initial q and v must have size ", n, ", got ", q.size(), ", ", v.size());
     if (!q.allFinite() || !v.allFinite()) detail::fail("initial q and v must be finite");
     State<System> s;
     s.t = t, s.q = q, s.v = v;

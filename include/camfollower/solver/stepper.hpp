@@ -38,21 +38,20 @@
 namespace camfollower {
 
 namespace detail {
-#define CAMFOLLOWER_DETECT(NAME, EXPR)                                   \
-    template <class S, class = void>                                    \
-    struct NAME : std::false_type {};                                   \
-    template <class S>                                                  \
+#define CAMFOLLOWER_DETECT(NAME, EXPR) \
+    template <class S, class = void>   \
+    struct NAME : std::false_type {};  \
+    template <class S>                 \
     struct NAME<S, void_t<decltype(EXPR)>> : std::true_type {};
 CAMFOLLOWER_DETECT(stepper_has_types, (std::declval<typename S::SystemType>(), std::declval<typename S::Vector>(),
                                        std::declval<typename S::StateType>()))
 CAMFOLLOWER_DETECT(stepper_has_start,
                    std::declval<typename S::StateType&>() = std::declval<S&>().start(
                        0.0, std::declval<const typename S::Vector&>(), std::declval<const typename S::Vector&>()))
-CAMFOLLOWER_DETECT(stepper_has_step, std::declval<S&>().step(std::declval<typename S::StateType&>(),
-                                                             std::declval<SolverStatistics&>()))
+CAMFOLLOWER_DETECT(stepper_has_step,
+                   std::declval<S&>().step(std::declval<typename S::StateType&>(), std::declval<SolverStatistics&>()))
 CAMFOLLOWER_DETECT(stepper_has_time_step, double(std::declval<const S&>().time_step()))
-CAMFOLLOWER_DETECT(stepper_has_take_events,
-                   std::declval<std::vector<Event>&>() = std::declval<S&>().take_events())
+CAMFOLLOWER_DETECT(stepper_has_take_events, std::declval<std::vector<Event>&>() = std::declval<S&>().take_events())
 #undef CAMFOLLOWER_DETECT
 }  // namespace detail
 

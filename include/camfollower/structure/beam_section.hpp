@@ -39,8 +39,7 @@ struct BeamSection {
         detail::require_non_negative(inner, "inner diameter", "(m)");
         if (!(inner < outer)) detail::fail("inner diameter must be < outer diameter ", outer, " m, got ", inner);
         detail::require_positive(E, "youngs_modulus", "(Pa)");
-        if (!(std::isfinite(nu) && nu >= 0.0 && nu < 0.5))
-            detail::fail("poisson_ratio must be in [0, 0.5), got ", nu);
+        if (!(std::isfinite(nu) && nu >= 0.0 && nu < 0.5)) detail::fail("poisson_ratio must be in [0, 0.5), got ", nu);
         detail::require_positive(rho, "density", "(kg/m^3)");
 
         const double d4 = outer * outer * outer * outer - inner * inner * inner * inner;
@@ -48,8 +47,8 @@ struct BeamSection {
         const double m2 = (inner / outer) * (inner / outer);
         const double kappa = 6.0 * (1.0 + nu) * (1.0 + m2) * (1.0 + m2) /
                              ((7.0 + 6.0 * nu) * (1.0 + m2) * (1.0 + m2) + (20.0 + 12.0 * nu) * m2);
-        BeamSection s{E, E / (2.0 * (1.0 + nu)), rho, pi * (outer * outer - inner * inner) / 4.0,
-                      I, I, 2.0 * I, kappa, kappa};
+        BeamSection s{
+            E, E / (2.0 * (1.0 + nu)), rho, pi * (outer * outer - inner * inner) / 4.0, I, I, 2.0 * I, kappa, kappa};
         s.validate();
         return s;
     }

@@ -138,7 +138,8 @@ public:
         for (int k = 1; k <= elements; ++k) {
             const std::string from = k == 1 ? a : name + "." + std::to_string(k - 1);
             const std::string to = k == elements ? b : name + "." + std::to_string(k);
-            add_spring(elements == 1 ? name : name + ".s" + std::to_string(k), from, to, n * stiffness, n * damping, preload);
+            add_spring(elements == 1 ? name : name + ".s" + std::to_string(k), from, to, n * stiffness, n * damping,
+                       preload);
         }
         add_mass(a, 0.5 * m);
         if (b != ground_name) add_mass(b, 0.5 * m);
@@ -187,8 +188,8 @@ public:
         std::string known;
         for (std::size_t k = 0; k < dofs_.size() && k < 24; ++k) known += (known.empty() ? "" : ", ") + dofs_[k].name;
         if (dofs_.size() > 24) known += ", ... (" + std::to_string(dofs_.size()) + " in all)";
-        detail::fail(who, " refers to DOF '", name, "', which is not defined (defined: ", known.empty() ? "none" : known,
-                     ", or '", ground_name, "')");
+        detail::fail(who, " refers to DOF '", name,
+                     "', which is not defined (defined: ", known.empty() ? "none" : known, ", or '", ground_name, "')");
     }
 
     // Triplets of M, C and K from the elements (global damping models are added by the mechanism,
@@ -208,7 +209,8 @@ public:
                         if (map[a] < 0 || map[b] < 0) continue;
                         if (k(a, b) != 0.0) K.emplace_back(map[a], map[b], k(a, b));
                         if (m(a, b) != 0.0) M.emplace_back(map[a], map[b], m(a, b));
-                        if (k(a, b) != 0.0 && s.spec.damping > 0.0) C.emplace_back(map[a], map[b], s.spec.damping * k(a, b));
+                        if (k(a, b) != 0.0 && s.spec.damping > 0.0)
+                            C.emplace_back(map[a], map[b], s.spec.damping * k(a, b));
                     }
             });
         for (const SpringSpec& s : springs_) {
@@ -229,7 +231,8 @@ public:
     Eigen::VectorXd constant_load() const {
         Eigen::VectorXd p = Eigen::VectorXd::Zero(size());
         for (const LoadSpec& l : loads_) p[index(l.dof, "load")] += l.force;
-        for (std::size_t k = 0; k < dofs_.size(); ++k) p[Eigen::Index(k)] += dofs_[k].mass * gravity_.dot(dofs_[k].direction);
+        for (std::size_t k = 0; k < dofs_.size(); ++k)
+            p[Eigen::Index(k)] += dofs_[k].mass * gravity_.dot(dofs_[k].direction);
         for (const PointMassSpec& m : masses_) {
             const int i = index(m.dof, "point mass");
             p[i] += m.mass * gravity_.dot(dofs_[std::size_t(i)].direction);
@@ -269,7 +272,9 @@ private:
         for (const SpringSpec& s : springs_)
             if (s.name == name) detail::fail("element '", name, "' is defined twice");
         if (a == b) detail::fail("element '", name, "' connects DOF '", a, "' to itself");
-        if (a == ground_name) detail::fail("element '", name, "': the first end must be a DOF, '", ground_name, "' may only be the second");
+        if (a == ground_name)
+            detail::fail("element '", name, "': the first end must be a DOF, '", ground_name,
+                         "' may only be the second");
     }
 
     std::vector<DofSpec> dofs_;

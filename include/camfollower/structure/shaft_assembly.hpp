@@ -64,11 +64,13 @@ public:
     const std::vector<ShaftSupport>& supports() const { return supports_; }
 
     Eigen::SparseMatrix<double> stiffness_sparse() const {
-        std::vector<Eigen::Triplet<double>> triplets = element_triplets(timoshenko_stiffness(section_, element_length()));
+        std::vector<Eigen::Triplet<double>> triplets =
+            element_triplets(timoshenko_stiffness(section_, element_length()));
         for (const ShaftSupport& s : supports_) {
             const double k[6] = {s.kx, s.ky, s.kz, s.ktx, s.kty, s.ktz};
             for (int d = 0; d < shaft_dofs_per_node; ++d)
-                if (k[d] != 0.0) triplets.emplace_back(shaft_dofs_per_node * s.node + d, shaft_dofs_per_node * s.node + d, k[d]);
+                if (k[d] != 0.0)
+                    triplets.emplace_back(shaft_dofs_per_node * s.node + d, shaft_dofs_per_node * s.node + d, k[d]);
         }
         return to_sparse(triplets);
     }
@@ -120,7 +122,8 @@ inline std::vector<int> kept_dofs(int dof_count, const std::vector<int>& fixed_d
 
 // Homogeneous Dirichlet conditions: the rows and columns of fixed DOFs are removed.
 inline Eigen::MatrixXd remove_dofs(const Eigen::MatrixXd& matrix, const std::vector<int>& fixed_dofs) {
-    if (matrix.rows() != matrix.cols()) detail::fail("remove_dofs needs a square matrix, got ", matrix.rows(), " x ", matrix.cols());
+    if (matrix.rows() != matrix.cols())
+        detail::fail("remove_dofs needs a square matrix, got ", matrix.rows(), " x ", matrix.cols());
     const std::vector<int> kept = kept_dofs(static_cast<int>(matrix.rows()), fixed_dofs);
     const int n = static_cast<int>(kept.size());
     Eigen::MatrixXd reduced(n, n);
@@ -129,15 +132,18 @@ inline Eigen::MatrixXd remove_dofs(const Eigen::MatrixXd& matrix, const std::vec
     return reduced;
 }
 
-inline Eigen::SparseMatrix<double> remove_dofs(const Eigen::SparseMatrix<double>& matrix, const std::vector<int>& fixed_dofs) {
-    if (matrix.rows() != matrix.cols()) detail::fail("remove_dofs needs a square matrix, got ", matrix.rows(), " x ", matrix.cols());
+inline Eigen::SparseMatrix<double> remove_dofs(const Eigen::SparseMatrix<double>& matrix,
+                                               const std::vector<int>& fixed_dofs) {
+    if (matrix.rows() != matrix.cols())
+        detail::fail("remove_dofs needs a square matrix, got ", matrix.rows(), " x ", matrix.cols());
     const std::vector<int> kept = kept_dofs(static_cast<int>(matrix.rows()), fixed_dofs);
     std::vector<int> new_index(static_cast<std::size_t>(matrix.rows()), -1);
     for (std::size_t i = 0; i < kept.size(); ++i) new_index[static_cast<std::size_t>(kept[i])] = static_cast<int>(i);
     std::vector<Eigen::Triplet<double>> triplets;
     for (int col = 0; col < matrix.outerSize(); ++col)
         for (Eigen::SparseMatrix<double>::InnerIterator it(matrix, col); it; ++it) {
-            const int r = new_index[static_cast<std::size_t>(it.row())], c = new_index[static_cast<std::size_t>(it.col())];
+            const int r = new_index[static_cast<std::size_t>(it.row())],
+                      c = new_index[static_cast<std::size_t>(it.col())];
             if (r >= 0 && c >= 0) triplets.emplace_back(r, c, it.value());
         }
     const int n = static_cast<int>(kept.size());

@@ -44,7 +44,8 @@ struct ShaftSpec {
         }
         detail::require_length(length, (who + " length").c_str());
         if (!(std::isfinite(max_element_length) && max_element_length >= 0.0))
-            detail::fail(who, " max_element_length must be >= 0 (0: one element between stations), got ", max_element_length);
+            detail::fail(who, " max_element_length must be >= 0 (0: one element between stations), got ",
+                         max_element_length);
         if (!(std::isfinite(damping) && damping >= 0.0))
             detail::fail(who, " damping must be >= 0 s (stiffness-proportional), got ", damping);
         for (double x : stations)
@@ -54,12 +55,14 @@ struct ShaftSpec {
         // shorter than its radius of gyration is a unit slip (um for mm) far more often than a plan.
         const double gyration = std::sqrt(section.second_moment_y / section.area);
         if (max_element_length > 0.0 && max_element_length < 0.1 * gyration)
-            detail::fail(who, " max_element_length = ", max_element_length, " m is below a tenth of the section's radius of gyration (",
-                         gyration, " m), far finer than a beam model can use (um written for mm? that would be ",
+            detail::fail(who, " max_element_length = ", max_element_length,
+                         " m is below a tenth of the section's radius of gyration (", gyration,
+                         " m), far finer than a beam model can use (um written for mm? that would be ",
                          max_element_length * 1e3, " m); 0 gives one element between stations");
         if (max_element_length > 0.0 && length / max_element_length + double(stations.size()) > max_elements)
-            detail::fail(who, " max_element_length = ", max_element_length, " m would make about ", length / max_element_length,
-                         " elements (limit ", max_elements, " per shaft: 5 or 6 DOFs each, and a mechanism's matrices are dense)");
+            detail::fail(who, " max_element_length = ", max_element_length, " m would make about ",
+                         length / max_element_length, " elements (limit ", max_elements,
+                         " per shaft: 5 or 6 DOFs each, and a mechanism's matrices are dense)");
     }
     static constexpr double max_elements = 500;
 
@@ -77,7 +80,8 @@ struct ShaftSpec {
         std::vector<double> nodes{0.0};
         for (std::size_t i = 1; i < unique.size(); ++i) {
             const double span = unique[i] - unique[i - 1];
-            const int parts = max_element_length > 0.0 ? std::max(1, int(std::ceil(span / max_element_length - 1e-9))) : 1;
+            const int parts =
+                max_element_length > 0.0 ? std::max(1, int(std::ceil(span / max_element_length - 1e-9))) : 1;
             for (int k = 1; k <= parts; ++k) nodes.push_back(k == parts ? unique[i] : unique[i - 1] + span * k / parts);
         }
         return nodes;

@@ -36,10 +36,8 @@ namespace detail {
 inline Eigen::Matrix4d planar_bending_stiffness(double EI, double phi, double L) {
     Eigen::Matrix4d k;
     const double L2 = L * L;
-    k << 12.0, 6.0 * L, -12.0, 6.0 * L,
-         6.0 * L, (4.0 + phi) * L2, -6.0 * L, (2.0 - phi) * L2,
-         -12.0, -6.0 * L, 12.0, -6.0 * L,
-         6.0 * L, (2.0 - phi) * L2, -6.0 * L, (4.0 + phi) * L2;
+    k << 12.0, 6.0 * L, -12.0, 6.0 * L, 6.0 * L, (4.0 + phi) * L2, -6.0 * L, (2.0 - phi) * L2, -12.0, -6.0 * L, 12.0,
+        -6.0 * L, 6.0 * L, (2.0 - phi) * L2, -6.0 * L, (4.0 + phi) * L2;
     return k * (EI / ((1.0 + phi) * L * L2));
 }
 
@@ -53,20 +51,14 @@ inline Eigen::Matrix4d planar_bending_mass(double rhoA, double rhoI, double phi,
     const double t22 = (1.0 / 105.0 + p / 60.0 + p2 / 120.0) * L2;
     const double t24 = -(1.0 / 140.0 + p / 60.0 + p2 / 120.0) * L2;
     Eigen::Matrix4d translational;
-    translational << t11, t12, t13, t14,
-                     t12, t22, -t14, t24,
-                     t13, -t14, t11, -t12,
-                     t14, t24, -t12, t22;
+    translational << t11, t12, t13, t14, t12, t22, -t14, t24, t13, -t14, t11, -t12, t14, t24, -t12, t22;
 
     const double r11 = 6.0 / 5.0;
     const double r12 = (1.0 / 10.0 - p / 2.0) * L;
     const double r22 = (2.0 / 15.0 + p / 6.0 + p2 / 3.0) * L2;
     const double r24 = (-1.0 / 30.0 - p / 6.0 + p2 / 6.0) * L2;
     Eigen::Matrix4d rotary;
-    rotary << r11, r12, -r11, r12,
-              r12, r22, -r12, r24,
-              -r11, -r12, r11, -r12,
-              r12, r24, -r12, r22;
+    rotary << r11, r12, -r11, r12, r12, r22, -r12, r24, -r11, -r12, r11, -r12, r12, r24, -r12, r22;
 
     const double scale = 1.0 / ((1.0 + phi) * (1.0 + phi));
     return translational * (scale * rhoA * L) + rotary * (scale * rhoI / L);

@@ -22,7 +22,8 @@ public:
     };
     static const std::vector<Spec>& specs(const MechanismBuilder& b) { return b.clearances; }
 
-    ClearanceElement(const Spec& c, const NetworkSpec& net, double) : Clearance(c, gap_dofs(c, net), sliding_dof(c, net)) {}
+    ClearanceElement(const Spec& c, const NetworkSpec& net, double)
+        : Clearance(c, gap_dofs(c, net), sliding_dof(c, net)) {}
 
     using Clearance::max_rank;
     std::vector<int> tangent_dofs() const {

@@ -132,9 +132,8 @@ public:
     void add_active_set_guess(const State& s, const Vector&, Vector&, Matrix& Kt) const {
         const ContactTerms& c = s.terms;
         const double k = spec().law(1e-6, 0.0).stiffness;
-        for_each_gradient(c, [&](int a, double ga) {
-            for_each_gradient(c, [&](int b, double gb) { Kt(a, b) += k * ga * gb; });
-        });
+        for_each_gradient(
+            c, [&](int a, double ga) { for_each_gradient(c, [&](int b, double gb) { Kt(a, b) += k * ga * gb; }); });
     }
     // d r / dt at fixed q from the time-only terms' rates.
     template <class Vector>

@@ -16,14 +16,13 @@
 //   rod's side imposed by the program: offset e +- b in the contact geometry and the guide spring K_rb
 //   anchored on the displaced rod;
 // - element_damping_ratio > 0: a dashpot on every element (six springs and the cam contact; not the
-//   return spring, which carries the lift) in place of the paper's three, which leave the lateral modes at ~1e-5 of critical. The dashpot rates
-//   c_e >= 0 are fitted so that every mode of the healthy mechanism on the dwell gets that ratio:
-//   least squares on zeta_i = sum_e c_e (b_e . phi_i)^2 / (2 omega_i) (b_e the element's deformation
-//   vector, phi_i the mass-normalized modes). Damping acts on element deformation rates only, so the
-//   follower's lift, a large quasi-static motion, is not resisted (modal damping,
-//   C = M Phi diag(2 zeta omega) Phi^T M, would resist it). The cam contact's dashpot enters as its
-//   Hunt-Crossley factor chi = c / F0 (F0 its static force on the dwell), the guide walls' (with a
-//   clearance) as chi = c_rb / F0. paper_damped() is that preset at 3 %.
+//   return spring, which carries the lift) in place of the paper's three, which leave the lateral modes at ~1e-5 of
+//   critical. The dashpot rates c_e >= 0 are fitted so that every mode of the healthy mechanism on the dwell gets that
+//   ratio: least squares on zeta_i = sum_e c_e (b_e . phi_i)^2 / (2 omega_i) (b_e the element's deformation vector,
+//   phi_i the mass-normalized modes). Damping acts on element deformation rates only, so the follower's lift, a large
+//   quasi-static motion, is not resisted (modal damping, C = M Phi diag(2 zeta omega) Phi^T M, would resist it). The
+//   cam contact's dashpot enters as its Hunt-Crossley factor chi = c / F0 (F0 its static force on the dwell), the guide
+//   walls' (with a clearance) as chi = c_rb / F0. paper_damped() is that preset at 3 %.
 #pragma once
 
 #include <array>
@@ -42,12 +41,12 @@ namespace camfollower::presets {
 inline constexpr int paper_dofs = 7;  // y1..y4, x1..x3
 
 struct PaperOptions {
-    CamEccentricity eccentricity;          // none by default
-    double guide_clearance = 0.0;          // m, radial; 0: the paper's guide spring K_rb
-    double guide_wall_damping_factor = 0.0;  // chi of the wall law, s/m
-    double guide_friction = 0.0;           // Coulomb coefficient at the guide
-    double element_damping_ratio = 0.0;    // 0: the paper's dampers; in (0, 1): every element (above)
-    double paper_backlash = 0.0;           // m; 0: off (the paper's imposed side switch, above)
+    CamEccentricity eccentricity;              // none by default
+    double guide_clearance = 0.0;              // m, radial; 0: the paper's guide spring K_rb
+    double guide_wall_damping_factor = 0.0;    // chi of the wall law, s/m
+    double guide_friction = 0.0;               // Coulomb coefficient at the guide
+    double element_damping_ratio = 0.0;        // 0: the paper's dampers; in (0, 1): every element (above)
+    double paper_backlash = 0.0;               // m; 0: off (the paper's imposed side switch, above)
     double paper_backlash_switch_width = 0.0;  // rad of cam angle the imposed switch ramps over (0: hard)
 
     void validate() const {
@@ -64,7 +63,8 @@ struct PaperOptions {
         if (paper_backlash == 0.0 && paper_backlash_switch_width != 0.0)
             detail::fail("paper_backlash_switch_width needs a paper_backlash > 0");
         if (guide_clearance == 0.0 && (guide_friction != 0.0 || guide_wall_damping_factor != 0.0))
-            detail::fail("guide_friction and guide_wall_damping_factor need a guide_clearance > 0 (the rod touches a wall)");
+            detail::fail(
+                "guide_friction and guide_wall_damping_factor need a guide_clearance > 0 (the rod touches a wall)");
     }
 };
 
@@ -78,7 +78,8 @@ struct PaperDampers {
     double contact_force = 0.0;  // 0: the contact keeps the parameters' own damping only
 
     static PaperDampers of_paper(const CamFollowerParameters& p) {
-        return {{p.bearing_damping_vertical, p.bearing_damping_horizontal, 0.0, 0.0, 0.0, p.rod_damping, 0.0, 0.0}, 0.0};
+        return {{p.bearing_damping_vertical, p.bearing_damping_horizontal, 0.0, 0.0, 0.0, p.rod_damping, 0.0, 0.0},
+                0.0};
     }
 };
 
@@ -106,26 +107,31 @@ inline MechanismBuilder paper_spec(const CamFollowerParameters& p, const MotionP
         spec.add_spring("K_rb", "x3", "ground", p.guide_stiffness, d.c[4]);
     } else {
         const double chi = options.guide_wall_damping_factor + (d.contact_force > 0.0 ? d.c[4] / d.contact_force : 0.0);
-        ClearanceSpec guide{"guide", {{"x3", 1.0}}, options.guide_clearance, HertzContact{p.guide_stiffness, 1.0, chi},
-                            options.guide_friction, "y3"};
+        ClearanceSpec guide{"guide",
+                            {{"x3", 1.0}},
+                            options.guide_clearance,
+                            HertzContact{p.guide_stiffness, 1.0, chi},
+                            options.guide_friction,
+                            "y3"};
         spec.add_clearance(guide);
     }
     spec.add_spring("K_f", "y3", "y4", p.rod_stiffness, d.c[5]);
     spec.add_spring("K_rs", "y4", "ground", p.spring_stiffness, d.c[6], spring_preload);
     spec.set_gravity(Eigen::Vector3d(0.0, -p.gravity, 0.0));
     spec.camshaft_speed = p.omega();
-    ContactPairSpec c{"cam",
-                      program,
-                      TranslatingRoller(p.geometry.base_radius, p.geometry.roller_radius, p.geometry.offset),
-                      HertzContact{p.contact_stiffness, p.contact_exponent,
-                                   p.contact_damping_factor() + (d.contact_force > 0.0 ? d.c[7] / d.contact_force : 0.0)},
-                      0.0,
-                      "x1",
-                      "y1",
-                      "y2",
-                      "x2",
-                      options.eccentricity,
-                      "ground"};
+    ContactPairSpec c{
+        "cam",
+        program,
+        TranslatingRoller(p.geometry.base_radius, p.geometry.roller_radius, p.geometry.offset),
+        HertzContact{p.contact_stiffness, p.contact_exponent,
+                     p.contact_damping_factor() + (d.contact_force > 0.0 ? d.c[7] / d.contact_force : 0.0)},
+        0.0,
+        "x1",
+        "y1",
+        "y2",
+        "x2",
+        options.eccentricity,
+        "ground"};
     if (options.paper_backlash > 0.0)
         c.paper_backlash = {options.paper_backlash, options.paper_backlash_switch_width, "x3", p.guide_stiffness};
     spec.add_contact(c);
@@ -211,19 +217,22 @@ inline Mechanism<paper_dofs> paper(const CamFollowerParameters& p = {},
     // the lateral parts count too): no positive, bounded preload when that chain is about as soft as
     // the spring.
     const auto unbalanced = [&](double P) {
-        detail::fail("the return spring cannot be balanced on the dwell: spring_stiffness = ", p.spring_stiffness,
-                     " N/m at spring_preload_deflection = ", p.spring_preload_deflection, " m needs a preload of ", P,
-                     " N (allowed: (0, ", detail::max_force, "] N); the parts that hold the roller against the cam "
-                     "(contact_stiffness, rod_stiffness, roller_pin_stiffness_vertical, roller_pin_stiffness_horizontal, "
-                     "guide_stiffness, bearing_stiffness_vertical, bearing_stiffness_horizontal: in series along the "
-                     "contact normal) are about as soft as the spring or softer: stiffen them or soften "
-                     "spring_stiffness");
+        detail::fail(
+            "the return spring cannot be balanced on the dwell: spring_stiffness = ", p.spring_stiffness,
+            " N/m at spring_preload_deflection = ", p.spring_preload_deflection, " m needs a preload of ", P,
+            " N (allowed: (0, ", detail::max_force,
+            "] N); the parts that hold the roller against the cam "
+            "(contact_stiffness, rod_stiffness, roller_pin_stiffness_vertical, roller_pin_stiffness_horizontal, "
+            "guide_stiffness, bearing_stiffness_vertical, bearing_stiffness_horizontal: in series along the "
+            "contact normal) are about as soft as the spring or softer: stiffen them or soften "
+            "spring_stiffness");
     };
     double terms = target;  // the residual's rounding follows its terms
     auto residual = [&](double P) {
         if (!(std::abs(P) <= detail::max_force)) unbalanced(P);
-        const double spring = p.spring_stiffness *
-                              Mechanism<paper_dofs>(paper_spec(p, program, P, {}, &undamped_dampers)).initial_displacement()[y4];
+        const double spring =
+            p.spring_stiffness *
+            Mechanism<paper_dofs>(paper_spec(p, program, P, {}, &undamped_dampers)).initial_displacement()[y4];
         terms = std::abs(P) + std::abs(spring) + target;
         return P + spring - target;
     };
@@ -233,8 +242,8 @@ inline Mechanism<paper_dofs> paper(const CamFollowerParameters& p = {},
                                               target + root.residual, " N against K_rs delta_rs = ", target, " N"));
     if (!(root.x > 0.0)) unbalanced(root.x);
     if (options.element_damping_ratio == 0.0) return Mechanism<paper_dofs>(paper_spec(p, program, root.x, options));
-    const PaperDampers fitted = fit_dampers(Mechanism<paper_dofs>(paper_spec(p, program, root.x, {}, &undamped_dampers)),
-                                            options.element_damping_ratio);
+    const PaperDampers fitted = fit_dampers(
+        Mechanism<paper_dofs>(paper_spec(p, program, root.x, {}, &undamped_dampers)), options.element_damping_ratio);
     return Mechanism<paper_dofs>(paper_spec(p, program, root.x, options, &fitted));
 }
 

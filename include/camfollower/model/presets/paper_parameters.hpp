@@ -25,29 +25,29 @@ struct CamFollowerParameters {
     // contact-free camshaft bearing mode sits at Table 3's degenerate 2447 Hz pair,
     // m_c = K_vs / (2 pi 2447 Hz)^2 (see docs/model.md).
     double camshaft_mass = 2.6e8 / ((2.0 * pi * 2447.0) * (2.0 * pi * 2447.0));
-    double roller_mass = 0.07;          // M_fc
-    double follower_rod_mass = 0.340;   // M_f
-    double follower_mass = 1.36;        // M_eq (follower top, spring seat)
+    double roller_mass = 0.07;         // M_fc
+    double follower_rod_mass = 0.340;  // M_f
+    double follower_mass = 1.36;       // M_eq (follower top, spring seat)
     // Stiffness, N/m; damping, N s/m.
-    double bearing_stiffness_vertical = 2.6e8;    // K_vs
-    double bearing_stiffness_horizontal = 2.6e8;  // K_hs
-    double bearing_damping_vertical = 750.0;      // C_vs
-    double bearing_damping_horizontal = 750.0;    // C_hs
-    double contact_stiffness = 1.9e8;             // K_h, N/m^n
-    double contact_exponent = 1.0;                // n: 1 (paper), 1.5 (point), 10/9 (line)
-    double roller_pin_stiffness_vertical = 1.7e8;     // K_vc
-    double roller_pin_stiffness_horizontal = 2.5e8;   // K_hc
-    double guide_stiffness = 2.5e8;               // K_rb, rod guide, lateral
-    double rod_stiffness = 2.5e8;                 // K_f, rod axial
-    double rod_damping = 0.08;                    // C_f
-    double spring_stiffness = 1.4e4;              // K_rs, return spring
-    double spring_preload_deflection = 0.013;     // delta_rs, m
-    double gravity = 0.0;                         // m/s^2 along -y; 0 = off (paper)
+    double bearing_stiffness_vertical = 2.6e8;       // K_vs
+    double bearing_stiffness_horizontal = 2.6e8;     // K_hs
+    double bearing_damping_vertical = 750.0;         // C_vs
+    double bearing_damping_horizontal = 750.0;       // C_hs
+    double contact_stiffness = 1.9e8;                // K_h, N/m^n
+    double contact_exponent = 1.0;                   // n: 1 (paper), 1.5 (point), 10/9 (line)
+    double roller_pin_stiffness_vertical = 1.7e8;    // K_vc
+    double roller_pin_stiffness_horizontal = 2.5e8;  // K_hc
+    double guide_stiffness = 2.5e8;                  // K_rb, rod guide, lateral
+    double rod_stiffness = 2.5e8;                    // K_f, rod axial
+    double rod_damping = 0.08;                       // C_f
+    double spring_stiffness = 1.4e4;                 // K_rs, return spring
+    double spring_preload_deflection = 0.013;        // delta_rs, m
+    double gravity = 0.0;                            // m/s^2 along -y; 0 = off (paper)
     // Optional contact damping F = K_h delta^n (1 + chi delta_dot), chi from the restitution
     // coefficient and a reference impact speed.
     ContactDampingModel contact_damping = ContactDampingModel::none;
-    double restitution = 1.0;                     // c_e in [0, 1]
-    double reference_speed = 1.0;                 // m/s
+    double restitution = 1.0;      // c_e in [0, 1]
+    double reference_speed = 1.0;  // m/s
     // Kinematics.
     double camshaft_speed_rpm = 750.0;
     PaperCamGeometry geometry{};
@@ -139,9 +139,9 @@ struct CamFollowerParameters {
         }
         // Every spring holds a body in place (a zero one leaves a free mode and no equilibrium); the
         // preload keeps the follower on the cam. Dampers may be zero.
-        for (const char* name : {"bearing_stiffness_vertical", "bearing_stiffness_horizontal",
-                                 "roller_pin_stiffness_vertical", "roller_pin_stiffness_horizontal",
-                                 "guide_stiffness", "rod_stiffness", "spring_stiffness"})
+        for (const char* name :
+             {"bearing_stiffness_vertical", "bearing_stiffness_horizontal", "roller_pin_stiffness_vertical",
+              "roller_pin_stiffness_horizontal", "guide_stiffness", "rod_stiffness", "spring_stiffness"})
             require_positive(get(name), name);
         detail::require_length(spring_preload_deflection, "spring_preload_deflection");
         for (const char* name : {"bearing_damping_vertical", "bearing_damping_horizontal", "rod_damping"})
@@ -153,8 +153,9 @@ struct CamFollowerParameters {
         // chi (1 - c_e) / v_ref: above 1e6 s/m the damping would match the elastic force at penetration
         // rates of um/s, a reference speed far below any impact's.
         if (!(contact_damping_factor() <= 1e6))
-            detail::fail("reference_speed = ", reference_speed, " m/s gives the contact damping factor chi = ",
-                         contact_damping_factor(), " s/m (allowed: <= 1e6; chi grows as (1 - restitution) / "
+            detail::fail("reference_speed = ", reference_speed,
+                         " m/s gives the contact damping factor chi = ", contact_damping_factor(),
+                         " s/m (allowed: <= 1e6; chi grows as (1 - restitution) / "
                          "reference_speed): give the contact's typical impact speed, of the order of 0.01 to 1 m/s");
         require_non_negative(gravity, "gravity", "(m/s^2)");
         detail::require_camshaft_speed_rpm(camshaft_speed_rpm, "camshaft_speed_rpm");

@@ -30,12 +30,12 @@ struct ValveTrainParameters {
 
     // Camshaft: a hollow steel tube.
     double shaft_outer_diameter = 0.026, shaft_inner_diameter = 0.012;  // m
-    double cylinder_pitch = 0.088;       // m, bore spacing
-    double valve_pitch = 0.036;          // m, between a cylinder's two cams
-    double max_element_length = 0.012;  // m
-    double bearing_stiffness = 2e8, bearing_damping = 400.0;  // N/m, N s/m (radial, each bearing)
-    double drive_stiffness = 6e3, drive_damping = 1.5;        // N m/rad, N m s/rad (chain and sprocket)
-    double sprocket_inertia = 1.5e-3;                         // kg m^2
+    double cylinder_pitch = 0.088;                                      // m, bore spacing
+    double valve_pitch = 0.036;                                         // m, between a cylinder's two cams
+    double max_element_length = 0.012;                                  // m
+    double bearing_stiffness = 2e8, bearing_damping = 400.0;            // N/m, N s/m (radial, each bearing)
+    double drive_stiffness = 6e3, drive_damping = 1.5;                  // N m/rad, N m s/rad (chain and sprocket)
+    double sprocket_inertia = 1.5e-3;                                   // kg m^2
     double shaft_damping = 5e-6;  // s, stiffness-proportional (ratio ~1 % at the first torsional mode)
 
     // Cams (all the same profile): roller tappets on a dwell-rise-return-dwell program.
@@ -46,10 +46,10 @@ struct ValveTrainParameters {
     double contact_damping_factor = 0.0;                                      // s/m (Hunt-Crossley)
 
     // Valve, tappet and retainer as one mass; the valve spring with its own mass.
-    double valve_mass = 0.085;                                  // kg
-    double valve_damping = 4.0;                                 // N s/m (guide and oil)
-    double spring_stiffness = 4.5e4, spring_preload = 280.0;    // N/m, N (valve closed)
-    double spring_mass = 0.045, spring_damping = 2.5;           // kg, N s/m
+    double valve_mass = 0.085;                                // kg
+    double valve_damping = 4.0;                               // N s/m (guide and oil)
+    double spring_stiffness = 4.5e4, spring_preload = 280.0;  // N/m, N (valve closed)
+    double spring_mass = 0.045, spring_damping = 2.5;         // kg, N s/m
     int spring_elements = 6;
 
     // m/s^2. The cams sit above their valves and lift them downwards: the frame's +z (the lift) is down.
@@ -65,20 +65,33 @@ struct ValveTrainParameters {
     static const std::vector<Field>& fields() {
         using P = ValveTrainParameters;
         static const std::vector<Field> table{
-            {"shaft_outer_diameter", &P::shaft_outer_diameter, "m"}, {"shaft_inner_diameter", &P::shaft_inner_diameter, "m"},
-            {"cylinder_pitch", &P::cylinder_pitch, "m"},             {"valve_pitch", &P::valve_pitch, "m"},
-            {"max_element_length", &P::max_element_length, "m"},     {"bearing_stiffness", &P::bearing_stiffness, "N/m"},
-            {"bearing_damping", &P::bearing_damping, "N s/m"},       {"drive_stiffness", &P::drive_stiffness, "N/m"},
-            {"drive_damping", &P::drive_damping, "N s/m"},           {"sprocket_inertia", &P::sprocket_inertia, "kg"},
+            {"shaft_outer_diameter", &P::shaft_outer_diameter, "m"},
+            {"shaft_inner_diameter", &P::shaft_inner_diameter, "m"},
+            {"cylinder_pitch", &P::cylinder_pitch, "m"},
+            {"valve_pitch", &P::valve_pitch, "m"},
+            {"max_element_length", &P::max_element_length, "m"},
+            {"bearing_stiffness", &P::bearing_stiffness, "N/m"},
+            {"bearing_damping", &P::bearing_damping, "N s/m"},
+            {"drive_stiffness", &P::drive_stiffness, "N/m"},
+            {"drive_damping", &P::drive_damping, "N s/m"},
+            {"sprocket_inertia", &P::sprocket_inertia, "kg"},
             {"shaft_damping", &P::shaft_damping, "s"},
-            {"base_radius", &P::base_radius, "m"},                   {"roller_radius", &P::roller_radius, "m"},
-            {"roller_width", &P::roller_width, "m"},                 {"lift", &P::lift, "m"},
-            {"rise_angle", &P::rise_angle, "rad"},                   {"cam_width", &P::cam_width, "m"},
-            {"cam_mass", &P::cam_mass, "kg"},                        {"cam_inertia", &P::cam_inertia, "kg"},
-            {"contact_damping_factor", &P::contact_damping_factor, "s/m"}, {"valve_mass", &P::valve_mass, "kg"},
-            {"valve_damping", &P::valve_damping, "N s/m"},           {"spring_stiffness", &P::spring_stiffness, "N/m"},
-            {"spring_preload", &P::spring_preload, "N"},             {"spring_mass", &P::spring_mass, "kg"},
-            {"spring_damping", &P::spring_damping, "N s/m"},         {"gravity", &P::gravity, "m/s^2"},
+            {"base_radius", &P::base_radius, "m"},
+            {"roller_radius", &P::roller_radius, "m"},
+            {"roller_width", &P::roller_width, "m"},
+            {"lift", &P::lift, "m"},
+            {"rise_angle", &P::rise_angle, "rad"},
+            {"cam_width", &P::cam_width, "m"},
+            {"cam_mass", &P::cam_mass, "kg"},
+            {"cam_inertia", &P::cam_inertia, "kg"},
+            {"contact_damping_factor", &P::contact_damping_factor, "s/m"},
+            {"valve_mass", &P::valve_mass, "kg"},
+            {"valve_damping", &P::valve_damping, "N s/m"},
+            {"spring_stiffness", &P::spring_stiffness, "N/m"},
+            {"spring_preload", &P::spring_preload, "N"},
+            {"spring_mass", &P::spring_mass, "kg"},
+            {"spring_damping", &P::spring_damping, "N s/m"},
+            {"gravity", &P::gravity, "m/s^2"},
         };
         return table;
     }
@@ -115,8 +128,8 @@ struct ValveTrainParameters {
         }
         detail::require_positive(engine_speed_rpm, "engine_speed_rpm", "(rpm)");
         if (valves_per_cylinder == 2 && !(valve_pitch + cam_width <= cylinder_pitch))
-            detail::fail("valve_pitch + cam_width = ", valve_pitch + cam_width, " m must fit in cylinder_pitch = ",
-                         cylinder_pitch, " m");
+            detail::fail("valve_pitch + cam_width = ", valve_pitch + cam_width,
+                         " m must fit in cylinder_pitch = ", cylinder_pitch, " m");
         detail::require_in_range(rise_angle, 1e-3, pi - 1e-3, "rise_angle (rad)");
     }
 };
@@ -148,7 +161,8 @@ inline MechanismBuilder valve_train(const ValveTrainParameters& p = {}) {
                  BeamSection::hollow_circle(p.shaft_outer_diameter, p.shaft_inner_diameter, 210e9, 0.3, 7850.0), length,
                  p.max_element_length, stations, false, p.shaft_damping});
     for (int k = 0; k <= p.cylinders; ++k)
-        b.add_bearing("bearing" + std::to_string(k), "camshaft", k * p.cylinder_pitch, p.bearing_stiffness, p.bearing_damping);
+        b.add_bearing("bearing" + std::to_string(k), "camshaft", k * p.cylinder_pitch, p.bearing_stiffness,
+                      p.bearing_damping);
     b.add_drive("drive", "camshaft", 0.0, p.drive_stiffness, p.drive_damping);
     b.add_mass(b.structure.shaft_dof_at("camshaft", 0.0, 3), p.sprocket_inertia);
     b.set_gravity({0.0, 0.0, p.gravity});
