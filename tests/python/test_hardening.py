@@ -802,3 +802,11 @@ def test_cpp_command_line_help_and_run_errors_keep_their_status(tmp_path):
     assert r.returncode == 1 and r.stderr.startswith("camfollower: error: ") and "bad.toml" in r.stderr
     ok = _cpp_cli("kinematics", ROOT / "examples" / "flat_faced_table.toml", "--rpm", "954929")
     assert ok.returncode == 0 and "at 954929 rpm" in ok.stdout
+
+
+@pytest.mark.parametrize("radius", [5.4861240687936856e303, 1e300, 1001.0, math.inf, math.nan])
+def test_an_absurd_eccentricity_radius_is_refused_by_name(radius):
+    # Found by the property test: a radius near the largest double overflowed the pitch-curve geometry,
+    # and the refusal named theta ("theta must be finite, got inf") instead of the radius.
+    with pytest.raises(ValueError, match=r"eccentricity radius must be in \[0, 1000\] m, got "):
+        cf.presets.paper(eccentricity=cf.CamEccentricity(radius=radius, formulation="exact"), paper_backlash=0.0)

@@ -66,7 +66,10 @@ struct CamEccentricity {
     bool paper_force() const { return formulation != EccentricityFormulation::exact; }
 
     void validate(const std::string& who) const {
-        detail::require_non_negative(radius, (who + " eccentricity radius").c_str(), "(m)");
+        // Bounded like any part's length: a radius near the largest double overflowed the pitch-curve
+        // geometry into "theta must be finite" instead of this message.
+        if (!(radius >= 0.0 && radius <= detail::max_part_length))
+            detail::fail(who, " eccentricity radius must be in [0, ", detail::max_part_length, "] m, got ", radius);
         detail::require_finite(phase, (who + " eccentricity phase").c_str());
         detail::require_non_negative(unbalance_mass, (who + " unbalance mass").c_str(), "(kg)");
     }
