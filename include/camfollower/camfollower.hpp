@@ -2,17 +2,13 @@
 // camfollower: dynamics of flexible cam-follower mechanisms. Facade header: the whole public API.
 #pragma once
 
-#include "camfollower/contact/contact_pair.hpp"
+#include "camfollower/contact/contact_pair.hpp"  // with every follower type (Follower)
 #include "camfollower/contact/hertz.hpp"
 #include "camfollower/contact/line_contact.hpp"
 #include "camfollower/core/system.hpp"
 #include "camfollower/error.hpp"
 #include "camfollower/follower/contact_geometry.hpp"
-#include "camfollower/follower/oscillating_flat.hpp"
-#include "camfollower/follower/oscillating_roller.hpp"
 #include "camfollower/follower/profile.hpp"
-#include "camfollower/follower/translating_flat.hpp"
-#include "camfollower/follower/translating_roller.hpp"
 #include "camfollower/geometry/export.hpp"
 #include "camfollower/model/mechanism.hpp"
 #include "camfollower/model/mechanism_modes.hpp"
@@ -40,7 +36,7 @@
 #include "camfollower/structure/timoshenko_beam.hpp"
 #include "camfollower/units.hpp"
 
-// Linked with camfollower::precompiled: simulate() for the library's mechanisms comes compiled.
+// Linked with camfollower::precompiled: the library's mechanisms and simulate() for them come compiled.
 #ifdef CAMFOLLOWER_PRECOMPILED
 #include "camfollower/precompiled.hpp"
 #endif

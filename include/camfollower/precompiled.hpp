@@ -1,11 +1,15 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// simulate() and periodic_orbit() for the library's mechanisms, compiled once in the
-// camfollower::precompiled library instead of in every unit that calls them: each instantiation
-// builds every stepper (Newmark dense and sparse, Dormand-Prince 5(4) and 8(5,3), Radau), minutes of
+// The library's mechanisms, Mechanism<> and the paper preset's Mechanism<7> (construction, static
+// analyses, modes), and simulate() and periodic_orbit() for both,
+// compiled once in the camfollower::precompiled library instead of in every unit that uses them:
+// each simulate() instantiation builds every stepper (Newmark dense and sparse, Dormand-Prince 5(4)
+// and 8(5,3), Radau) and each Mechanism<N> Eigen's dense and sparse LU and eigen solvers, minutes of
 // compile time per unit. Linking camfollower::precompiled defines CAMFOLLOWER_PRECOMPILED, and the
-// facade (camfollower.hpp) then includes this header: a user's unit calling simulate() on a
-// Mechanism<> or the paper preset instantiates no stepper (about half its compile time; the rest is
-// the headers' own). Other systems instantiate on demand as before.
+// facade (camfollower.hpp) then includes this header: a user's unit building and simulating a
+// Mechanism<> or the paper preset instantiates neither. Other systems instantiate on demand as before.
+// (Mechanism's heavy members are defined outside its class body so that the declaration below keeps
+// them out of the user's unit; members defined in a class body are inline, and an optimizing compiler
+// instantiates those even so.)
 //
 // The library and the user's units must agree on Eigen's alignment (a unit built with AVX, and the
 // library without, would lay out the fixed-size vectors differently): a mismatch is a link error
@@ -18,6 +22,7 @@
 #include <Eigen/Core>
 
 #include "camfollower/model/mechanism.hpp"
+#include "camfollower/model/mechanism_modes.hpp"
 #include "camfollower/model/presets/paper.hpp"
 #include "camfollower/solver/simulate.hpp"
 
@@ -31,6 +36,13 @@
         const SYSTEM&, const camfollower::SolverSettings&, camfollower::ShootingOptions,   \
         const std::optional<SYSTEM::Vector>&, const std::optional<SYSTEM::Vector>&, const std::function<bool()>&);
 
+// CAMFOLLOWER_MECHANISM_INSTANCES(extern, N): the same for Mechanism<N> itself (its construction and
+// static analyses, which instantiate Eigen's dense and sparse LU and eigen solvers) and its modes.
+#define CAMFOLLOWER_MECHANISM_INSTANCES(PREFIX, DOFS)                                                                \
+    PREFIX template class camfollower::Mechanism<DOFS>;                                                              \
+    PREFIX template camfollower::MechanismModes camfollower::lowest_modes<DOFS>(const camfollower::Mechanism<DOFS>&, \
+                                                                                double, int);
+
 #define CAMFOLLOWER_PRECOMPILED_CAT2(a, b) a##b
 #define CAMFOLLOWER_PRECOMPILED_CAT(a, b) CAMFOLLOWER_PRECOMPILED_CAT2(a, b)
 // Defined in the library with its own EIGEN_MAX_STATIC_ALIGN_BYTES in the name.
@@ -40,6 +52,8 @@
 extern "C" const int CAMFOLLOWER_PRECOMPILED_ALIGNMENT;
 
 #ifndef CAMFOLLOWER_BUILDING_PRECOMPILED
+CAMFOLLOWER_MECHANISM_INSTANCES(extern, Eigen::Dynamic)
+CAMFOLLOWER_MECHANISM_INSTANCES(extern, camfollower::presets::paper_dofs)
 CAMFOLLOWER_SIMULATE_INSTANCES(extern, camfollower::Mechanism<>)
 CAMFOLLOWER_SIMULATE_INSTANCES(extern, camfollower::Mechanism<camfollower::presets::paper_dofs>)
 namespace camfollower::detail {

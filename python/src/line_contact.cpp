@@ -5,13 +5,10 @@
 #include <cstdio>
 #include <limits>
 #include <string>
+#include <variant>
 
 #include "bindings.hpp"
 #include "camfollower/contact/line_contact.hpp"
-#include "camfollower/follower/oscillating_flat.hpp"
-#include "camfollower/follower/oscillating_roller.hpp"
-#include "camfollower/follower/translating_flat.hpp"
-#include "camfollower/follower/translating_roller.hpp"
 
 namespace camfollower::python {
 
@@ -144,18 +141,8 @@ void bind_line_contact(py::module_& m) {
             "profile_stress",
             [](const LineContact& c, const py::object& follower, const MotionProgram& program, const DoubleArray& force,
                const DoubleArray& theta) {
-                if (py::isinstance<TranslatingRoller>(follower))
-                    return profile_stress_dict(c, follower.cast<TranslatingRoller>(), program, force, theta);
-                if (py::isinstance<TranslatingFlat>(follower))
-                    return profile_stress_dict(c, follower.cast<TranslatingFlat>(), program, force, theta);
-                if (py::isinstance<OscillatingRoller>(follower))
-                    return profile_stress_dict(c, follower.cast<OscillatingRoller>(), program, force, theta);
-                if (py::isinstance<OscillatingFlat>(follower))
-                    return profile_stress_dict(c, follower.cast<OscillatingFlat>(), program, force, theta);
-                detail::fail(
-                    "follower must be a TranslatingRoller, TranslatingFlat, OscillatingRoller or "
-                    "OscillatingFlat, got ",
-                    std::string(py::str(py::type::of(follower))));
+                return std::visit([&](const auto& f) { return profile_stress_dict(c, f, program, force, theta); },
+                                  follower_from(follower));
             },
             py::arg("follower"), py::arg("program"), py::arg("force"), py::arg("theta"),
             "Contact stress along the cam at theta (rad, scalar or array) for force (N, scalar or one per\n"

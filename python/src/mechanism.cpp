@@ -16,14 +16,29 @@
 
 namespace camfollower::python {
 
-// std::variant of types without a default constructor has no pybind11 caster: convert by hand.
+namespace {
+// The Python class names of the follower types ("TranslatingRoller, ..."), for messages.
+template <class... F>
+std::string class_names(const std::variant<F...>*) {
+    std::string out;
+    ((out += (out.empty() ? "" : ", ") + std::string(py::str(py::type::of<F>().attr("__name__")))), ...);
+    return out;
+}
+// The first follower type that f is an instance of, or nothing.
+template <class... F>
+std::optional<Follower> cast_follower(const py::handle& f, const std::variant<F...>*) {
+    std::optional<Follower> out;
+    static_cast<void>(((py::isinstance<F>(f) && (out = f.cast<F>(), true)) || ...));
+    return out;
+}
+}  // namespace
+
+// std::variant of types without a default constructor has no pybind11 caster: every alternative of
+// Follower (contact/contact_pair.hpp) in turn.
 Follower follower_from(const py::handle& f) {
-    if (py::isinstance<TranslatingRoller>(f)) return f.cast<TranslatingRoller>();
-    if (py::isinstance<TranslatingFlat>(f)) return f.cast<TranslatingFlat>();
-    if (py::isinstance<OscillatingRoller>(f)) return f.cast<OscillatingRoller>();
-    if (py::isinstance<OscillatingFlat>(f)) return f.cast<OscillatingFlat>();
-    detail::fail("follower must be a TranslatingRoller, TranslatingFlat, OscillatingRoller or OscillatingFlat, got ",
-                 std::string(py::str(py::type::of(f))));
+    const Follower* types = nullptr;
+    if (std::optional<Follower> out = cast_follower(f, types)) return *std::move(out);
+    detail::fail("follower must be one of ", class_names(types), "; got ", std::string(py::str(py::type::of(f))));
 }
 
 // One Python type for every mechanism: the paper preset keeps its fixed-size fast path (its size is

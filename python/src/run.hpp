@@ -23,6 +23,7 @@
 #include "camfollower/model/mechanism.hpp"
 #include "camfollower/solver/simulate.hpp"
 #include "camfollower/solver/simulate_many.hpp"
+#include "camfollower/precompiled.hpp"  // the mechanisms and simulate() for them, compiled once
 
 namespace camfollower::python {
 

@@ -335,8 +335,8 @@ decltype(auto) with_offset_hint(const ContactLengths& lengths, F&& validate) {
 // `owner` names the contact in messages ("contact 'cam'"). Its lengths written as bare numbers are
 // checked against each other (lengths.hpp) before the follower is built, the offset's with it.
 Follower read_follower(const Section& s, const std::string& owner) {
-    const std::string type =
-        s.choice("type", "", {"translating_roller", "translating_flat", "oscillating_roller", "oscillating_flat"});
+    const std::vector<std::string> types = follower_type_names();
+    const std::string type = s.choice("type", "", {types.begin(), types.end()});
     return located(s, [&]() -> Follower {
         const double rb = s.quantity("base_radius", "m");
         ContactLengths lengths{owner, written(s, "base_radius", rb), {}, {}, {}, {}, {}};

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "camfollower/model/mechanism.hpp"
+#include "camfollower/precompiled.hpp"  // the mechanisms and simulate() for them, compiled once
 #include "camfollower/solver/newmark.hpp"
 
 namespace camfollower::config {

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "camfollower/model/mechanism.hpp"
+#include "camfollower/precompiled.hpp"  // the mechanisms and simulate() for them, compiled once
 
 namespace camfollower::config {
 

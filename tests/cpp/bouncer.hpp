@@ -4,7 +4,6 @@
 
 #include <cmath>
 #include <string>
-#include <type_traits>
 #include <vector>
 
 #include <Eigen/Core>
@@ -17,12 +16,14 @@
 // contact at t1 = sqrt(2 h0 / g) with speed v1 = g t1; in contact x = -d + d cos(w s) - (v1 / w)
 // sin(w s), d = m g / k, w = sqrt(k / m), leaving at s = (2 pi - 2 phi) / w, tan phi = v1 / (w d),
 // with speed v1; the flight back lasts 2 v1 / g; and so on, periodically.
-template <bool WithEvents>
+// with_events = false: the same system without its switching function (one type for both, so that
+// simulate() is compiled once for it).
 struct Bouncer {
     using Vector = Eigen::Matrix<double, 1, 1>;
     using Matrix = Eigen::Matrix<double, 1, 1>;
     struct Workspace {};
     double m = 0.5, k = 2.0e5, g = 9.81, h0 = 0.02;
+    bool with_events = true;
     Matrix M = Matrix::Constant(0.5), zero = Matrix::Zero();
 
     int size() const { return 1; }
@@ -41,13 +42,12 @@ struct Bouncer {
                  camfollower::LowRank<Vector>& uv) const {
         if (q[0] < 0.0) uv.add(Vector::Ones(), Vector::Constant(cq * k));
     }
-    template <bool E = WithEvents, std::enable_if_t<E, int> = 0>
     std::vector<std::string> event_names() const {
-        return {"ground"};
+        if (with_events) return {"ground"};
+        return {};
     }
-    template <bool E = WithEvents, std::enable_if_t<E, int> = 0>
     void event_values(const Workspace&, const Vector& q, const Vector&, double* out) const {
-        out[0] = -q[0];
+        if (with_events) out[0] = -q[0];
     }
 
     double flight() const { return 2.0 * std::sqrt(2.0 * h0 / g); }  // between two contacts

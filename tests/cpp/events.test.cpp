@@ -17,7 +17,7 @@ using namespace camfollower;
 
 namespace {
 
-SolverSettings dopri(double tolerance, double output, const char* method = "dormand_prince") {
+SolverSettings adaptive_run(double tolerance, double output, const char* method = "dormand_prince") {
     SolverSettings s;
     s.method = method_from_name(method);
     s.tolerance = tolerance;
@@ -37,14 +37,15 @@ RunOptions for_duration(double duration) {
 constexpr const char* explicit_methods[] = {"dormand_prince", "dop853"};
 
 TEST_CASE("events: ending steps at the kinks keeps both explicit methods accurate and cheaper") {
-    const Bouncer<true> with;
-    const Bouncer<false> without;
+    const Bouncer with;
+    Bouncer without;
+    without.with_events = false;
     const double duration = 3.2 * (with.flight() + with.contact_time());
     for (const auto& [method, tol] : {std::pair{"dormand_prince", 1e-6}, std::pair{"dormand_prince", 1e-9},
                                       std::pair{"dop853", 1e-6}, std::pair{"dop853", 1e-9}}) {
         CAPTURE(method, tol);
-        const auto a = simulate(with, dopri(tol, 1e-4, method), for_duration(duration));
-        const auto b = simulate(without, dopri(tol, 1e-4, method), for_duration(duration));
+        const auto a = simulate(with, adaptive_run(tol, 1e-4, method), for_duration(duration));
+        const auto b = simulate(without, adaptive_run(tol, 1e-4, method), for_duration(duration));
         double err_a = 0.0, err_b = 0.0;
         const Recording& ra = a.recording;
         const Recording& rb = b.recording;
@@ -67,7 +68,7 @@ TEST_CASE("events: ending steps at the kinks keeps both explicit methods accurat
 }
 
 TEST_CASE("events: Newmark reports the crossings within its fixed steps, to its order") {
-    const Bouncer<true> b;
+    const Bouncer b;
     const double duration = 3.2 * (b.flight() + b.contact_time());
     const std::vector<double> exact = b.event_times(duration);
     double previous = 0.0;
@@ -101,8 +102,8 @@ TEST_CASE("events: the paper preset above its jump speed loses and regains conta
     fg.beta = 1.0 / 12.0;
     fg.time_step = m.period() / 8192;
     const auto a = simulate(m, fg, run);
-    const auto b = simulate(m, dopri(1e-9, m.period() / 8192), run);
-    const auto c = simulate(m, dopri(1e-9, m.period() / 8192, "dop853"), run);
+    const auto b = simulate(m, adaptive_run(1e-9, m.period() / 8192), run);
+    const auto c = simulate(m, adaptive_run(1e-9, m.period() / 8192, "dop853"), run);
     REQUIRE(a.events.size() >= 2);
     REQUIRE(a.events.size() == b.events.size());
     REQUIRE(c.events.size() == b.events.size());

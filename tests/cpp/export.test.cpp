@@ -25,20 +25,20 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "angles.hpp"
 #include "camfollower/geometry/export.hpp"
 
 using namespace camfollower;
 using Vec = Eigen::Vector2d;
 
 namespace {
-const double deg = pi / 180.0;
 const MotionProgram paper = MotionProgram::paper_default(0.010);
 
 // A fast cycloidal rise on a small cam: the surface is concave where the rise starts (R'' > R).
-const MotionProgram fast({{MotionLaw::dwell(), 0.0, 60 * deg, 0.0, 0.0},
-                          {MotionLaw::cycloidal(), 60 * deg, 120 * deg, 0.0, 0.010},
-                          {MotionLaw::dwell(), 120 * deg, 200 * deg, 0.010, 0.010},
-                          {MotionLaw::cycloidal(), 200 * deg, 2 * pi, 0.010, 0.0}});
+const MotionProgram concave_rise({{MotionLaw::dwell(), 0.0, 60 * deg, 0.0, 0.0},
+                                  {MotionLaw::cycloidal(), 60 * deg, 120 * deg, 0.0, 0.010},
+                                  {MotionLaw::dwell(), 120 * deg, 200 * deg, 0.010, 0.010},
+                                  {MotionLaw::cycloidal(), 200 * deg, 2 * pi, 0.010, 0.0}});
 
 // A fresh empty folder under /tmp, removed (with its files) at the end of the test.
 struct TempDir {
@@ -164,7 +164,7 @@ TEST_CASE("every cutter-path point lies one cutter radius from the surface (brut
         {"translating flat, end mill 6 mm", TranslatingFlat(0.030, 0.0, 0.0), &paper, 0.006},
         {"oscillating roller, 12 mm", OscillatingRoller(0.030, 0.010, Vec(0.080, 0.020), 0.070), &angular, 0.012},
         {"oscillating flat, 8 mm", OscillatingFlat(0.030, Vec(0.0, 0.080), 0.005), &angular, 0.008},
-        {"concave cam, 3 mm cutter", TranslatingRoller(0.020, 0.005, 0.0), &fast, 0.003},
+        {"concave cam, 3 mm cutter", TranslatingRoller(0.020, 0.005, 0.0), &concave_rise, 0.003},
     };
     for (const Case& c : cases) {
         INFO(c.name);
@@ -180,7 +180,7 @@ TEST_CASE("every cutter-path point lies one cutter radius from the surface (brut
 TEST_CASE("a cutter larger than the tightest concave radius is refused at that cam angle") {
     const TranslatingRoller f(0.020, 0.005, 0.0);
     // Truth: three-point circles through the exported surface points, concave ones only.
-    const std::vector<Vec> s = cam_outline(f, fast, 36000, std::nullopt, LengthUnit::m).surface;
+    const std::vector<Vec> s = cam_outline(f, concave_rise, 36000, std::nullopt, LengthUnit::m).surface;
     double tightest = std::numeric_limits<double>::infinity(), at = 0.0;
     for (std::size_t k = 0; k < s.size(); ++k) {
         const double r = three_point_radius(s[(k + s.size() - 1) % s.size()], s[k], s[(k + 1) % s.size()]);
@@ -189,10 +189,10 @@ TEST_CASE("a cutter larger than the tightest concave radius is refused at that c
     }
     REQUIRE(std::isfinite(tightest));
     INFO("tightest concave radius " << tightest << " m at " << at / deg << " deg");
-    CHECK(min_concave_radius(fast, f).value == Approx(tightest).epsilon(1e-4));
-    CHECK_NOTHROW(cam_outline(f, fast, 360, 0.99 * tightest));
+    CHECK(min_concave_radius(concave_rise, f).value == Approx(tightest).epsilon(1e-4));
+    CHECK_NOTHROW(cam_outline(f, concave_rise, 360, 0.99 * tightest));
     try {
-        cam_outline(f, fast, 360, 1.01 * tightest);
+        cam_outline(f, concave_rise, 360, 1.01 * tightest);
         FAIL("a too large cutter was accepted");
     } catch (const std::invalid_argument& e) {
         const std::string m = e.what();
@@ -311,7 +311,7 @@ TEST_CASE("the atomic writer refuses non-regular targets and never leaves partia
         const std::string path = dir.path + "/cam.csv";
         write_cam_csv(path, f, paper, 36);
         const std::string before = read_all(path);
-        CHECK_THROWS(write_cam_csv(path, TranslatingRoller(0.020, 0.005, 0.0), fast, 36, 0.05));
+        CHECK_THROWS(write_cam_csv(path, TranslatingRoller(0.020, 0.005, 0.0), concave_rise, 36, 0.05));
         CHECK(read_all(path) == before);
         CHECK(dir.entries() == std::vector<std::string>{"cam.csv"});
     }

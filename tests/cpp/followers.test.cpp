@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <cstdio>
 #include <fstream>
 #include <limits>
@@ -24,8 +25,10 @@
 
 #include <Eigen/Core>
 
+#include "angles.hpp"
 #include "camfollower/follower/oscillating_flat.hpp"
 #include "camfollower/follower/oscillating_roller.hpp"
+#include "camfollower/contact/contact_pair.hpp"
 #include "camfollower/follower/profile.hpp"
 #include "camfollower/follower/translating_flat.hpp"
 #include "camfollower/follower/translating_roller.hpp"
@@ -36,7 +39,6 @@ using namespace camfollower;
 using Vec = Eigen::Vector2d;
 
 namespace {
-const double deg = pi / 180.0;
 
 // Plane helpers written out again, so the truth below shares no code with the headers under test.
 Vec quarter_turn(const Vec& v) { return {-v.y(), v.x()}; }
@@ -375,6 +377,27 @@ TEST_CASE("every follower type: closed form against the envelope of its position
         for (double t : {1.3, 2.1, 2.5})
             CHECK(reference_error(truth, follower.profile(t, program.evaluate(t))) < 1e-14);
     });
+}
+
+TEST_CASE(
+    "every follower type: a name of its own in Follower, its description, a lift in m exactly when it translates") {
+    std::set<std::string> seen;
+    for_each_follower([&](const std::string& name, const auto& follower, const auto&, const MotionProgram&,
+                          const auto& carry, double rb, const auto&, const MotionProgram&) {
+        INFO(name);
+        using F = std::decay_t<decltype(follower)>;
+        // Its carry moves the driven point along y for any position: a translation, else a swing.
+        const bool translates = (carry(Vec(0.3, -0.2), 1e-3) - Vec(0.3, -0.2 + 1e-3)).norm() < 1e-15;
+        CHECK(is_translating(follower) == translates);
+        CHECK(is_translating(Follower(follower)) == translates);
+        CHECK(std::string(follower_type_name(Follower(follower))) == F::type_name);
+        const std::string line = follower.describe(LengthUnit::mm);
+        CHECK(line.rfind(std::string(F::type_name) + ": base_radius = " + std::to_string(int(rb * 1000)), 0) == 0);
+        seen.insert(F::type_name);
+    });
+    const std::vector<std::string> all = follower_type_names();
+    CHECK(std::set<std::string>(all.begin(), all.end()) == seen);  // distinct, and each one tried above
+    CHECK(all.size() == std::variant_size_v<Follower>);
 }
 
 TEST_CASE("every follower type: dnormal, dlever, dlift against central differences of contact()") {

@@ -12,13 +12,13 @@
 #include <string>
 #include <vector>
 
+#include "angles.hpp"
 #include "camfollower/motion/program.hpp"
 #include "camfollower/motion/smoothness.hpp"
 
 using namespace camfollower;
 
 namespace {
-const double deg = pi / 180.0;
 
 // h = a (1 - cos t) + b sin 2t and its derivatives, by hand.
 struct Smooth {

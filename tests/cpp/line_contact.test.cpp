@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "angles.hpp"
 #include "camfollower/contact/line_contact.hpp"
 #include "camfollower/follower/translating_flat.hpp"
 #include "camfollower/follower/translating_roller.hpp"
@@ -19,7 +20,6 @@ using Catch::Matchers::Contains;
 
 namespace {
 const double inf = std::numeric_limits<double>::infinity();
-const double PI = 3.14159265358979323846;
 // Steel on steel: E* = E / (2 (1 - nu^2)).
 const double E_star_steel = 210e9 / (2.0 * (1.0 - 0.3 * 0.3));
 }  // namespace

@@ -4,12 +4,12 @@
 
 #include <cmath>
 
+#include "angles.hpp"
 #include "camfollower/motion/program.hpp"
 
 using namespace camfollower;
 
 namespace {
-const double deg = pi / 180.0;
 
 // Left and right limits of h and its derivatives at theta.
 std::pair<FollowerMotion, FollowerMotion> limits(const MotionProgram& p, double theta, double eps = 1e-11) {

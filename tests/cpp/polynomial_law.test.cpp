@@ -10,12 +10,12 @@
 #include <limits>
 #include <vector>
 
+#include "angles.hpp"
 #include "camfollower/motion/program.hpp"
 
 using namespace camfollower;
 
 namespace {
-const double deg = pi / 180.0;
 
 // Largest relative difference between a segment and a normalized law over the segment.
 double worst_difference(const Segment& s, const MotionLaw& law, double lift) {

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "angles.hpp"
 #include "camfollower/follower/profile.hpp"
 #include "camfollower/follower/translating_roller.hpp"
 #include "camfollower/motion/profile_error.hpp"
@@ -24,7 +25,6 @@ using namespace camfollower;
 using Catch::Contains;
 
 namespace {
-const double deg = pi / 180.0;
 
 // Central differences of e, e', e'' at theta, compared with e', e'', e''' (each against its own scale).
 template <class Eval>
@@ -65,7 +65,7 @@ FollowerMotion design(const MotionProgram& p, double theta) {
     return {s.h_start + dh * v.S, dh * v.V / beta, dh * v.A / (beta * beta), dh * v.J / (beta * beta * beta)};
 }
 
-std::string message_of(const std::function<void()>& f) {
+std::string undercut_message_of(const std::function<void()>& f) {
     try {
         f();
     } catch (const std::invalid_argument& e) {
@@ -303,7 +303,7 @@ TEST_CASE("undercut check: a deep narrow dent is refused, the healthy cam and a 
     REQUIRE(rho > 0.0);     // convex there
     REQUIRE(rho < 0.0125);  // tighter than the roller: undercut
     const MotionProgram dented = healthy.with_profile_error(ProfileError::dent(15 * deg, w, d));
-    const std::string message = message_of([&] { check_undercut(dented, roller); });
+    const std::string message = undercut_message_of([&] { check_undercut(dented, roller); });
     CHECK_THAT(message, Contains("undercuts at theta = "));
     const double at = std::stod(message.substr(message.find("theta = ") + 8));
     CHECK(std::abs(at - 15.0) <= 1.5);
@@ -318,7 +318,7 @@ TEST_CASE("undercut check: a deep narrow dent is refused, the healthy cam and a 
     REQUIRE(rho_n > 0.0);
     REQUIRE(rho_n < 0.0125);
     const std::string narrow =
-        message_of([&] { check_undercut(healthy.with_profile_error(ProfileError::dent(c, wn, dn)), roller); });
+        undercut_message_of([&] { check_undercut(healthy.with_profile_error(ProfileError::dent(c, wn, dn)), roller); });
     CHECK_THAT(narrow, Contains("undercuts at theta = "));
     CHECK(std::abs(std::stod(narrow.substr(narrow.find("theta = ") + 8)) - 100.125) <= 0.05);
 

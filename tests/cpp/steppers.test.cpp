@@ -137,7 +137,7 @@ TEST_CASE("Every method restarts at a state: the run continues as if never stopp
 }
 
 TEST_CASE("Every method locates contact made and lost at the closed-form times of a bouncing mass") {
-    const Bouncer<true> b;
+    const Bouncer b;
     const double duration = 3.2 * (b.flight() + b.contact_time());
     const std::vector<double> exact = b.event_times(duration);
     REQUIRE(exact.size() == 6);
@@ -150,7 +150,7 @@ TEST_CASE("Every method locates contact made and lost at the closed-form times o
         s.max_halvings = 15;
         RunOptions o;
         o.duration = duration;
-        const RunResult<Bouncer<true>> r = simulate(b, s, o);
+        const RunResult<Bouncer> r = simulate(b, s, o);
         REQUIRE(r.events.size() == exact.size());
         for (std::size_t i = 0; i < exact.size(); ++i) {
             CAPTURE(i, r.events[i].time, exact[i]);

@@ -12,6 +12,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
+#include "angles.hpp"
 #include "camfollower/structure/beam_section.hpp"
 #include "camfollower/structure/shaft_assembly.hpp"
 #include "camfollower/structure/timoshenko_beam.hpp"
@@ -20,7 +21,6 @@ using namespace camfollower;
 using Catch::Matchers::Contains;
 
 namespace {
-const double PI = 3.14159265358979323846;
 const double E_steel = 210e9, nu_steel = 0.3, rho_steel = 7850.0;
 const double G_steel = E_steel / (2.0 * (1.0 + nu_steel));
 // Cowper (1966) solid circle.

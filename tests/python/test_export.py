@@ -201,7 +201,10 @@ def test_bad_input_names_the_parameter(tmp_path, kwargs, message):
 
 
 def test_bad_follower_and_core_checks():
-    with pytest.raises(ValueError, match="follower must be a TranslatingRoller"):
+    with pytest.raises(
+        ValueError,
+        match=r"follower must be one of TranslatingRoller, TranslatingFlat, OscillatingRoller, OscillatingFlat; got <class 'str'>",
+    ):
         export.profile_points("roller", PAPER, points=10)
     with pytest.raises(ValueError, match=r"points must be an integer in \[3, 10000000\]"):
         cf._core.cam_outline(roller(), PAPER, -1)  # the core checks too

@@ -21,6 +21,7 @@
 
 #include <array>
 #include <string>
+#include <type_traits>
 #include <variant>
 #include <vector>
 
@@ -38,14 +39,30 @@
 
 namespace camfollower {
 
+// Every follower type, the one list: a new type joins here (and gets its config reader,
+// src/config/case_config.cpp, and Python binding, python/src/mechanism.cpp).
 using Follower = std::variant<TranslatingRoller, TranslatingFlat, OscillatingRoller, OscillatingFlat>;
 
 inline const char* follower_type_name(const Follower& f) {
-    static const char* names[] = {"translating_roller", "translating_flat", "oscillating_roller", "oscillating_flat"};
-    return names[f.index()];
+    return std::visit([](const auto& x) { return std::decay_t<decltype(x)>::type_name; }, f);
+}
+namespace detail {
+template <class... F>
+std::vector<std::string> type_names_of(const std::variant<F...>*) {
+    return {F::type_name...};
+}
+}  // namespace detail
+// Every type's name, in the order of Follower (config choices, messages).
+inline std::vector<std::string> follower_type_names() {
+    return detail::type_names_of(static_cast<const Follower*>(nullptr));
+}
+// Translating followers lift by a length (m), oscillating ones by the arm's rotation (rad).
+template <class F>
+bool is_translating(const F&) {
+    return F::translating;
 }
 inline bool is_translating(const Follower& f) {
-    return std::holds_alternative<TranslatingRoller>(f) || std::holds_alternative<TranslatingFlat>(f);
+    return std::visit([](const auto& x) { return std::decay_t<decltype(x)>::translating; }, f);
 }
 
 struct ContactPairSpec {

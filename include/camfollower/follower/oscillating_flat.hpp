@@ -24,6 +24,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <limits>
 
 #include <Eigen/Core>
@@ -31,6 +32,7 @@
 #include "camfollower/error.hpp"
 #include "camfollower/follower/arm_turn.hpp"
 #include "camfollower/follower/contact_geometry.hpp"
+#include "camfollower/follower/follower_text.hpp"
 #include "camfollower/follower/plane.hpp"
 #include "camfollower/follower/profile.hpp"
 #include "camfollower/motion/program.hpp"
@@ -39,6 +41,10 @@ namespace camfollower {
 
 class OscillatingFlat {
 public:
+    // Its name in configs, messages and exports; its lift is the arm's rotation (rad).
+    static constexpr const char* type_name = "oscillating_flat";
+    static constexpr bool translating = false;
+
     // base_radius r_b (m, > 0), pivot P (m, ground frame, outside the base circle), face_offset f (m,
     // |r_b - f| < |P| so the face can touch the base circle), turn: the arm's lifting sense.
     OscillatingFlat(double base_radius, const Eigen::Vector2d& pivot, double face_offset = 0.0,
@@ -104,6 +110,13 @@ public:
     double face_position(const FollowerMotion& m) const {
         const Eigen::Vector2d n = planar::unit(arm_angle(m));
         return planar::perp(n).dot(pivot_) / (sigma_ * m.dh - 1.0);
+    }
+
+    // One line naming the type and its parameters, lengths in `unit`.
+    std::string describe(LengthUnit unit) const {
+        return detail::concat(type_name, ": ", detail::length_text("base_radius", base_radius(), unit), ", ",
+                              detail::pivot_text(pivot(), unit), ", ",
+                              detail::length_text("face_offset", face_offset(), unit), ", ", detail::turn_text(turn()));
     }
 
 private:

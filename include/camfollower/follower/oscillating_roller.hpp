@@ -16,12 +16,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include <Eigen/Core>
 
 #include "camfollower/error.hpp"
 #include "camfollower/follower/arm_turn.hpp"
 #include "camfollower/follower/contact_geometry.hpp"
+#include "camfollower/follower/follower_text.hpp"
 #include "camfollower/follower/plane.hpp"
 #include "camfollower/follower/profile.hpp"
 #include "camfollower/follower/roller_pitch.hpp"
@@ -31,6 +33,10 @@ namespace camfollower {
 
 class OscillatingRoller {
 public:
+    // Its name in configs, messages and exports; its lift is the arm's rotation (rad).
+    static constexpr const char* type_name = "oscillating_roller";
+    static constexpr bool translating = false;
+
     // base_radius r_b (m, > 0), roller_radius r_r (m, > 0), pivot P (m, ground frame, outside the
     // base circle), arm_length L (m, > 0, with | |P| - (r_b + r_r) | < L < |P| + r_b + r_r),
     // turn: the arm's lifting sense.
@@ -107,6 +113,14 @@ public:
 
     // Signed curvature of the pitch curve (roller-centre path in the cam frame), 1/m, > 0 convex.
     double pitch_curvature(const FollowerMotion& m) const { return roller_pitch_curvature(roller_path(m)); }
+
+    // One line naming the type and its parameters, lengths in `unit`.
+    std::string describe(LengthUnit unit) const {
+        return detail::concat(type_name, ": ", detail::length_text("base_radius", base_radius(), unit), ", ",
+                              detail::length_text("roller_radius", roller_radius(), unit), ", ",
+                              detail::pivot_text(pivot(), unit), ", ",
+                              detail::length_text("arm_length", arm_length(), unit), ", ", detail::turn_text(turn()));
+    }
 
 private:
     double base_radius_, roller_radius_;

@@ -17,12 +17,14 @@
 #pragma once
 
 #include <cmath>
+#include <string>
 #include <limits>
 
 #include <Eigen/Core>
 
 #include "camfollower/error.hpp"
 #include "camfollower/follower/contact_geometry.hpp"
+#include "camfollower/follower/follower_text.hpp"
 #include "camfollower/follower/plane.hpp"
 #include "camfollower/follower/profile.hpp"
 #include "camfollower/motion/laws.hpp"
@@ -32,6 +34,10 @@ namespace camfollower {
 
 class TranslatingFlat {
 public:
+    // Its name in configs, messages and exports; its lift is a length (m).
+    static constexpr const char* type_name = "translating_flat";
+    static constexpr bool translating = true;
+
     // base_radius r_b (m, > 0); face_angle g (rad, |g| < pi/2; > 0 tilts the face normal towards -x);
     // offset e (m, finite): lateral position of the follower axis.
     explicit TranslatingFlat(double base_radius, double face_angle = 0.0, double offset = 0.0)
@@ -82,6 +88,13 @@ public:
         const Eigen::Vector2d contact_point =
             (base_radius_ + cos_g_ * m.h) * face_normal() + cos_g_ * m.dh * face_direction();
         return (contact_point - axis_point(m)).dot(face_direction());
+    }
+
+    // One line naming the type and its parameters, lengths in `unit`, the angle in deg.
+    std::string describe(LengthUnit unit) const {
+        return detail::concat(type_name, ": ", detail::length_text("base_radius", base_radius(), unit),
+                              ", face_angle = ", radians_to_degrees(face_angle()), " deg, ",
+                              detail::length_text("offset", offset(), unit));
     }
 
 private:

@@ -12,11 +12,13 @@
 #pragma once
 
 #include <cmath>
+#include <string>
 
 #include <Eigen/Core>
 
 #include "camfollower/error.hpp"
 #include "camfollower/follower/contact_geometry.hpp"
+#include "camfollower/follower/follower_text.hpp"
 #include "camfollower/follower/plane.hpp"
 #include "camfollower/follower/profile.hpp"
 #include "camfollower/follower/roller_pitch.hpp"
@@ -38,6 +40,10 @@ struct ContactKinematics {
 
 class TranslatingRoller {
 public:
+    // Its name in configs, messages and exports; its lift is a length (m).
+    static constexpr const char* type_name = "translating_roller";
+    static constexpr bool translating = true;
+
     // base_radius r_b (m, > 0), roller_radius r_r (m, > 0), offset e (m, |e| < r_b + r_r: the axis
     // must cut the base pitch circle).
     TranslatingRoller(double base_radius, double roller_radius, double offset)
@@ -99,6 +105,13 @@ public:
 
     // Signed curvature of the pitch curve (roller-centre path in the cam frame), 1/m, > 0 convex.
     double pitch_curvature(const FollowerMotion& m) const { return curvature(kinematics(m), offset_); }
+
+    // One line naming the type and its parameters, lengths in `unit`.
+    std::string describe(LengthUnit unit) const {
+        return detail::concat(type_name, ": ", detail::length_text("base_radius", base_radius(), unit), ", ",
+                              detail::length_text("roller_radius", roller_radius(), unit), ", ",
+                              detail::length_text("offset", offset(), unit));
+    }
 
 private:
     double base_radius_, roller_radius_, offset_;

@@ -100,54 +100,13 @@ inline CamOutline cam_outline(const Follower& follower, const MotionProgram& pro
     return std::visit([&](const auto& f) { return cam_outline(f, program, points, cutter_radius, unit); }, follower);
 }
 
-namespace detail {
-
-inline const char* turn_text(ArmTurn t) { return t == ArmTurn::counter_clockwise ? "counter_clockwise" : "clockwise"; }
-
-// "name = value unit" for a length given in m, expressed in `unit`.
-inline std::string length_text(const char* name, double metres, LengthUnit unit) {
-    return concat(name, " = ", metres_to(unit, metres), " ", length_unit_name(unit));
-}
-
-// Oscillating followers' lift is the arm rotation (rad), translating followers' a length (m).
-inline bool lifts_in_radians(const TranslatingRoller&) { return false; }
-inline bool lifts_in_radians(const TranslatingFlat&) { return false; }
-inline bool lifts_in_radians(const OscillatingRoller&) { return true; }
-inline bool lifts_in_radians(const OscillatingFlat&) { return true; }
-inline bool lifts_in_radians(const Follower& f) { return !is_translating(f); }
-
-inline std::string pivot_text(const Eigen::Vector2d& pivot, LengthUnit unit) {
-    return concat("pivot = (", metres_to(unit, pivot.x()), ", ", metres_to(unit, pivot.y()), ") ",
-                  length_unit_name(unit), " (ground frame)");
-}
-
-}  // namespace detail
-
 // One line naming the follower type and its parameters, lengths in `unit`, angles in deg.
-inline std::string describe_follower(const TranslatingRoller& f, LengthUnit unit) {
-    return detail::concat("translating_roller: ", detail::length_text("base_radius", f.base_radius(), unit), ", ",
-                          detail::length_text("roller_radius", f.roller_radius(), unit), ", ",
-                          detail::length_text("offset", f.offset(), unit));
-}
-inline std::string describe_follower(const TranslatingFlat& f, LengthUnit unit) {
-    return detail::concat("translating_flat: ", detail::length_text("base_radius", f.base_radius(), unit),
-                          ", face_angle = ", radians_to_degrees(f.face_angle()), " deg, ",
-                          detail::length_text("offset", f.offset(), unit));
-}
-inline std::string describe_follower(const OscillatingRoller& f, LengthUnit unit) {
-    return detail::concat(
-        "oscillating_roller: ", detail::length_text("base_radius", f.base_radius(), unit), ", ",
-        detail::length_text("roller_radius", f.roller_radius(), unit), ", ", detail::pivot_text(f.pivot(), unit), ", ",
-        detail::length_text("arm_length", f.arm_length(), unit), ", turn = ", detail::turn_text(f.turn()));
-}
-inline std::string describe_follower(const OscillatingFlat& f, LengthUnit unit) {
-    return detail::concat("oscillating_flat: ", detail::length_text("base_radius", f.base_radius(), unit), ", ",
-                          detail::pivot_text(f.pivot(), unit), ", ",
-                          detail::length_text("face_offset", f.face_offset(), unit),
-                          ", turn = ", detail::turn_text(f.turn()));
+template <class F>
+std::string describe_follower(const F& f, LengthUnit unit) {
+    return f.describe(unit);
 }
 inline std::string describe_follower(const Follower& f, LengthUnit unit) {
-    return std::visit([&](const auto& x) { return describe_follower(x, unit); }, f);
+    return std::visit([&](const auto& x) { return x.describe(unit); }, f);
 }
 
 // The header lines of an export (without comment marks): units, rotation, zero reference, follower,
@@ -156,7 +115,7 @@ template <class F>
 std::vector<std::string> cam_export_notes(const F& follower, const MotionProgram& program, const CamOutline& outline) {
     using detail::concat;
     const char* u = length_unit_name(outline.unit);
-    const bool oscillating = detail::lifts_in_radians(follower);
+    const bool oscillating = !is_translating(follower);
     const auto lift_text = [&](double h) {
         return oscillating ? concat(radians_to_degrees(h), " deg of arm rotation")
                            : concat(metres_to(outline.unit, h), " ", u);

@@ -60,45 +60,7 @@ public:
         const ClearanceElement::State& clearance(std::size_t i) const { return of<ClearanceElement>().at(i); }
     };
 
-    explicit Mechanism(MechanismBuilder description) : spec_(std::move(description)) {
-        const NetworkSpec& net = spec_.structure;
-        n_ = net.size();
-        if (n_ == 0) detail::fail("a mechanism needs at least one DOF");
-        if (n_ > max_dofs)
-            detail::fail("the mechanism has ", n_, " DOFs, more than the ", max_dofs,
-                         " a Mechanism assembles (dense n x n "
-                         "matrices: ",
-                         24.0 * double(n_) * double(n_) / 1e9,
-                         " GB for M, C and K alone); coarsen the shafts' "
-                         "meshes (max_element_length) or split the model");
-        if (N != Eigen::Dynamic && n_ != N)
-            detail::fail("Mechanism<", N, "> built from a description with ", n_, " DOFs");
-        detail::require_camshaft_speed(spec_.camshaft_speed, "camshaft_speed");
-        NetworkSpec::Triplets tm, tc, tk;
-        net.assemble(tm, tc, tk);
-        M_ = dense(tm), C_ = dense(tc), K_ = dense(tk);
-        const Eigen::VectorXd p = net.constant_load();
-        load_ = p;
-        elements_ = MechanismElements::build(spec_, net, spec_.camshaft_speed);
-        elements_.for_each([&](const auto& e) { max_rank_ += e.max_rank(); });
-        if (net.rayleigh_alpha() != 0.0 || net.rayleigh_beta() != 0.0)
-            C_ += net.rayleigh_alpha() * M_ + net.rayleigh_beta() * K_;
-        initial_ = static_equilibrium(0.0);
-        if (!net.modal_ratios().empty()) add_modal_damping(net.modal_ratios());
-        M_sparse_ = M_.sparseView(), C_sparse_ = C_.sparseView(), K_sparse_ = K_.sparseView();
-        initial_velocity_ = quasi_static_velocity(0.0, initial_);
-        for (const ContactPair& c : contacts()) {
-            const double amplitude = c.paper_force_amplitude();
-            if (amplitude == 0.0) continue;
-            const double held = static_contact_force(0.0, initial_, contact_index(c.name()));
-            if (amplitude > held)
-                warnings_.push_back(detail::concat(
-                    "contact '", c.name(), "': the paper's literal eccentricity force K_h epsilon = ", amplitude,
-                    " N exceeds the static contact force ", held,
-                    " N (what the return spring's preload holds): "
-                    "the formulation, not the defect, would open the contact"));
-        }
-    }
+    explicit Mechanism(MechanismBuilder description);
 
     // Dense assembly and O(n^3) solves at build: this many DOFs build in about a second.
     static constexpr int max_dofs = 3000;
@@ -114,11 +76,7 @@ public:
     const Vector& initial_velocity() const { return initial_velocity_; }
     int max_rank() const { return max_rank_; }
 
-    Workspace workspace() const {
-        Workspace w;
-        w.states = elements_.states();
-        return w;
-    }
+    Workspace workspace() const;
     void prepare(double t, Workspace& w) const {
         w.t = t;
         elements_.for_each(w.states, [&](const auto& e, auto& s) { e.prepare(t, s); });
@@ -136,11 +94,7 @@ public:
         tangent_columns(w, v, cq, cv, uv);
     }
     // The DOFs each tangent column pair can touch: the sparse backend's fill pattern.
-    std::vector<std::vector<int>> tangent_pattern() const {
-        std::vector<std::vector<int>> groups;
-        elements_.for_each([&](const auto& e) { groups.push_back(e.tangent_dofs()); });
-        return groups;
-    }
+    std::vector<std::vector<int>> tangent_pattern() const;
     const Eigen::SparseMatrix<double>& sparse_mass() const { return M_sparse_; }
     const Eigen::SparseMatrix<double>& sparse_damping() const { return C_sparse_; }
     const Eigen::SparseMatrix<double>& sparse_stiffness() const { return K_sparse_; }
@@ -150,25 +104,13 @@ public:
     void event_located(Workspace& w, int index, double time, int direction) const {
         elements_.event_located(w.states, index, time, direction);
     }
-    std::vector<std::string> dof_names() const {
-        std::vector<std::string> names;
-        for (const DofSpec& d : spec_.structure.dofs()) names.push_back(d.name);
-        return names;
-    }
+    std::vector<std::string> dof_names() const;
     // "theta" (rad), then each element's channels (model/elements/: a contact's <name>.force,
     // .penetration, ...; a clearance's <name>.force, .side, .gap, .friction).
-    std::vector<std::string> channel_names() const {
-        std::vector<std::string> names{"theta"};
-        elements_.for_each([&](const auto& e) { e.add_channel_names(names); });
-        return names;
-    }
+    std::vector<std::string> channel_names() const;
     // Switching functions (solver/events.hpp): per contact <name>.contact, its penetration (m); per
     // clearance <name>.wall, |u| - c (m): > 0 while touching.
-    std::vector<std::string> event_names() const {
-        std::vector<std::string> names;
-        elements_.for_each([&](const auto& e) { e.add_event_names(names); });
-        return names;
-    }
+    std::vector<std::string> event_names() const;
     // (force() at the same q, v computed them: its responses are reused)
     CAMFOLLOWER_FORCE_INLINE void event_values(const Workspace& w, const Vector&, const Vector&, double* g) const {
         elements_.for_each(w.states, [&](const auto& e, const auto& s) { g = e.event_values(s, g); });
@@ -187,16 +129,9 @@ public:
     // What the model's user should know about its formulation (e.g. the paper's literal eccentricity
     // force exceeding the static contact force). Python turns each into a UserWarning.
     const std::vector<std::string>& warnings() const { return warnings_; }
-    std::size_t contact_index(const std::string& name) const {
-        for (std::size_t i = 0; i < contacts().size(); ++i)
-            if (contacts()[i].name() == name) return i;
-        detail::fail("no contact named '", name, "'");
-    }
+    std::size_t contact_index(const std::string& name) const;
     // Contact force of contact i at rest at camshaft angle theta and displacement q, N.
-    double static_contact_force(double theta, const Vector& q, std::size_t i) const {
-        const Workspace w = workspace_at(theta);
-        return contacts().at(i).static_force(w.t, q, w.template of<ContactElement>()[i]);
-    }
+    double static_contact_force(double theta, const Vector& q, std::size_t i) const;
     double omega() const { return spec_.camshaft_speed; }
     double period() const { return two_pi / spec_.camshaft_speed; }
     const Vector& constant_load() const { return load_; }
@@ -211,87 +146,21 @@ public:
     // contact laws at zero penetration rate: a static state has no impact damping). Newton from the
     // contact-free deflection (or zero when the structure alone is singular) on the exact tangent,
     // with an all-contacts-closed step where that tangent is singular.
-    Vector static_equilibrium(double theta) const {
-        detail::require_finite(theta, "theta");
-        const Workspace w = workspace_at(theta);
-        Vector q = Vector::Zero(n_), dq(n_);
-        // The contact-free deflection as the start, unless the structure alone barely holds the
-        // loads (a displacement no machine has): then from zero.
-        if (solve_static(K_, load_, dq) && dq.cwiseAbs().maxCoeff() < 1e3) q = dq;
-        const double scale = load_.cwiseAbs().maxCoeff() + 1.0;
-        const double norm_K = K_.cwiseAbs().rowwise().sum().maxCoeff();
-        Vector r(n_);
-        Matrix Kt(n_, n_);
-        for (int it = 0; it < 200; ++it) {
-            static_residual(w, q, r, Kt);
-            // 1e-12 of the load, or the rounding floor of K q when the lift makes q large.
-            const double tolerance = std::max(
-                1e-12 * scale, 64.0 * std::numeric_limits<double>::epsilon() * norm_K * q.cwiseAbs().maxCoeff());
-            if (r.cwiseAbs().maxCoeff() <= tolerance) return q;
-            // A follower held only by its contact (gravity or a load, no spring) starts with the
-            // contact just touching, where the law has no stiffness: take the step as if every
-            // contact were closed (the active-set guess), with the law's stiffness at 1 um, and every
-            // free clearance seated on the wall its load pushes it to.
-            // A step no machine makes (> 1 km) means the tangent barely holds: an open contact with
-            // a spring far too soft for its preload; treat it as singular.
-            const auto plausible = [&] { return dq.allFinite() && dq.cwiseAbs().maxCoeff() < 1e3; };
-            if (!solve_static(Kt, r, dq) || !plausible()) {
-                elements_.for_each(w.states,
-                                   [&](const auto& e, const auto& s) { e.add_active_set_guess(s, q, r, Kt); });
-                if (!solve_static(Kt, r, dq) || !plausible())
-                    detail::fail("static equilibrium at theta = ", radians_to_degrees(theta),
-                                 " deg: the structure with its active contacts is not held in place (a DOF with no "
-                                 "spring to ground and no contact, e.g. a follower without a return spring or load, "
-                                 "or a shaft without bearings or drive); unconstrained: ",
-                                 unconstrained_dofs(dq));
-            }
-            q -= dq;
-            // A very stiff contact (1e13 N/m) turns the rounding of its gap into newtons above the
-            // load's 1e-12: a step at the rounding level of the position is as converged as it gets.
-            if (dq.cwiseAbs().maxCoeff() <= 1e-14 * (q.cwiseAbs().maxCoeff() + 1e-3)) return q;
-        }
-        throw ConvergenceError(detail::concat("static equilibrium at theta = ", radians_to_degrees(theta),
-                                              " deg did not converge in 200 Newton iterations"));
-    }
+    Vector static_equilibrium(double theta) const;
 
     // Tangent stiffness K + sum k_i g_i g_i^T at rest at camshaft angle theta and displacement q
     // (for modal analysis about a static equilibrium).
-    Matrix tangent_stiffness(double theta, const Vector& q) const {
-        const Workspace w = workspace_at(theta);
-        Vector r(n_);
-        Matrix Kt(n_, n_);
-        static_residual(w, q, r, Kt);
-        return Kt;
-    }
+    Matrix tangent_stiffness(double theta, const Vector& q) const;
 
 private:
     // A workspace with the time-only terms prepared at camshaft angle theta (static analyses).
-    Workspace workspace_at(double theta) const {
-        Workspace w = workspace();
-        prepare(theta / spec_.camshaft_speed, w);
-        return w;
-    }
+    Workspace workspace_at(double theta) const;
 
     // r = K q + sum F_i(delta_i, 0) g_i - p and its Jacobian.
-    void static_residual(const Workspace& w, const Vector& q, Vector& r, Matrix& Kt) const {
-        r.noalias() = K_ * q - load_;
-        Kt = K_;
-        elements_.for_each(w.states, [&](const auto& e, auto& s) { e.add_static(w.t, q, s, r, Kt); });
-    }
+    void static_residual(const Workspace& w, const Vector& q, Vector& r, Matrix& Kt) const;
 
     // d q_static / dt at (theta, q): Kt dq/dt = -(d r / dt at fixed q), the time-only terms' rates.
-    Vector quasi_static_velocity(double theta, const Vector& q) const {
-        const Workspace w = workspace_at(theta);
-        Vector r(n_);
-        Matrix Kt(n_, n_);
-        static_residual(w, q, r, Kt);
-        Vector rate = Vector::Zero(n_);
-        elements_.for_each(w.states, [&](const auto& e, const auto& s) { e.add_quasi_static_rate(s, q, rate); });
-        if (rate.isZero(0.0)) return Vector::Zero(n_);
-        Vector dq(n_);
-        if (!solve_static(Kt, rate, dq)) return Vector::Zero(n_);  // not held statically: start at rest
-        return -dq;
-    }
+    Vector quasi_static_velocity(double theta, const Vector& q) const;
 
     // Writes a dense LowRank's columns through the column-sink interface of tangent_columns().
     struct DenseColumns {
@@ -317,64 +186,13 @@ private:
     // x = A^-1 b for a static analysis: dense full-pivoting LU up to dense_static_limit DOFs, sparse LU
     // above. False when A is singular; x is then the direction that is not held (a null vector).
     static constexpr int dense_static_limit = 200;
-    bool solve_static(const Matrix& A, const Vector& b, Vector& x) const {
-        if (n_ <= dense_static_limit) {
-            const Eigen::FullPivLU<Matrix> lu(A);
-            if (lu.isInvertible()) return x = lu.solve(b), true;
-            const auto kernel = lu.kernel();
-            x = kernel.col(0);
-            return false;
-        }
-        const Eigen::SparseMatrix<double> S = A.sparseView();
-        Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
-        lu.compute(S);
-        if (lu.info() == Eigen::Success) {
-            x = lu.solve(b);
-            // A rigid-body mode that rounding hides from the pivots shows as a displacement no machine
-            // has (the solution is then that mode, amplified).
-            if (x.allFinite() && x.cwiseAbs().maxCoeff() < 1e3) return true;
-            if (!x.allFinite()) x = Vector::Ones(n_);
-            return false;
-        }
-        x = Vector::Ones(n_);  // the factorization does not say which DOFs: name none in particular
-        return false;
-    }
+    bool solve_static(const Matrix& A, const Vector& b, Vector& x) const;
     // The DOFs that dominate a direction not held in place (at least a tenth of its largest entry).
-    std::string unconstrained_dofs(const Vector& direction) const {
-        const double largest = direction.cwiseAbs().maxCoeff();
-        std::string out;
-        int listed = 0;
-        for (int i = 0; i < n_; ++i)
-            if (std::abs(direction[i]) >= 0.1 * largest) {
-                if (++listed > 12) {
-                    out += ", ...";
-                    break;
-                }
-                out += (out.empty() ? "" : ", ") + spec_.structure.dofs()[std::size_t(i)].name;
-            }
-        return out;
-    }
+    std::string unconstrained_dofs(const Vector& direction) const;
 
-    Matrix dense(const NetworkSpec::Triplets& t) const {
-        Matrix A = Matrix::Zero(n_, n_);
-        for (const auto& e : t) A(e.row(), e.col()) += e.value();
-        return A;
-    }
+    Matrix dense(const NetworkSpec::Triplets& t) const;
 
-    void add_modal_damping(const std::vector<double>& ratios) {
-        if (ratios.size() != 1 && int(ratios.size()) != n_)
-            detail::fail("modal damping: give one ratio or one per mode (", n_, "), got ", ratios.size());
-        const Matrix Kt = tangent_stiffness(0.0, initial_);
-        const Eigen::GeneralizedSelfAdjointEigenSolver<Matrix> eig(Kt, M_);
-        if (eig.info() != Eigen::Success) detail::fail("modal damping: the eigen solver did not converge");
-        Vector d(n_);
-        for (int i = 0; i < n_; ++i) {
-            const double zeta = ratios.size() == 1 ? ratios[0] : ratios[std::size_t(i)];
-            d[i] = 2.0 * zeta * std::sqrt(std::max(eig.eigenvalues()[i], 0.0));
-        }
-        const Matrix MPhi = M_ * eig.eigenvectors();
-        C_ += MPhi * d.asDiagonal() * MPhi.transpose();
-    }
+    void add_modal_damping(const std::vector<double>& ratios);
 
     MechanismBuilder spec_;
     int n_ = 0;
@@ -385,5 +203,239 @@ private:
     int max_rank_ = 0;
     std::vector<std::string> warnings_;
 };
+
+// Out of the class body: with camfollower::precompiled these are compiled once, for Mechanism<> and
+// the paper preset (camfollower/precompiled.hpp), not in every unit that builds a mechanism.
+
+template <int N>
+Mechanism<N>::Mechanism(MechanismBuilder description) : spec_(std::move(description)) {
+    const NetworkSpec& net = spec_.structure;
+    n_ = net.size();
+    if (n_ == 0) detail::fail("a mechanism needs at least one DOF");
+    if (n_ > max_dofs)
+        detail::fail("the mechanism has ", n_, " DOFs, more than the ", max_dofs,
+                     " a Mechanism assembles (dense n x n "
+                     "matrices: ",
+                     24.0 * double(n_) * double(n_) / 1e9,
+                     " GB for M, C and K alone); coarsen the shafts' "
+                     "meshes (max_element_length) or split the model");
+    if (N != Eigen::Dynamic && n_ != N) detail::fail("Mechanism<", N, "> built from a description with ", n_, " DOFs");
+    detail::require_camshaft_speed(spec_.camshaft_speed, "camshaft_speed");
+    NetworkSpec::Triplets tm, tc, tk;
+    net.assemble(tm, tc, tk);
+    M_ = dense(tm), C_ = dense(tc), K_ = dense(tk);
+    const Eigen::VectorXd p = net.constant_load();
+    load_ = p;
+    elements_ = MechanismElements::build(spec_, net, spec_.camshaft_speed);
+    elements_.for_each([&](const auto& e) { max_rank_ += e.max_rank(); });
+    if (net.rayleigh_alpha() != 0.0 || net.rayleigh_beta() != 0.0)
+        C_ += net.rayleigh_alpha() * M_ + net.rayleigh_beta() * K_;
+    initial_ = static_equilibrium(0.0);
+    if (!net.modal_ratios().empty()) add_modal_damping(net.modal_ratios());
+    M_sparse_ = M_.sparseView(), C_sparse_ = C_.sparseView(), K_sparse_ = K_.sparseView();
+    initial_velocity_ = quasi_static_velocity(0.0, initial_);
+    for (const ContactPair& c : contacts()) {
+        const double amplitude = c.paper_force_amplitude();
+        if (amplitude == 0.0) continue;
+        const double held = static_contact_force(0.0, initial_, contact_index(c.name()));
+        if (amplitude > held)
+            warnings_.push_back(detail::concat("contact '", c.name(),
+                                               "': the paper's literal eccentricity force K_h epsilon = ", amplitude,
+                                               " N exceeds the static contact force ", held,
+                                               " N (what the return spring's preload holds): "
+                                               "the formulation, not the defect, would open the contact"));
+    }
+}
+
+template <int N>
+auto Mechanism<N>::workspace() const -> Workspace {
+    Workspace w;
+    w.states = elements_.states();
+    return w;
+}
+
+template <int N>
+auto Mechanism<N>::tangent_pattern() const -> std::vector<std::vector<int>> {
+    std::vector<std::vector<int>> groups;
+    elements_.for_each([&](const auto& e) { groups.push_back(e.tangent_dofs()); });
+    return groups;
+}
+
+template <int N>
+auto Mechanism<N>::dof_names() const -> std::vector<std::string> {
+    std::vector<std::string> names;
+    for (const DofSpec& d : spec_.structure.dofs()) names.push_back(d.name);
+    return names;
+}
+
+template <int N>
+auto Mechanism<N>::channel_names() const -> std::vector<std::string> {
+    std::vector<std::string> names{"theta"};
+    elements_.for_each([&](const auto& e) { e.add_channel_names(names); });
+    return names;
+}
+
+template <int N>
+auto Mechanism<N>::event_names() const -> std::vector<std::string> {
+    std::vector<std::string> names;
+    elements_.for_each([&](const auto& e) { e.add_event_names(names); });
+    return names;
+}
+
+template <int N>
+auto Mechanism<N>::contact_index(const std::string& name) const -> std::size_t {
+    for (std::size_t i = 0; i < contacts().size(); ++i)
+        if (contacts()[i].name() == name) return i;
+    detail::fail("no contact named '", name, "'");
+}
+
+template <int N>
+auto Mechanism<N>::static_contact_force(double theta, const Vector& q, std::size_t i) const -> double {
+    const Workspace w = workspace_at(theta);
+    return contacts().at(i).static_force(w.t, q, w.template of<ContactElement>()[i]);
+}
+
+template <int N>
+auto Mechanism<N>::static_equilibrium(double theta) const -> Vector {
+    detail::require_finite(theta, "theta");
+    const Workspace w = workspace_at(theta);
+    Vector q = Vector::Zero(n_), dq(n_);
+    // The contact-free deflection as the start, unless the structure alone barely holds the
+    // loads (a displacement no machine has): then from zero.
+    if (solve_static(K_, load_, dq) && dq.cwiseAbs().maxCoeff() < 1e3) q = dq;
+    const double scale = load_.cwiseAbs().maxCoeff() + 1.0;
+    const double norm_K = K_.cwiseAbs().rowwise().sum().maxCoeff();
+    Vector r(n_);
+    Matrix Kt(n_, n_);
+    for (int it = 0; it < 200; ++it) {
+        static_residual(w, q, r, Kt);
+        // 1e-12 of the load, or the rounding floor of K q when the lift makes q large.
+        const double tolerance =
+            std::max(1e-12 * scale, 64.0 * std::numeric_limits<double>::epsilon() * norm_K * q.cwiseAbs().maxCoeff());
+        if (r.cwiseAbs().maxCoeff() <= tolerance) return q;
+        // A follower held only by its contact (gravity or a load, no spring) starts with the
+        // contact just touching, where the law has no stiffness: take the step as if every
+        // contact were closed (the active-set guess), with the law's stiffness at 1 um, and every
+        // free clearance seated on the wall its load pushes it to.
+        // A step no machine makes (> 1 km) means the tangent barely holds: an open contact with
+        // a spring far too soft for its preload; treat it as singular.
+        const auto plausible = [&] { return dq.allFinite() && dq.cwiseAbs().maxCoeff() < 1e3; };
+        if (!solve_static(Kt, r, dq) || !plausible()) {
+            elements_.for_each(w.states, [&](const auto& e, const auto& s) { e.add_active_set_guess(s, q, r, Kt); });
+            if (!solve_static(Kt, r, dq) || !plausible())
+                detail::fail("static equilibrium at theta = ", radians_to_degrees(theta),
+                             " deg: the structure with its active contacts is not held in place (a DOF with no "
+                             "spring to ground and no contact, e.g. a follower without a return spring or load, "
+                             "or a shaft without bearings or drive); unconstrained: ",
+                             unconstrained_dofs(dq));
+        }
+        q -= dq;
+        // A very stiff contact (1e13 N/m) turns the rounding of its gap into newtons above the
+        // load's 1e-12: a step at the rounding level of the position is as converged as it gets.
+        if (dq.cwiseAbs().maxCoeff() <= 1e-14 * (q.cwiseAbs().maxCoeff() + 1e-3)) return q;
+    }
+    throw ConvergenceError(detail::concat("static equilibrium at theta = ", radians_to_degrees(theta),
+                                          " deg did not converge in 200 Newton iterations"));
+}
+
+template <int N>
+auto Mechanism<N>::tangent_stiffness(double theta, const Vector& q) const -> Matrix {
+    const Workspace w = workspace_at(theta);
+    Vector r(n_);
+    Matrix Kt(n_, n_);
+    static_residual(w, q, r, Kt);
+    return Kt;
+}
+
+template <int N>
+auto Mechanism<N>::workspace_at(double theta) const -> Workspace {
+    Workspace w = workspace();
+    prepare(theta / spec_.camshaft_speed, w);
+    return w;
+}
+
+template <int N>
+auto Mechanism<N>::static_residual(const Workspace& w, const Vector& q, Vector& r, Matrix& Kt) const -> void {
+    r.noalias() = K_ * q - load_;
+    Kt = K_;
+    elements_.for_each(w.states, [&](const auto& e, auto& s) { e.add_static(w.t, q, s, r, Kt); });
+}
+
+template <int N>
+auto Mechanism<N>::quasi_static_velocity(double theta, const Vector& q) const -> Vector {
+    const Workspace w = workspace_at(theta);
+    Vector r(n_);
+    Matrix Kt(n_, n_);
+    static_residual(w, q, r, Kt);
+    Vector rate = Vector::Zero(n_);
+    elements_.for_each(w.states, [&](const auto& e, const auto& s) { e.add_quasi_static_rate(s, q, rate); });
+    if (rate.isZero(0.0)) return Vector::Zero(n_);
+    Vector dq(n_);
+    if (!solve_static(Kt, rate, dq)) return Vector::Zero(n_);  // not held statically: start at rest
+    return -dq;
+}
+
+template <int N>
+auto Mechanism<N>::solve_static(const Matrix& A, const Vector& b, Vector& x) const -> bool {
+    if (n_ <= dense_static_limit) {
+        const Eigen::FullPivLU<Matrix> lu(A);
+        if (lu.isInvertible()) return x = lu.solve(b), true;
+        const auto kernel = lu.kernel();
+        x = kernel.col(0);
+        return false;
+    }
+    const Eigen::SparseMatrix<double> S = A.sparseView();
+    Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
+    lu.compute(S);
+    if (lu.info() == Eigen::Success) {
+        x = lu.solve(b);
+        // A rigid-body mode that rounding hides from the pivots shows as a displacement no machine
+        // has (the solution is then that mode, amplified).
+        if (x.allFinite() && x.cwiseAbs().maxCoeff() < 1e3) return true;
+        if (!x.allFinite()) x = Vector::Ones(n_);
+        return false;
+    }
+    x = Vector::Ones(n_);  // the factorization does not say which DOFs: name none in particular
+    return false;
+}
+
+template <int N>
+auto Mechanism<N>::unconstrained_dofs(const Vector& direction) const -> std::string {
+    const double largest = direction.cwiseAbs().maxCoeff();
+    std::string out;
+    int listed = 0;
+    for (int i = 0; i < n_; ++i)
+        if (std::abs(direction[i]) >= 0.1 * largest) {
+            if (++listed > 12) {
+                out += ", ...";
+                break;
+            }
+            out += (out.empty() ? "" : ", ") + spec_.structure.dofs()[std::size_t(i)].name;
+        }
+    return out;
+}
+
+template <int N>
+auto Mechanism<N>::dense(const NetworkSpec::Triplets& t) const -> Matrix {
+    Matrix A = Matrix::Zero(n_, n_);
+    for (const auto& e : t) A(e.row(), e.col()) += e.value();
+    return A;
+}
+
+template <int N>
+auto Mechanism<N>::add_modal_damping(const std::vector<double>& ratios) -> void {
+    if (ratios.size() != 1 && int(ratios.size()) != n_)
+        detail::fail("modal damping: give one ratio or one per mode (", n_, "), got ", ratios.size());
+    const Matrix Kt = tangent_stiffness(0.0, initial_);
+    const Eigen::GeneralizedSelfAdjointEigenSolver<Matrix> eig(Kt, M_);
+    if (eig.info() != Eigen::Success) detail::fail("modal damping: the eigen solver did not converge");
+    Vector d(n_);
+    for (int i = 0; i < n_; ++i) {
+        const double zeta = ratios.size() == 1 ? ratios[0] : ratios[std::size_t(i)];
+        d[i] = 2.0 * zeta * std::sqrt(std::max(eig.eigenvalues()[i], 0.0));
+    }
+    const Matrix MPhi = M_ * eig.eigenvectors();
+    C_ += MPhi * d.asDiagonal() * MPhi.transpose();
+}
 
 }  // namespace camfollower
