@@ -79,6 +79,8 @@ int kinematics(const std::string& config, double rpm) {
     const double omega = rpm * cf::two_pi / 60.0;
     const auto deg = cf::radians_to_degrees;
     std::printf("%s at %.6g rpm\n", c.origin.c_str(), rpm);
+    const cf::config::ForceClosure closure = cf::config::check_force_closure(c.mechanism, rpm);
+    std::size_t index = 0;
     for (const cf::ContactPairSpec& p : c.mechanism.contacts) {
         std::printf("contact '%s': %s follower\n", p.name.c_str(), cf::follower_type_name(p.follower));
         std::visit(
@@ -104,6 +106,20 @@ int kinematics(const std::string& config, double rpm) {
                     translating ? "m/s" : "rad/s", deg(vel.x));
         std::printf("  max |follower acceleration| (rigid): %.6g %s at theta = %.3f deg\n", omega * omega * acc.value,
                     translating ? "m/s^2" : "rad/s^2", deg(acc.x));
+        // A grooved cam: where the rigid check puts the roller on the outer flank (as Python prints it).
+        const cf::config::ContactClosure& k = closure.contacts.at(index++);
+        if (p.groove) {
+            std::string over;
+            char span[64];
+            for (const auto& [from, to] : k.outer_flank) {
+                std::snprintf(span, sizeof span, "%s%.1f-%.1f", over.empty() ? "" : ", ", deg(from), deg(to));
+                over += span;
+            }
+            std::printf(
+                "  groove clearance %.6g mm: outer flank carries the roller (rigid) over %s deg, %d flank "
+                "changes per revolution\n",
+                1e3 * p.groove->clearance, over.empty() ? "no" : over.c_str(), k.flank_changes);
+        }
     }
     return 0;
 }

@@ -24,6 +24,7 @@ __all__ = [
     "phase_statistics",
     "contact_loss_intervals",
     "find_peaks",
+    "groove_statistics",
 ]
 
 
@@ -282,4 +283,64 @@ def clearance_statistics(result, name: str, period: float) -> dict:
         "wall_changes_per_revolution": float(wall_changes / revolutions),
         "peak_seat_force_N": float(force.max()),
         "mean_seat_force_N": float(force.mean()),
+    }
+
+
+def groove_statistics(result, contact: str, period: float) -> dict:
+    """What the roller of a grooved cam did over a run, per revolution of ``period`` (s).
+
+    From the run's located events on ``<contact>.contact`` (inner flank) and ``<contact>.outer_contact``
+    (outer flank), exact to the stepper's event location whatever the output interval: ``strikes``, a
+    list of ``(time in s, "inner" | "outer", impact velocity in m/s)`` for every flank the roller meets
+    after a flight (velocities from the ``<contact>.penetration_rate`` channel interpolated at the event:
+    record finely, e.g. every step, for accurate velocities); ``impacts_per_revolution`` (all strikes,
+    re-strikes after a bounce included); ``flank_changes_per_revolution`` (strikes on the other flank
+    than the one last touched); ``free_flight_time_per_revolution_s`` (touching neither flank);
+    ``max_impact_velocity_m_s``; ``peak_inner_force_N`` and ``peak_outer_force_N`` (recorded rows)."""
+    period = _real(period, "period", "s", positive=True)
+    channels = result.channels
+    for suffix in ("in_contact", "outer_in_contact", "penetration_rate"):
+        if f"{contact}.{suffix}" not in channels:
+            grooved = sorted({c.rsplit(".", 1)[0] for c in channels if c.endswith(".outer_in_contact")})
+            raise ValueError(f"'{contact}' is not a grooved contact of this run; its grooved contacts: {grooved}")
+    t = np.asarray(result["t"], dtype=float)
+    if t.size < 2:
+        raise ValueError(f"groove '{contact}': need at least two recorded rows, got {t.size}")
+    rate = np.asarray(result[f"{contact}.penetration_rate"], dtype=float)
+    dt = float(t[1] - t[0])
+    t_end = float(t[-1])
+    revolutions = (t_end - t[0] + dt) / period
+    touching = {
+        "inner": bool(result[f"{contact}.in_contact"][0]),
+        "outer": bool(result[f"{contact}.outer_in_contact"][0]),
+    }
+    flank_of = {f"{contact}.contact": "inner", f"{contact}.outer_contact": "outer"}
+    last = "inner" if touching["inner"] else "outer" if touching["outer"] else None
+    strikes, changes, free, since = [], 0, 0.0, float(t[0])
+    for event in result.events:
+        flank = flank_of.get(event.name)
+        if flank is None or event.time > t_end:
+            continue
+        free_before = not (touching["inner"] or touching["outer"])
+        if free_before:
+            free += event.time - since
+        touching[flank] = event.kind == "made"
+        if not (touching["inner"] or touching["outer"]):
+            since = event.time
+        if event.kind != "made":
+            continue
+        velocity = float(np.interp(event.time, t, rate)) * (1.0 if flank == "inner" else -1.0)
+        strikes.append((float(event.time), flank, velocity))
+        changes += last is not None and flank != last
+        last = flank
+    if not (touching["inner"] or touching["outer"]):
+        free += t_end - since
+    return {
+        "strikes": strikes,
+        "impacts_per_revolution": len(strikes) / revolutions,
+        "flank_changes_per_revolution": changes / revolutions,
+        "free_flight_time_per_revolution_s": free / revolutions,
+        "max_impact_velocity_m_s": max((v for _, _, v in strikes), default=0.0),
+        "peak_inner_force_N": float(np.max(result[f"{contact}.force"])),
+        "peak_outer_force_N": float(np.max(result[f"{contact}.outer_force"])),
     }

@@ -37,7 +37,7 @@ from pathlib import Path
 import numpy as np
 
 from . import _files, _text
-from .config import ForceClosureWarning, load_config
+from .config import ForceClosureWarning, force_closure, load_config
 from .executors import _check_scheduler
 from .response import STUDY_ACCURACY
 from .speed import _MAX_RPM, _MIN_RPM
@@ -338,7 +338,8 @@ def kinematics(config, rpm=None) -> list:
     omega = rpm * 2 * math.pi / 60.0
     print(f"{_origin(case)} at {rpm:.6g} rpm")
     rows = []
-    for c in case.builder.contacts:
+    closure = force_closure(case.builder, rpm)["contacts"]
+    for c, closed in zip(case.builder.contacts, closure):
         follower, program = c["follower"], c["program"]
         translating = type(follower).__name__.startswith("Translating")
         alpha_at, alpha = follower.max_pressure_angle(program)
@@ -381,6 +382,15 @@ def kinematics(config, rpm=None) -> list:
             f"  max |follower acceleration| (rigid): {row['max_abs_acceleration']:.6g} {rate}^2 at theta = "
             f"{row['acceleration_at_deg']:.3f} deg"
         )
+        if c["groove"] is not None:  # where the rigid check puts the roller on the outer flank (as C++ prints it)
+            row["groove_clearance"] = c["groove"].clearance
+            row["outer_flank_deg"] = closed["outer_flank_deg"]
+            row["flank_changes"] = closed["flank_changes"]
+            over = ", ".join(f"{a:.1f}-{b:.1f}" for a, b in closed["outer_flank_deg"]) or "no"
+            print(
+                f"  groove clearance {1e3 * c['groove'].clearance:.6g} mm: outer flank carries the roller (rigid) "
+                f"over {over} deg, {closed['flank_changes']} flank changes per revolution"
+            )
     return rows
 
 

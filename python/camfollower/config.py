@@ -52,7 +52,10 @@ def force_closure(mechanism, rpm: Optional[float] = None) -> Dict[str, Any]:
     smallest contact force at rest), ``static_open_deg`` (cam-angle intervals where it is <= 0),
     ``rigid_min_force_N``, ``rigid_min_angle_deg`` and ``rigid_loss_deg`` (the rigid check at `rpm`),
     ``rigid_limit_rpm`` (the lowest speed at which the rigid check loses the contact; 0 when nothing
-    presses it at rest, ``inf`` when no speed does). Angles are each contact's cam angle in degrees.
+    presses it at rest, ``inf`` when no speed does), and for a grooved cam (form-closed, never warned
+    about) ``grooved``, ``outer_flank_deg`` (cam-angle intervals where the rigid check puts the roller on
+    the outer flank) and ``flank_changes`` (how often per revolution the load changes flank). Angles are
+    each contact's cam angle in degrees.
     """
     if isinstance(mechanism, Config):
         mechanism = mechanism.builder

@@ -304,6 +304,9 @@ py::dict force_closure(const MechanismBuilder& b, double rpm) {
         d["rigid_min_angle_deg"] = deg(c.rigid_min_angle);
         d["rigid_loss_deg"] = intervals(c.rigid_loss);
         d["rigid_limit_rpm"] = c.rigid_limit_rpm;
+        d["grooved"] = c.grooved;
+        d["outer_flank_deg"] = intervals(c.outer_flank);
+        d["flank_changes"] = c.flank_changes;
         contacts.append(d);
     }
     py::dict out;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Bindings for the open mechanism core: follower types, the mechanism builder, the immutable
 // Mechanism (fixed-size Eigen up to 8 DOFs, dynamic above), the paper preset. Everything pickles.
+#include <limits>
 #include <optional>
 #include <variant>
 
@@ -191,7 +192,8 @@ py::dict builder_state(const MechanismBuilder& b) {
             py::arg("follower_dof") = c.follower_dof, py::arg("lateral") = c.lateral,
             py::arg("eccentricity") = c.eccentricity, py::arg("cam_twist") = c.cam_twist,
             py::arg("paper_backlash") = py::make_tuple(c.paper_backlash.backlash, c.paper_backlash.switch_width,
-                                                       c.paper_backlash.guide_dof, c.paper_backlash.guide_stiffness)));
+                                                       c.paper_backlash.guide_dof, c.paper_backlash.guide_stiffness),
+            py::arg("groove") = c.groove ? py::cast(*c.groove) : py::none()));
     py::list clearances;
     for (const ClearanceSpec& c : b.clearances)
         clearances.append(py::dict(py::arg("name") = c.name, py::arg("gap") = c.gap, py::arg("clearance") = c.clearance,
@@ -261,6 +263,7 @@ MechanismBuilder builder_from(const py::dict& t) {
             spec.paper_backlash = {pb[0].cast<double>(), pb[1].cast<double>(), pb[2].cast<std::string>(),
                                    pb[3].cast<double>()};
         }
+        if (c.contains("groove") && !c["groove"].is_none()) spec.groove = c["groove"].cast<Groove>();
         b.add_contact(spec);
     }
     if (t.contains("clearances"))
@@ -414,6 +417,50 @@ void bind_mechanism(py::module_& m) {
                                   ")");
         });
 
+    py::class_<Groove>(
+        m, "Groove",
+        "A face groove (form closure) for a roller contact: the roller runs between the cam's inner flank (the\n"
+        "contact's own surface) and an outer flank, the pitch curve's parallel at roller radius + clearance.\n"
+        "clearance (m): groove width minus the roller's diameter, in (0, roller radius). The outer flank's Hertz\n"
+        "law F = stiffness delta^exponent (1 + damping_factor delta'): the contact's own when stiffness is None\n"
+        "(the outer flank is concave towards the roller: for the same material its stiffness is higher).")
+        .def(py::init(
+                 [](double clearance, const std::optional<double>& stiffness, double exponent, double damping_factor) {
+                     Groove g{clearance, std::nullopt};
+                     if (stiffness) g.law = HertzContact{*stiffness, exponent, damping_factor};
+                     else if (exponent != 1.0 || damping_factor != 0.0)
+                         detail::fail(
+                             "Groove: exponent and damping_factor belong to the outer flank's own law; give its "
+                             "stiffness too (or none of them to use the contact's law)");
+                     // The clearance against the roller is checked where the contact is built.
+                     g.validate("Groove:", std::numeric_limits<double>::infinity());
+                     return g;
+                 }),
+             py::arg("clearance"), py::kw_only(), py::arg("stiffness") = py::none(), py::arg("exponent") = 1.0,
+             py::arg("damping_factor") = 0.0)
+        .def_readonly("clearance", &Groove::clearance, "m")
+        .def_property_readonly(
+            "stiffness", [](const Groove& g) { return g.law ? py::cast(g.law->stiffness) : py::none(); },
+            "the outer flank's N/m^n, or None (the contact's law)")
+        .def_property_readonly("exponent", [](const Groove& g) { return g.law ? g.law->exponent : 1.0; })
+        .def_property_readonly("damping_factor", [](const Groove& g) { return g.law ? g.law->damping_factor : 0.0; })
+        .def(py::pickle(
+            [](const Groove& g) {
+                return py::make_tuple(g.clearance, g.law ? py::cast(g.law->stiffness) : py::none(),
+                                      g.law ? g.law->exponent : 1.0, g.law ? g.law->damping_factor : 0.0);
+            },
+            [](const py::tuple& t) {
+                Groove g{t[0].cast<double>(), std::nullopt};
+                if (!t[1].is_none())
+                    g.law = HertzContact{t[1].cast<double>(), t[2].cast<double>(), t[3].cast<double>()};
+                return g;
+            }))
+        .def("__repr__", [](const Groove& g) {
+            if (!g.law) return detail::concat("Groove(clearance=", g.clearance, ")");
+            return detail::concat("Groove(clearance=", g.clearance, ", stiffness=", g.law->stiffness,
+                                  ", exponent=", g.law->exponent, ", damping_factor=", g.law->damping_factor, ")");
+        });
+
     py::class_<MechanismBuilder> builder(
         m, "MechanismBuilder",
         "Describe a cam mechanism: DOFs with masses, springs and dampers between DOFs or to 'ground', loads,\n"
@@ -442,21 +489,34 @@ void bind_mechanism(py::module_& m) {
             [](MechanismBuilder& b, const std::string& name, const MotionProgram& program, const py::object& follower,
                const std::string& follower_dof, double stiffness, double exponent, double damping_factor, double phase,
                const std::string& cam_x, const std::string& cam_y, const std::string& lateral,
-               const std::optional<CamEccentricity>& eccentricity, const std::string& cam_twist) {
-                b.add_contact({name, program, follower_from(follower),
-                               HertzContact{stiffness, exponent, damping_factor}, phase, cam_x, cam_y, follower_dof,
-                               lateral, eccentricity.value_or(CamEccentricity{}), cam_twist});
+               const std::optional<CamEccentricity>& eccentricity, const std::string& cam_twist,
+               const std::optional<Groove>& groove) {
+                ContactPairSpec spec{name,
+                                     program,
+                                     follower_from(follower),
+                                     HertzContact{stiffness, exponent, damping_factor},
+                                     phase,
+                                     cam_x,
+                                     cam_y,
+                                     follower_dof,
+                                     lateral,
+                                     eccentricity.value_or(CamEccentricity{}),
+                                     cam_twist};
+                spec.groove = groove;
+                b.add_contact(spec);
             },
             py::arg("name"), py::arg("program"), py::arg("follower"), py::kw_only(), py::arg("follower_dof"),
             py::arg("stiffness"), py::arg("exponent") = 1.0, py::arg("damping_factor") = 0.0, py::arg("phase") = 0.0,
             py::arg("cam_x") = ground_name, py::arg("cam_y") = ground_name, py::arg("lateral") = ground_name,
-            py::arg("eccentricity") = py::none(), py::arg("cam_twist") = ground_name,
+            py::arg("eccentricity") = py::none(), py::arg("cam_twist") = ground_name, py::arg("groove") = py::none(),
             "A cam-follower contact pair: the cam's lift program (m, or rad for an oscillating follower), the "
             "follower\n"
             "type, the DOF of the follower's coordinate, a Hertz law F = k delta^n (1 + chi delta'), the cam's\n"
             "phase on the shaft (rad), the cam centre's DOFs, a translating follower's lateral DOF, an optional\n"
             "CamEccentricity, and the camshaft's twist DOF at the cam (rad; the cam angle is then omega t + phase +\n"
-            "twist, a state, and the contact's moment loads the twist: channel <name>.cam_torque).")
+            "twist, a state, and the contact's moment loads the twist: channel <name>.cam_torque), and an optional\n"
+            "Groove for a roller held between two flanks (channels <name>.penetration_rate, .outer_force,\n"
+            ".outer_penetration, .outer_in_contact; event <name>.outer_contact).")
         .def(
             "add_shaft",
             [](MechanismBuilder& b, const std::string& name, double length, double outer_diameter,
@@ -576,7 +636,7 @@ void bind_mechanism(py::module_& m) {
         {"contacts",
          "Cam-follower contacts, as dicts with add_contact's parameters (name, program, follower, "
          "stiffness, exponent, damping_factor, phase, cam_x, cam_y, follower_dof, lateral, eccentricity, "
-         "cam_twist) and paper_backlash (backlash, switch_width, guide_dof, guide_stiffness)."},
+         "cam_twist, groove) and paper_backlash (backlash, switch_width, guide_dof, guide_stiffness)."},
         {"clearances", "Clearances, as dicts with add_clearance's parameters."},
     };
     for (const auto& [key, doc] : parts) {

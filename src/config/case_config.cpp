@@ -603,6 +603,16 @@ void read_parts(const Section& root, const CaseConfig& c, const Dimensions& dims
             check_small_length(written(*e, "radius", p.eccentricity.radius), "the eccentricity radius", base_radius,
                                owner);
         }
+        if (const std::optional<Section> g = s.table("groove")) {
+            // A face groove's outer flank (contact/groove.hpp): its clearance, and its own contact law
+            // when any law key is given (the contact's otherwise).
+            Groove groove;
+            groove.clearance = g->quantity("clearance", "m");
+            if (g->has("stiffness") || g->has("exponent") || g->has("damping_factor") || g->has("roller_width"))
+                groove.law = read_law(*g);
+            g->finish({"clearance", "stiffness", "exponent", "damping_factor", "roller_width"});
+            p.groove = groove;
+        }
         const bool mounted = s.has("shaft");
         std::string shaft;
         double x = 0.0, width = 0.0, mass = 0.0, inertia = 0.0;
@@ -617,9 +627,9 @@ void read_parts(const Section& root, const CaseConfig& c, const Dimensions& dims
             for (const char* key : {"at", "width", "cam_mass", "cam_inertia"})
                 if (s.has(key)) s.fail(key, "belongs to a cam mounted on a shaft (give shaft = \"<name>\")");
         }
-        s.finish({"name", "program", "follower", "stiffness", "exponent", "damping_factor", "roller_width", "phase",
-                  "follower_dof", "cam_x", "cam_y", "lateral", "cam_twist", "eccentricity", "shaft", "at", "width",
-                  "cam_mass", "cam_inertia"});
+        s.finish({"name",   "program",      "follower", "stiffness", "exponent", "damping_factor", "roller_width",
+                  "phase",  "follower_dof", "cam_x",    "cam_y",     "lateral",  "cam_twist",      "eccentricity",
+                  "groove", "shaft",        "at",       "width",     "cam_mass", "cam_inertia"});
         if (mounted) located(s, [&] { b.mount_cam(p, shaft, x, width, mass, inertia); });
         else located(s, [&] { b.add_contact(p); });
     }

@@ -168,7 +168,11 @@ ForceClosure check(const Model& m, double rpm) {
         r.rigid_min_force = F[rmin], r.rigid_min_angle = std::fmod(double(rmin) * step + phase, two_pi);
         r.rigid_limit_rpm = limit * 30.0 / pi > max_rpm ? std::numeric_limits<double>::infinity() : limit * 30.0 / pi;
         const std::string who = "contact '" + detail::printable(r.contact) + "'";
-        if (std::find(open.begin(), open.end(), true) != open.end()) {
+        if (pair.grooved()) {
+            r.grooved = true;
+            r.outer_flank = runs(lost, step, phase);
+            for (std::size_t j = 0; j < count; ++j) r.flank_changes += lost[j] != lost[(j + 1) % count] ? 1 : 0;
+        } else if (std::find(open.begin(), open.end(), true) != open.end()) {
             r.static_open = runs(open, step, phase);
             out.warnings.push_back(detail::concat(
                 who, " is not force-closed: at rest its contact force is <= 0 (", newtons(r.static_min_force),

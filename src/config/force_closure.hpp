@@ -14,6 +14,8 @@
 //    Where it is < 0 the follower leaves the cam even without vibration. The dynamic response (the
 //    jump speed of camfollower.speed) loses contact at lower speeds still: this check finds the
 //    mechanisms that cannot work, it does not clear the others.
+//  A grooved cam holds its roller either way: the rigid check then says which flank carries it where
+//  (outer where F < 0) and how often the load changes flank.
 #pragma once
 
 #include <limits>
@@ -37,6 +39,12 @@ struct ContactClosure {
     // The lowest camshaft speed at which the rigid check loses this contact: 0 when it is not pressed at
     // rest, infinity when no speed the model takes loses it.
     double rigid_limit_rpm = std::numeric_limits<double>::infinity();
+    // A grooved cam (form-closed: no warnings): the cam-angle intervals (rad) where the rigid check's
+    // force is < 0, i.e. the outer flank carries the roller, and how often the load changes flank per
+    // revolution (at each change the roller crosses the groove clearance and strikes the other flank).
+    bool grooved = false;
+    std::vector<std::pair<double, double>> outer_flank;
+    int flank_changes = 0;
 };
 
 struct ForceClosure {

@@ -3,6 +3,7 @@
 // backlash against the closed forms of paper eqs 2-4 and 12-18 (the preset itself: paper_preset.test.cpp).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 #include "camfollower/camfollower.hpp"
@@ -206,6 +207,97 @@ TEST_CASE("every follower type: contact tangent and penetration rate against fin
             CHECK(penetration_rate_error(m, t, q0, v0) < 1e-6);
         }
     }
+}
+
+TEST_CASE("a grooved cam: the outer flank's penetration, tangent, statics and events") {
+    const MotionProgram lift = MotionProgram::paper_default(0.010), swing = MotionProgram::paper_default(0.2618);
+    const double clearance = 50e-6;
+    struct Case {
+        MechanismBuilder b;
+        double outward;  // a follower displacement that puts the roller 40 um into the outer flank at most
+    };
+    Case cases[] = {
+        {small_mechanism(TranslatingRoller(0.03, 0.008, 0.01), lift, true), 1.5 * clearance},
+        {small_mechanism(OscillatingRoller(0.03, 0.008, {0.06, 0.05}, 0.06), swing, false), 1.5 * clearance / 0.06}};
+    for (Case& k : cases) {
+        k.b.contacts[0].groove = Groove{clearance, HertzContact{3e11, 1.5, 0.4}};
+        const Mechanism<> m(k.b);
+        INFO("follower " << follower_type_name(k.b.contacts[0].follower));
+        const std::vector<std::string> events = m.event_names(), channels = m.channel_names();
+        CHECK(events == std::vector<std::string>{"cam.contact", "cam.outer_contact"});
+        CHECK(std::count(channels.begin(), channels.end(), "cam.outer_force") == 1);
+        const int s = m.dof_index("s");
+        Mechanism<>::Vector v0 = Mechanism<>::Vector::Zero(m.size());
+        for (int j = 0; j < m.size(); ++j) v0[j] = 0.01 * (j + 1) * (j % 2 ? -1 : 1);
+        for (double theta_deg : {10.0, 80.0, 150.0, 250.0}) {
+            INFO("theta = " << theta_deg << " deg");
+            const double t = degrees_to_radians(theta_deg) / m.omega();
+            Mechanism<>::Vector q = m.static_equilibrium(degrees_to_radians(theta_deg));
+            q[s] += k.outward;  // across the groove: off the inner flank, into the outer one
+            auto w = m.workspace();
+            m.prepare(t, w);
+            Mechanism<>::Vector f(m.size());
+            m.force(w, q, v0, f);
+            std::vector<double> g(events.size());
+            m.event_values(w, q, v0, g.data());
+            // Both flanks are parallel curves 2 r + c apart: delta_outer = -delta_inner - c.
+            const double inner = ContactPair::penetration(w.contact(0).terms, q);
+            CHECK(g[0] == inner);
+            CHECK(g[0] < 0.0);
+            CHECK(g[1] == Approx(-inner - clearance).epsilon(1e-12));
+            CHECK(g[1] > 0.0);
+            CHECK(tangent_error(m, t, q, v0) < 1e-5);
+        }
+    }
+    // At rest with a load pushing the follower away from the cam beyond its spring's preload, the outer
+    // flank carries it: the net contact force is negative, and balances spring and load along the lever.
+    MechanismBuilder b = small_mechanism(TranslatingRoller(0.03, 0.008, 0.0), lift, true);
+    b.contacts[0].groove = Groove{clearance, std::nullopt};
+    b.add_load("s", 500.0);
+    const Mechanism<> m(b);
+    const double theta = degrees_to_radians(100.0);
+    const Mechanism<>::Vector q = m.static_equilibrium(theta);
+    const double F = m.static_contact_force(theta, q, 0);
+    const FollowerMotion motion = lift.evaluate(theta + b.contacts[0].phase);  // the cam's angle
+    const double lever = std::cos(std::atan2(motion.dh, 0.038 + motion.h));    // zero offset: cos(alpha)
+    CHECK(F < 0.0);
+    CHECK(-F * lever == Approx(500.0 - (300.0 + 2e4 * q[m.dof_index("s")])).epsilon(1e-8));
+}
+
+TEST_CASE("a grooved cam refuses what cannot run in a groove and names the contact and the value") {
+    const auto with_groove = [](Follower f, double c) {
+        MechanismBuilder b;
+        b.add_dof("s", 0.2);
+        b.add_spring("k", "s", "ground", 1e4, 0.0, 100.0);
+        const bool arm = !is_translating(f);
+        ContactPairSpec spec{"cam",    MotionProgram::paper_default(arm ? 0.2 : 0.01),
+                             f,        HertzContact{},
+                             0.0,      "ground",
+                             "ground", "s",
+                             "ground", CamEccentricity{},
+                             "ground"};
+        spec.groove = Groove{c, std::nullopt};
+        b.add_contact(spec);
+        return Mechanism<>(b);
+    };
+    CHECK_THROWS_WITH(with_groove(TranslatingFlat(0.03, 0.0, 0.0), 50e-6),
+                      Catch::Contains("contact 'cam': a groove holds a roller; translating_flat has none"));
+    CHECK_THROWS_WITH(with_groove(OscillatingFlat(0.03, {0.06, 0.05}, 0.0), 50e-6),
+                      Catch::Contains("oscillating_flat has none"));
+    CHECK_THROWS_WITH(with_groove(TranslatingRoller(0.03, 0.008, 0.0), 0.0),
+                      Catch::Contains("contact 'cam' groove clearance must be finite and > 0"));
+    CHECK_THROWS_WITH(with_groove(TranslatingRoller(0.03, 0.008, 0.0), NAN), Catch::Contains("groove clearance"));
+    CHECK_THROWS_WITH(with_groove(TranslatingRoller(0.03, 0.008, 0.0), 0.05),
+                      Catch::Contains("groove clearance 0.05 m must be below the roller radius 0.008 m") &&
+                          Catch::Contains("did you mean mm?"));
+    CHECK_NOTHROW(with_groove(OscillatingRoller(0.03, 0.008, {0.06, 0.05}, 0.06), 50e-6));
+    // The outer flank folds where the pitch curve is concave tighter than roller + clearance.
+    const MotionProgram program = MotionProgram::paper_default(0.01);
+    const auto concave = [](double) { return -1.0 / 0.0085; };  // radius 8.5 mm everywhere
+    CHECK_THROWS_WITH(check_outer_flank(program, concave, 0.0081 + 0.0005, "contact 'cam'"),
+                      Catch::Contains("contact 'cam': the groove's outer flank undercuts") &&
+                          Catch::Contains("concave with radius 0.0085 m"));
+    CHECK_NOTHROW(check_outer_flank(program, concave, 0.0080, "contact 'cam'"));
 }
 
 TEST_CASE("two cams on one shaft: rank-two Woodbury update equals the dense LU, contacts tracked apart") {

@@ -20,12 +20,14 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <variant>
 #include <vector>
 
 #include "camfollower/contact/eccentricity.hpp"
+#include "camfollower/contact/groove.hpp"
 #include "camfollower/contact/hertz.hpp"
 #include "camfollower/contact/paper_backlash.hpp"
 #include "camfollower/core/ground.hpp"
@@ -75,6 +77,7 @@ struct ContactPairSpec {
     CamEccentricity eccentricity;      // none by default
     std::string cam_twist = "ground";  // the shaft's twist DOF at the cam (ground: a rigid camshaft)
     PaperBacklash paper_backlash{};    // off by default
+    std::optional<Groove> groove{};    // a face groove's outer flank (form closure); none: force-closed
 
     // The roles in the order of require_distinct_roles' messages (and ContactPair's indices).
     static constexpr int role_count = 6;
@@ -168,6 +171,7 @@ public:
         if (ecc.unbalance_mass > 0.0 && cam_x_ < 0 && cam_y_ < 0)
             detail::fail(who, ": an unbalance mass loads the cam centre, so cam_x or cam_y must be a DOF");
         check_paper_backlash(who);
+        if (spec_.groove) check_groove(who);
         // Where each role's coefficient goes in the sparse g (the guide's is zero: a load only).
         const int roles[ContactTerms::slots] = {cam_x_, cam_y_, lateral_, follower_, guide_};
         for (int r = 0; r < ContactTerms::slots; ++r) {
@@ -284,7 +288,38 @@ public:
         return spec_.law(penetration(c, q), penetration_rate(c, q, v));
     }
 
+    // A grooved cam's outer flank: its clearance and contact law (the inner flank's when not given).
+    bool grooved() const { return spec_.groove.has_value(); }
+    double groove_clearance() const { return spec_.groove ? spec_.groove->clearance : 0.0; }
+    const HertzContact& outer_law() const { return spec_.groove && spec_.groove->law ? *spec_.groove->law : spec_.law; }
+    // The outer flank's response: penetration -delta - c, rate -delta' (contact/groove.hpp).
+    ContactResponse outer_response(const ContactResponse& inner, double inner_rate) const {
+        return outer_law()(-inner.delta - groove_clearance(), -inner_rate);
+    }
+
 private:
+    // A groove holds a roller: the clearance below its radius, the outer flank free of undercut. The
+    // paper's literal backlash is the groove's clearance imposed as an offset: one or the other.
+    void check_groove(const std::string& who) const {
+        std::visit(
+            [&](const auto& f) {
+                using F = std::decay_t<decltype(f)>;
+                if constexpr (std::is_same_v<F, TranslatingRoller> || std::is_same_v<F, OscillatingRoller>) {
+                    spec_.groove->validate(who, f.roller_radius());
+                    const auto curvature = [&](double theta) {
+                        return f.pitch_curvature(spec_.program.evaluate(theta));
+                    };
+                    check_outer_flank(spec_.program, curvature, f.roller_radius() + spec_.groove->clearance, who);
+                } else {
+                    detail::fail(who, ": a groove holds a roller; ", F::type_name,
+                                 " has none (use TranslatingRoller or OscillatingRoller)");
+                }
+            },
+            spec_.follower);
+        if (spec_.paper_backlash.any())
+            detail::fail(who, ": the paper backlash and a groove both model the roller's clearance; use one");
+    }
+
     // The paper backlash: a translating roller on a rigid camshaft, its offset +- b inside the pitch
     // circle, alone or with the paper's eccentricity force (the exact eccentric geometry has its own
     // offset).

@@ -22,7 +22,7 @@
 //   double* observe(double t, const State&, q, v, double* out) const;
 //   void add_event_names(std::vector<std::string>&) const;    then event_values() writes as many
 //   double* event_values(const State&, double* g) const;      from the response add_force cached
-//   static constexpr int event_count;              how many names add_event_names adds
+//   int event_count() const;                       how many names add_event_names adds
 //   void event_located(State&, int which, double time, int direction) const;   a stepper located
 //                                                  its event `which` (0-based) at `time` (path memory
 //                                                  that records switching instants takes them here)
@@ -73,7 +73,7 @@ public:
     void event_located(States& states, int index, A... args) const {
         int first = 0;
         for_each(states, [&](const auto& e, auto& s) {
-            constexpr int count = std::decay_t<decltype(e)>::event_count;
+            const int count = e.event_count();
             if (index >= first && index < first + count) e.event_located(s, index - first, args...);
             first += count;
         });

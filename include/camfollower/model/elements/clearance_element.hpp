@@ -56,7 +56,7 @@ public:
         for (std::size_t j = 0; j < d.size(); ++j) sink.add(d[j], 0.0, mu * r.slip * r.side * a * c[j]);
     }
     void accepted(double, State&) const {}
-    static constexpr int event_count = 1;
+    int event_count() const { return 1; }
     void event_located(State&, int, double, int) const {}
 
     // <name>.force (wall force, N, >= 0), .side (-1, 0 free, +1), .gap (u, m), .friction (N, along

@@ -2,7 +2,9 @@
 // A cam-follower contact pair (contact/contact_pair.hpp) as an element of a Mechanism (the contract in
 // model/element_set.hpp): force, tangent, channels, events and statics of one unilateral Hertz
 // contact, on a rigid camshaft (time-only terms prepared once per step) or a twisting one (the cam
-// angle adds the shaft's twist, a state: the terms are re-evaluated at every force).
+// angle adds the shaft's twist, a state: the terms are re-evaluated at every force). A grooved cam
+// (contact/groove.hpp) adds its outer flank: a second unilateral contact on the same terms, pushing
+// the other way, with its own channels (<name>.outer_force, ...) and event (<name>.outer_contact).
 #pragma once
 
 #include <cmath>
@@ -22,7 +24,8 @@ public:
     struct State {
         ContactTerms terms;    // time-only terms (on a twisting camshaft, at the last force's q)
         ContactResponse last;  // of the last add_force, reused by add_tangent, events and accepted
-        bool started = false;  // accepted() has taken the initial side
+        ContactResponse outer{0.0, 0.0, 0.0, false, 0.0};  // a groove's outer flank, likewise
+        bool started = false;                              // accepted() has taken the initial side
         bool in_contact = true;
         double loss_start = 0.0;
         std::vector<std::pair<double, double>> losses;  // contact-loss intervals [start, end), s
@@ -50,8 +53,13 @@ public:
     void add_force(double t, const Vector& q, const Vector& v, State& s, Vector& f) const {
         ContactTerms& c = s.terms;
         if (twist() >= 0) twist_terms(t, q, v[twist()], c);
-        s.last = response(c, q, v);
-        const double F = s.last.force;
+        const double rate = penetration_rate(c, q, v);
+        s.last = spec().law(penetration(c, q), rate);
+        double F = s.last.force;
+        if (grooved()) {
+            s.outer = outer_response(s.last, rate);
+            F -= s.outer.force;
+        }
         if (c.loaded)
             for (int k = 0; k < c.count; ++k) f[c.dof[k]] -= c.p[k];
         if (F == 0.0) return;
@@ -61,9 +69,12 @@ public:
     template <class Vector, class Sink>
     void add_tangent(const State& s, const Vector& v, double cq, double cv, Sink& sink) const {
         const ContactTerms& c = s.terms;
-        const ContactResponse& r = s.last;
-        if (!r.in_contact || (r.stiffness == 0.0 && r.damping == 0.0)) return;
-        const double a = cq * r.stiffness + cv * r.damping, b = cq * r.damping;
+        // The outer flank's force -F_o g with delta_o = -delta - c has the inner one's tangent form.
+        double stiffness = s.last.in_contact ? s.last.stiffness : 0.0;
+        double damping = s.last.in_contact ? s.last.damping : 0.0;
+        if (s.outer.in_contact) stiffness += s.outer.stiffness, damping += s.outer.damping;
+        if (stiffness == 0.0 && damping == 0.0) return;
+        const double a = cq * stiffness + cv * damping, b = cq * damping;
         sink.start_column();
         for (int k = 0; k < c.count; ++k) sink.add(c.dof[k], c.g[k], a * c.g[k] + b * c.g_dot[k]);
         // d delta / d q_twist = moment arm; d delta' / d q_twist ~ g_theta . v (the arm's own rate
@@ -80,37 +91,56 @@ public:
         s.in_contact = s.last.in_contact;
         if (!s.in_contact) s.loss_start = t;
     }
-    static constexpr int event_count = 1;
-    void event_located(State& s, int, double time, int direction) const {
+    int event_count() const { return grooved() ? 2 : 1; }
+    void event_located(State& s, int which, double time, int direction) const {
+        if (which == 1) return;  // the outer flank: its instants are the run's events
         if (direction < 0 && s.in_contact) s.in_contact = false, s.loss_start = time;
         else if (direction > 0 && !s.in_contact) s.in_contact = true, s.losses.emplace_back(s.loss_start, time);
     }
 
     // <name>.force (N), .penetration (m), .stiffness (dF/d delta, N/m), .pressure_angle (rad),
     // .cam_angle (rad, with the shaft's twist), .in_contact (0/1); on a twisting camshaft also
-    // .cam_torque (N m: the contact's moment about the shaft axis against the cam's rotation).
+    // .cam_torque (N m: the contact's moment about the shaft axis against the cam's rotation); in a
+    // groove also the inner flank's .penetration_rate (m/s: at a flank's contact event, the impact
+    // velocity, with the outer flank's sign reversed) and the outer flank's .outer_force (N),
+    // .outer_penetration (m), .outer_in_contact (0/1).
     void add_channel_names(std::vector<std::string>& names) const {
         for (const char* s : {".force", ".penetration", ".stiffness", ".pressure_angle", ".cam_angle", ".in_contact"})
             names.push_back(name() + s);
         if (twist() >= 0) names.push_back(name() + ".cam_torque");
+        if (grooved())
+            for (const char* s : {".penetration_rate", ".outer_force", ".outer_penetration", ".outer_in_contact"})
+                names.push_back(name() + s);
     }
     template <class Vector>
     double* observe(double, const State& s, const Vector& q, const Vector& v, double* out) const {
         const ContactTerms& c = s.terms;
-        const ContactResponse r = response(c, q, v);
+        const double rate = penetration_rate(c, q, v);
+        const ContactResponse r = spec().law(penetration(c, q), rate);
         *out++ = r.force;
         *out++ = penetration(c, q);
         *out++ = r.stiffness;
         *out++ = std::atan2(c.sin_alpha, c.cos_alpha);
         *out++ = c.theta;
         *out++ = r.in_contact ? 1.0 : 0.0;
-        if (c.twist >= 0) *out++ = r.force * c.moment_arm;
+        const ContactResponse o = grooved() ? outer_response(r, rate) : ContactResponse{0.0, 0.0, 0.0, false, 0.0};
+        if (c.twist >= 0) *out++ = (r.force - o.force) * c.moment_arm;
+        if (grooved()) {
+            *out++ = rate;
+            *out++ = o.force;
+            *out++ = o.delta;
+            *out++ = o.in_contact ? 1.0 : 0.0;
+        }
         return out;
     }
-    // <name>.contact: the penetration (m), > 0 in contact.
-    void add_event_names(std::vector<std::string>& names) const { names.push_back(name() + ".contact"); }
+    // <name>.contact: the penetration (m), > 0 in contact; in a groove <name>.outer_contact likewise.
+    void add_event_names(std::vector<std::string>& names) const {
+        names.push_back(name() + ".contact");
+        if (grooved()) names.push_back(name() + ".outer_contact");
+    }
     double* event_values(const State& s, double* g) const {
         *g++ = s.last.delta;
+        if (grooved()) *g++ = s.outer.delta;
         return g;
     }
 
@@ -119,7 +149,7 @@ public:
     void add_static(double t, const Vector& q, State& s, Vector& r, Matrix& Kt) const {
         ContactTerms& c = s.terms;
         if (twist() >= 0) twist_terms(t, q, 0.0, c);
-        const ContactResponse f = spec().law(penetration(c, q), 0.0);
+        const Static f = at_rest(c, q);
         for (int a = 0; a < c.count; ++a) r[c.dof[a]] += f.force * c.g[a] - c.p[a];
         if (c.twist >= 0) r[c.twist] += f.force * c.moment_arm;
         for_each_gradient(c, [&](int a, double ga) {
@@ -139,7 +169,7 @@ public:
     template <class Vector>
     void add_quasi_static_rate(const State& s, const Vector& q, Vector& rate) const {
         const ContactTerms& c = s.terms;
-        const ContactResponse f = spec().law(penetration(c, q), 0.0);
+        const Static f = at_rest(c, q);
         double delta_rate = c.delta0_dot;  // d delta / dt at fixed q
         for (int a = 0; a < c.count; ++a) delta_rate += c.g_dot[a] * q[c.dof[a]];
         for (int a = 0; a < c.count; ++a)
@@ -149,11 +179,12 @@ public:
     }
 
     // --- queries ---
-    // The contact force at rest at time t and displacement q, N.
+    // The contact force at rest at time t and displacement q, N; in a groove the inner flank's less
+    // the outer's (< 0: the outer flank carries the roller).
     template <class Vector>
     double static_force(double t, const Vector& q, State& s) const {
         if (twist() >= 0) twist_terms(t, q, 0.0, s.terms);
-        return spec().law(penetration(s.terms, q), 0.0).force;
+        return at_rest(s.terms, q).force;
     }
     // The contact-loss intervals up to t_end (a loss still open at t_end ends there).
     static std::vector<std::pair<double, double>> losses_until(const State& s, double t_end) {
@@ -164,6 +195,18 @@ public:
 
 private:
     static std::string who(const Spec& c) { return "contact '" + c.name + "'"; }
+
+    // At rest (no penetration rate): the force along g (inner flank less outer) and d force / d delta.
+    struct Static {
+        double force, stiffness;
+    };
+    template <class Vector>
+    Static at_rest(const ContactTerms& c, const Vector& q) const {
+        const ContactResponse inner = spec().law(penetration(c, q), 0.0);
+        if (!grooved()) return {inner.force, inner.stiffness};
+        const ContactResponse outer = outer_response(inner, 0.0);
+        return {inner.force - outer.force, inner.stiffness + outer.stiffness};
+    }
 
     // The terms at time t, displacement q and twist rate v_twist: theta = omega t + phase + q_twist,
     // and the moment arm d delta / d theta at q.
