@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['ArmTurn', 'BoundaryContinuity', 'CamEccentricity', 'ContinuityReport', 'Elastic', 'LineContact', 'MAX_CAMSHAFT_SPEED', 'MAX_PART_LENGTH', 'MAX_POINTS', 'METHODS', 'MIN_CAMSHAFT_SPEED', 'Mechanism', 'MechanismBuilder', 'MotionLaw', 'MotionProgram', 'OscillatingFlat', 'OscillatingRoller', 'Parameters', 'PeakCoefficients', 'ProfileError', 'RUNGE_KUTTA_DEFAULT_TOLERANCE', 'Segment', 'SolverSettings', 'TranslatingFlat', 'TranslatingRoller', 'cam_outline', 'check_output_target', 'length_units', 'paper_preset', 'realistic_damping_ratio', 'valve_train_parameter_units', 'valve_train_preset', 'write_cam_csv', 'write_file_atomically']
+__all__: list[str] = ['ArmTurn', 'BoundaryContinuity', 'CamEccentricity', 'ContinuityReport', 'Elastic', 'Groove', 'LineContact', 'MAX_CAMSHAFT_SPEED', 'MAX_PART_LENGTH', 'MAX_POINTS', 'METHODS', 'MIN_CAMSHAFT_SPEED', 'Mechanism', 'MechanismBuilder', 'MotionLaw', 'MotionProgram', 'OscillatingFlat', 'OscillatingRoller', 'Parameters', 'PeakCoefficients', 'ProfileError', 'RUNGE_KUTTA_DEFAULT_TOLERANCE', 'Segment', 'SolverSettings', 'TranslatingFlat', 'TranslatingRoller', 'cam_outline', 'check_output_target', 'length_units', 'paper_preset', 'realistic_damping_ratio', 'valve_train_parameter_units', 'valve_train_preset', 'write_cam_csv', 'write_file_atomically']
 class PeakCoefficients:
     """
     Peaks of |V|, |A|, |J| of a normalized law.
@@ -839,6 +839,38 @@ class CamEccentricity:
         """
         kg
         """
+class Groove:
+    """
+    A face groove (form closure) for a roller contact: the roller runs between the cam's inner flank (the
+    contact's own surface) and an outer flank, the pitch curve's parallel at roller radius + clearance.
+    clearance (m): groove width minus the roller's diameter, in (0, roller radius). The outer flank's Hertz
+    law F = stiffness delta^exponent (1 + damping_factor delta'): the contact's own when stiffness is None
+    (the outer flank is concave towards the roller: for the same material its stiffness is higher).
+    """
+    def __getstate__(self) -> tuple[float, typing.Any, float, float]:
+        ...
+    def __init__(self, clearance: typing.SupportsFloat | typing.SupportsIndex, *, stiffness: typing.SupportsFloat | typing.SupportsIndex | None = None, exponent: typing.SupportsFloat | typing.SupportsIndex = 1.0, damping_factor: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
+        ...
+    @property
+    def clearance(self) -> float:
+        """
+        m
+        """
+    @property
+    def damping_factor(self) -> float:
+        ...
+    @property
+    def exponent(self) -> float:
+        ...
+    @property
+    def stiffness(self) -> typing.Any:
+        """
+        the outer flank's N/m^n, or None (the contact's law)
+        """
 class MechanismBuilder:
     """
     Describe a cam mechanism: DOFs with masses, springs and dampers between DOFs or to 'ground', loads,
@@ -861,13 +893,15 @@ class MechanismBuilder:
         (m) and meets a wall law F = k delta^n (1 + chi delta') beyond; with friction > 0, regularized Coulomb
         friction mu F tanh(v / slip_velocity) on sliding_dof. Channels <name>.force, .side, .gap, .friction.
         """
-    def add_contact(self, name: str, program: MotionProgram, follower: typing.Any, *, follower_dof: str, stiffness: typing.SupportsFloat | typing.SupportsIndex, exponent: typing.SupportsFloat | typing.SupportsIndex = 1.0, damping_factor: typing.SupportsFloat | typing.SupportsIndex = 0.0, phase: typing.SupportsFloat | typing.SupportsIndex = 0.0, cam_x: str = 'ground', cam_y: str = 'ground', lateral: str = 'ground', eccentricity: CamEccentricity | None = None, cam_twist: str = 'ground') -> None:
+    def add_contact(self, name: str, program: MotionProgram, follower: typing.Any, *, follower_dof: str, stiffness: typing.SupportsFloat | typing.SupportsIndex, exponent: typing.SupportsFloat | typing.SupportsIndex = 1.0, damping_factor: typing.SupportsFloat | typing.SupportsIndex = 0.0, phase: typing.SupportsFloat | typing.SupportsIndex = 0.0, cam_x: str = 'ground', cam_y: str = 'ground', lateral: str = 'ground', eccentricity: CamEccentricity | None = None, cam_twist: str = 'ground', groove: Groove | None = None) -> None:
         """
         A cam-follower contact pair: the cam's lift program (m, or rad for an oscillating follower), the follower
         type, the DOF of the follower's coordinate, a Hertz law F = k delta^n (1 + chi delta'), the cam's
         phase on the shaft (rad), the cam centre's DOFs, a translating follower's lateral DOF, an optional
         CamEccentricity, and the camshaft's twist DOF at the cam (rad; the cam angle is then omega t + phase +
-        twist, a state, and the contact's moment loads the twist: channel <name>.cam_torque).
+        twist, a state, and the contact's moment loads the twist: channel <name>.cam_torque), and an optional
+        Groove for a roller held between two flanks (channels <name>.penetration_rate, .outer_force,
+        .outer_penetration, .outer_in_contact; event <name>.outer_contact).
         """
     def add_damper(self, name: str, a: str, b: str = 'ground', *, damping: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
@@ -963,7 +997,7 @@ class MechanismBuilder:
     @property
     def contacts(self) -> list:
         """
-        Cam-follower contacts, as dicts with add_contact's parameters (name, program, follower, stiffness, exponent, damping_factor, phase, cam_x, cam_y, follower_dof, lateral, eccentricity, cam_twist) and paper_backlash (backlash, switch_width, guide_dof, guide_stiffness).
+        Cam-follower contacts, as dicts with add_contact's parameters (name, program, follower, stiffness, exponent, damping_factor, phase, cam_x, cam_y, follower_dof, lateral, eccentricity, cam_twist, groove) and paper_backlash (backlash, switch_width, guide_dof, guide_stiffness).
         """
     @property
     def dofs(self) -> list:

@@ -307,9 +307,8 @@ def groove_statistics(result, contact: str, period: float) -> dict:
     if t.size < 2:
         raise ValueError(f"groove '{contact}': need at least two recorded rows, got {t.size}")
     rate = np.asarray(result[f"{contact}.penetration_rate"], dtype=float)
-    dt = float(t[1] - t[0])
     t_end = float(t[-1])
-    revolutions = (t_end - t[0] + dt) / period
+    revolutions = (t_end - float(t[0])) / period  # the run spans [t0, t_end]; the events are instants in it
     touching = {
         "inner": bool(result[f"{contact}.in_contact"][0]),
         "outer": bool(result[f"{contact}.outer_in_contact"][0]),
