@@ -296,7 +296,8 @@ def groove_statistics(result, contact: str, period: float) -> dict:
     record finely, e.g. every step, for accurate velocities); ``impacts_per_revolution`` (all strikes,
     re-strikes after a bounce included); ``flank_changes_per_revolution`` (strikes on the other flank
     than the one last touched); ``free_flight_time_per_revolution_s`` (touching neither flank);
-    ``max_impact_velocity_m_s``; ``peak_inner_force_N`` and ``peak_outer_force_N`` (recorded rows)."""
+    ``max_impact_velocity_m_s``; ``peak_inner_force_N`` and ``peak_outer_force_N``. Over the recorded
+    rows' span only (a run recorded from ``record_from`` is counted from there)."""
     period = _real(period, "period", "s", positive=True)
     channels = result.channels
     for suffix in ("in_contact", "outer_in_contact", "penetration_rate"):
@@ -318,7 +319,7 @@ def groove_statistics(result, contact: str, period: float) -> dict:
     strikes, changes, free, since = [], 0, 0.0, float(t[0])
     for event in result.events:
         flank = flank_of.get(event.name)
-        if flank is None or event.time > t_end:
+        if flank is None or not t[0] < event.time <= t_end:  # only the recorded span's (record_from)
             continue
         free_before = not (touching["inner"] or touching["outer"])
         if free_before:
