@@ -64,7 +64,8 @@ def _fox_goodwin_steps(system, steps: int, finest: int) -> int:
 
 
 def contact_of(system, contact: Optional[str]) -> Dict[str, Any]:
-    """The named contact's (default: the first) program, follower DOF and name."""
+    """The named contact's (default: the first) program, follower DOF, name, phase and whether it is
+    grooved (form-closed)."""
     names = list(getattr(system, "contact_names", []))
     if not names:
         raise ValueError(f"{type(system).__name__} has no cam contact to study (build a Mechanism with add_contact)")
@@ -73,7 +74,13 @@ def contact_of(system, contact: Optional[str]) -> Dict[str, Any]:
         raise ValueError(f"contact: unknown contact {name!r}; the mechanism's contacts are {names}")
     for c in system.builder().contacts:
         if c["name"] == name:
-            return {"name": name, "program": c["program"], "dof": c["follower_dof"], "phase": float(c["phase"])}
+            return {
+                "name": name,
+                "program": c["program"],
+                "dof": c["follower_dof"],
+                "phase": float(c["phase"]),
+                "grooved": c.get("groove") is not None,
+            }
     raise ValueError(f"contact {name!r} not found in the mechanism's description")  # pragma: no cover
 
 

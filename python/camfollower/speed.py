@@ -348,6 +348,13 @@ def _scan_range(
 ) -> Tuple[_Scan, float, List[str]]:
     """The margin scan of (lo, hi): the resonance grid, then its dips refined; (scan, resolution used,
     warnings)."""
+    c = contact_of(system, contact)
+    if c["grooved"]:
+        raise ValueError(
+            f"contact {c['name']!r} is grooved (form-closed): it has no contact margin or jump speed to scan; its "
+            "roller changes flank where the load reverses (see camfollower.config.force_closure's outer_flank_deg "
+            "and analysis.groove_statistics)"
+        )
     scan = _Scan(
         system,
         _scan_options(contact, _scan_accuracy(accuracy, steps_per_revolution), steps_per_revolution),

@@ -358,3 +358,14 @@ def test_the_example_script_draws_the_flanks(tmp_path):
     assert (tmp_path / "grooved.png").stat().st_size > 20_000
     assert stats["flank_changes_per_revolution"] >= 4 and stats["max_impact_velocity_m_s"] > 0.0
     assert all(flank in ("inner", "outer") and v > -1e-3 for _, flank, v in stats["strikes"])  # closing (a graze ~0)
+
+
+def test_speed_studies_refuse_a_grooved_contact_with_a_reason():
+    """A grooved follower cannot jump: the speed scans say so instead of reporting the inner flank's
+    expected load reversals as contact loss."""
+    from camfollower import speed
+
+    mech = GroovedFollower().builder().build()
+    for study in (speed.jump_speed, speed.margin_scan):
+        with pytest.raises(ValueError, match=r"contact 'cam' is grooved \(form-closed\): it has no contact margin"):
+            study(mech, (500, 1500))
