@@ -27,8 +27,10 @@
 #include "camfollower/solver/simulate.hpp"
 
 // CAMFOLLOWER_SIMULATE_INSTANCES(extern, S) declares the instantiations for system type S;
-// CAMFOLLOWER_SIMULATE_INSTANCES(, S) defines them (in exactly one unit).
+// CAMFOLLOWER_SIMULATE_INSTANCES(, S) defines them (in exactly one unit). With them the dense Newmark
+// stepper, for a unit that steps one itself.
 #define CAMFOLLOWER_SIMULATE_INSTANCES(PREFIX, SYSTEM)                                     \
+    PREFIX template class camfollower::Newmark<SYSTEM>;                                    \
     PREFIX template camfollower::RunResult<SYSTEM> camfollower::simulate<SYSTEM>(          \
         const SYSTEM&, const camfollower::SolverSettings&, const camfollower::RunOptions&, \
         const std::optional<SYSTEM::Vector>&, const std::optional<SYSTEM::Vector>&);       \
@@ -36,10 +38,11 @@
         const SYSTEM&, const camfollower::SolverSettings&, camfollower::ShootingOptions,   \
         const std::optional<SYSTEM::Vector>&, const std::optional<SYSTEM::Vector>&, const std::function<bool()>&);
 
-// CAMFOLLOWER_MECHANISM_INSTANCES(extern, N): the same for Mechanism<N> itself (its construction and
-// static analyses, which instantiate Eigen's dense and sparse LU and eigen solvers) and its modes.
-#define CAMFOLLOWER_MECHANISM_INSTANCES(PREFIX, DOFS)                                                                \
-    PREFIX template class camfollower::Mechanism<DOFS>;                                                              \
+// CAMFOLLOWER_MODES_INSTANCES(extern, N): the same for the modes of Mechanism<N>. Mechanism<N> itself
+// (its construction and static analyses, which instantiate Eigen's dense and sparse LU and eigen
+// solvers), the paper preset's damper fit and the motion laws' decompositions are declared extern where
+// they are defined (detail/precompiled_use.hpp), before any inline code uses them.
+#define CAMFOLLOWER_MODES_INSTANCES(PREFIX, DOFS)                                                                    \
     PREFIX template camfollower::MechanismModes camfollower::lowest_modes<DOFS>(const camfollower::Mechanism<DOFS>&, \
                                                                                 double, int);
 
@@ -52,8 +55,8 @@
 extern "C" const int CAMFOLLOWER_PRECOMPILED_ALIGNMENT;
 
 #ifndef CAMFOLLOWER_BUILDING_PRECOMPILED
-CAMFOLLOWER_MECHANISM_INSTANCES(extern, Eigen::Dynamic)
-CAMFOLLOWER_MECHANISM_INSTANCES(extern, camfollower::presets::paper_dofs)
+CAMFOLLOWER_MODES_INSTANCES(extern, Eigen::Dynamic)
+CAMFOLLOWER_MODES_INSTANCES(extern, camfollower::presets::paper_dofs)
 CAMFOLLOWER_SIMULATE_INSTANCES(extern, camfollower::Mechanism<>)
 CAMFOLLOWER_SIMULATE_INSTANCES(extern, camfollower::Mechanism<camfollower::presets::paper_dofs>)
 namespace camfollower::detail {

@@ -283,11 +283,6 @@ public:
         for (int i = 0; i < c.count; ++i) d += c.g[i] * v[c.dof[i]] + c.g_dot[i] * q[c.dof[i]];
         return d;
     }
-    template <class Vector>
-    ContactResponse response(const ContactTerms& c, const Vector& q, const Vector& v) const {
-        return spec_.law(penetration(c, q), penetration_rate(c, q, v));
-    }
-
     // A grooved cam's outer flank: its clearance and contact law (the inner flank's when not given).
     bool grooved() const { return spec_.groove.has_value(); }
     double groove_clearance() const { return spec_.groove ? spec_.groove->clearance : 0.0; }

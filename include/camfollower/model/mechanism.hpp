@@ -28,6 +28,7 @@
 #include <Eigen/SparseLU>
 
 #include "camfollower/core/system.hpp"
+#include "camfollower/detail/precompiled_use.hpp"
 #include "camfollower/error.hpp"
 #include "camfollower/model/element_set.hpp"
 #include "camfollower/model/elements/clearance_element.hpp"
@@ -439,3 +440,11 @@ auto Mechanism<N>::add_modal_damping(const std::vector<double>& ratios) -> void 
 }
 
 }  // namespace camfollower
+
+// CAMFOLLOWER_MECHANISM_CLASS_INSTANCE(extern, N) declares Mechanism<N> compiled in
+// camfollower::precompiled (as Mechanism<> is, and the paper preset's, presets/paper.hpp);
+// (, N) compiles it there.
+#define CAMFOLLOWER_MECHANISM_CLASS_INSTANCE(PREFIX, DOFS) PREFIX template class camfollower::Mechanism<DOFS>;
+#if CAMFOLLOWER_USE_PRECOMPILED
+CAMFOLLOWER_MECHANISM_CLASS_INSTANCE(extern, Eigen::Dynamic)
+#endif

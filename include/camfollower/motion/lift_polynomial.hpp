@@ -17,9 +17,9 @@
 #include <vector>
 
 #include <Eigen/Core>
-#include <Eigen/SVD>
 
 #include "camfollower/constants.hpp"
+#include "camfollower/detail/linear_solvers.hpp"
 #include "camfollower/error.hpp"
 #include "camfollower/motion/follower_motion.hpp"
 #include "camfollower/motion/lift_peaks.hpp"
@@ -145,14 +145,12 @@ private:
         for (std::size_t k = 0; k < start_.size(); ++k) add(0.0, k, start_[k]);
         for (std::size_t k = 0; k < end_.size(); ++k) add(1.0, k, end_[k]);
         for (const auto& [theta, h] : interior_) add((theta - theta_start_) / beta, 0, h);
-        const Eigen::JacobiSVD<Eigen::MatrixXd> svd(a, Eigen::ComputeFullU | Eigen::ComputeFullV);
-        const auto& s = svd.singularValues();
-        condition_ = s(n - 1) > 0.0 ? s(0) / s(n - 1) : std::numeric_limits<double>::infinity();
+        Eigen::VectorXd c;
+        condition_ = detail::svd_solve<double>(a, rhs, c);
         if (!(condition_ <= max_condition_number))
             detail::fail("start/end/interior: these ", n, " conditions (a degree-", n - 1,
                          " polynomial) make an ill-conditioned system (condition number ", condition_, " > ",
                          max_condition_number, "); impose fewer derivatives or interior points");
-        const Eigen::VectorXd c = svd.solve(rhs);
         coefficients_.assign(c.data(), c.data() + n);
         const auto f = [this](double t) { return evaluate(t); };
         const std::size_t samples = static_cast<std::size_t>(std::max<Eigen::Index>(256, 32 * n));

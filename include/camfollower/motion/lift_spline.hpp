@@ -34,9 +34,9 @@
 #include <vector>
 
 #include <Eigen/SparseCore>
-#include <Eigen/SparseLU>
 
 #include "camfollower/detail/extremum.hpp"
+#include "camfollower/detail/linear_solvers.hpp"
 #include "camfollower/error.hpp"
 #include "camfollower/motion/bspline_basis.hpp"
 #include "camfollower/motion/follower_motion.hpp"
@@ -228,12 +228,8 @@ private:
     }
 
     static Eigen::VectorXd solve(const Eigen::SparseMatrix<double>& a, const Eigen::VectorXd& b) {
-        Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
-        lu.compute(a);
-        if (lu.info() != Eigen::Success)
-            detail::fail("theta: the spline system is singular for this table (points too close together?)");
-        Eigen::VectorXd x = lu.solve(b);
-        if (!x.allFinite())
+        Eigen::VectorXd x;
+        if (!detail::sparse_lu_solve(a, b, x))
             detail::fail("theta: the spline system is singular for this table (points too close together?)");
         return x;
     }

@@ -24,8 +24,8 @@
 #include <vector>
 
 #include <Eigen/Core>
-#include <Eigen/QR>
 
+#include "camfollower/detail/linear_solvers.hpp"
 #include "camfollower/error.hpp"
 #include "camfollower/motion/laws.hpp"  // pi
 
@@ -243,15 +243,15 @@ private:
                 A(i, 2 * k) = std::sin(k * theta[i]);
             }
         }
-        Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A);
         // Points crowded into part of the revolution leave high harmonics undetermined: refuse rather
         // than return wild coefficients.
-        qr.setThreshold(1e-10);
-        if (qr.rank() < cols)
+        Eigen::VectorXd x;
+        const Eigen::Index rank =
+            detail::qr_least_squares<double>(A, Eigen::Map<const Eigen::VectorXd>(error.data(), n), 1e-10, x);
+        if (rank < cols)
             detail::fail("lift-error table: the points do not determine harmonics up to max_harmonic = ", K,
-                         " (numerical rank ", qr.rank(), " < ", cols,
+                         " (numerical rank ", rank, " < ", cols,
                          "): spread the points over the revolution or lower max_harmonic");
-        const Eigen::VectorXd x = qr.solve(Eigen::Map<const Eigen::VectorXd>(error.data(), n));
         const std::size_t harmonics = static_cast<std::size_t>(K);
         Fourier f{x(0), std::vector<double>(harmonics), std::vector<double>(harmonics)};
         for (int k = 1; k <= K; ++k) f.cos[k - 1] = x(2 * k - 1), f.sin[k - 1] = x(2 * k);

@@ -63,7 +63,9 @@ struct Tableau {
     Eigen::Matrix3d dense;
 };
 
-inline Tableau tableau() {
+// A template so that only a unit instantiating the stepper instantiates its eigen solver.
+template <class Real = double>
+Tableau tableau() {
     const double s6 = std::sqrt(6.0);
     Tableau t;
     t.A << (88 - 7 * s6) / 360, (296 - 169 * s6) / 1800, (-2 + 3 * s6) / 225,  //
@@ -125,7 +127,7 @@ public:
     static constexpr int max_newton_iterations = 7;  // RADAU5's default
 
     Radau(const System& system, const SolverSettings& settings)
-        : Base(system, settings, Method::radau, "Radau"), tab_(radau5::tableau()), lu_real_(n_), lu_pair_(n_) {
+        : Base(system, settings, Method::radau, "Radau"), tab_(radau5::tableau<>()), lu_real_(n_), lu_pair_(n_) {
         M_complex_ = system.mass().template cast<Complex>();
         for (Vector* x : {&a_, &qs_, &vs_, &as_, &q_old_, &v_old_, &eq_, &ev_, &tq_, &tv_, &dq_, &dv_, &w_real_q_,
                           &w_real_v_, &rq_, &rv_, &sum_})

@@ -40,6 +40,14 @@ namespace camfollower::presets {
 
 inline constexpr int paper_dofs = 7;  // y1..y4, x1..x3
 
+}  // namespace camfollower::presets
+
+#if CAMFOLLOWER_USE_PRECOMPILED
+CAMFOLLOWER_MECHANISM_CLASS_INSTANCE(extern, camfollower::presets::paper_dofs)
+#endif
+
+namespace camfollower::presets {
+
 struct PaperOptions {
     CamEccentricity eccentricity;              // none by default
     double guide_clearance = 0.0;              // m, radial; 0: the paper's guide spring K_rb
@@ -143,8 +151,12 @@ inline const PaperDampers undamped_dampers{};
 // Fits the eight dashpots of the healthy, undamped preset m so that its modes on the dwell have the
 // ratio zeta, lowest modes first (see PaperOptions): non-negative least squares by active set (a dashpot whose
 // rate comes out negative is dropped and the rest refitted), minimum-norm where undetermined.
-inline PaperDampers fit_dampers(const Mechanism<paper_dofs>& m, double zeta) {
-    using M7 = Mechanism<paper_dofs>::Matrix;
+// (A template so that its eigen solver is compiled once, in camfollower::precompiled, for the units
+// linking it.)
+template <int N>
+PaperDampers fit_dampers(const Mechanism<N>& m, double zeta) {
+    static_assert(N == paper_dofs, "the paper preset's dampers fit its own mechanism");
+    using M7 = typename Mechanism<N>::Matrix;
     const auto q = m.initial_displacement();
     const Eigen::GeneralizedSelfAdjointEigenSolver<M7> eig(m.tangent_stiffness(0.0, q), m.mass());
     if (eig.info() != Eigen::Success) detail::fail("element damping: the eigen solver did not converge");
@@ -202,6 +214,9 @@ inline PaperDampers fit_dampers(const Mechanism<paper_dofs>& m, double zeta) {
     d.contact_force = m.static_contact_force(0.0, q, 0);
     return d;
 }
+#if CAMFOLLOWER_USE_PRECOMPILED
+extern template PaperDampers fit_dampers<paper_dofs>(const Mechanism<paper_dofs>&, double);
+#endif
 
 // The preset with its calibrated preload: P solves P + K_rs y4(P) = K_rs delta_rs by secant steps
 // (affine in P for the linear contact law, nearly so otherwise), on the healthy mechanism, so that
