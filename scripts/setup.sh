@@ -55,7 +55,7 @@ stamp=$(cat pyproject.toml CMakeLists.txt cmake/* $(find include python src -typ
 # The build folder is kept (build/python), so a rebuild compiles only what changed; flock keeps two
 # set-ups in one clone from building at once.
 if [ "$(cat .venv/.camfollower-stamp 2>/dev/null)" != "$stamp" ]; then
-  echo "setup: building and installing the camfollower Python package (8 to 10 min the first time on 2 cores)"
+  echo "setup: building and installing the camfollower Python package (about 4 min the first time on 2 cores)"
   flock .venv/.camfollower-build .venv/bin/python -m pip install -q --no-build-isolation --no-deps \
     -Cbuild-dir=build/python -Ccmake.define.CMAKE_CXX_COMPILER_LAUNCHER="$(command -v ccache || true)" .
   echo "$stamp" > .venv/.camfollower-stamp
