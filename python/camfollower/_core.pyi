@@ -590,13 +590,19 @@ class TranslatingRoller:
         """
     @property
     def base_radius(self) -> float:
-        ...
+        """
+        base circle radius r_b (m, > 0)
+        """
     @property
     def offset(self) -> float:
-        ...
+        """
+        lateral offset e of the axis (m, |e| < r_b + r_r)
+        """
     @property
     def roller_radius(self) -> float:
-        ...
+        """
+        roller radius r_r (m, > 0)
+        """
 class SolverSettings:
     """
     The integration settings of simulate(), simulate_many() and periodic_steady_state(), immutable
@@ -698,13 +704,19 @@ class TranslatingFlat:
         """
     @property
     def base_radius(self) -> float:
-        ...
+        """
+        base circle radius r_b (m, > 0)
+        """
     @property
     def face_angle(self) -> float:
-        ...
+        """
+        face angle g from the normal to the axis (rad, |g| < pi/2)
+        """
     @property
     def offset(self) -> float:
-        ...
+        """
+        lateral position e of the axis (m)
+        """
 class OscillatingRoller:
     """
     Oscillating (swing-arm) roller follower: pivot (x, y) in m in the ground frame, arm length (m); its lift program is the arm rotation in rad.
@@ -712,6 +724,8 @@ class OscillatingRoller:
     def __getstate__(self) -> tuple[float, float, typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"], float, str]:
         ...
     def __init__(self, base_radius: typing.SupportsFloat | typing.SupportsIndex, roller_radius: typing.SupportsFloat | typing.SupportsIndex, pivot: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[2, 1]"], arm_length: typing.SupportsFloat | typing.SupportsIndex, turn: ArmTurn | str = 'counter_clockwise') -> None:
+        ...
+    def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: tuple) -> None:
         ...
@@ -738,24 +752,34 @@ class OscillatingRoller:
         """
     @property
     def arm_length(self) -> float:
-        ...
+        """
+        pivot to roller centre L (m, > 0)
+        """
     @property
     def base_radius(self) -> float:
-        ...
+        """
+        base circle radius r_b (m, > 0)
+        """
     @property
     def pivot(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"]:
-        ...
+        """
+        arm pivot P (m, ground frame, outside the base circle)
+        """
     @property
     def roller_radius(self) -> float:
-        ...
+        """
+        roller radius r_r (m, > 0)
+        """
     @property
     def start_angle(self) -> float:
         """
-        arm angle on the base circle, rad
+        start angle phi0 (rad, ground frame) of the arm with the follower on the base circle
         """
     @property
     def turn(self) -> str:
-        ...
+        """
+        the arm's lifting sense
+        """
 class OscillatingFlat:
     """
     Oscillating flat-faced follower: pivot (x, y) in m, face offset from the pivot (m); its lift program is the arm rotation in rad.
@@ -763,6 +787,8 @@ class OscillatingFlat:
     def __getstate__(self) -> tuple[float, typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"], float, str]:
         ...
     def __init__(self, base_radius: typing.SupportsFloat | typing.SupportsIndex, pivot: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[2, 1]"], face_offset: typing.SupportsFloat | typing.SupportsIndex = 0.0, turn: ArmTurn | str = 'counter_clockwise') -> None:
+        ...
+    def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: tuple) -> None:
         ...
@@ -789,21 +815,29 @@ class OscillatingFlat:
         """
     @property
     def base_radius(self) -> float:
-        ...
+        """
+        base circle radius r_b (m, > 0)
+        """
     @property
     def face_offset(self) -> float:
-        ...
+        """
+        distance f of the face from the pivot (m, |r_b - f| < |P|)
+        """
     @property
     def pivot(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"]:
-        ...
+        """
+        arm pivot P (m, ground frame, outside the base circle)
+        """
     @property
     def start_angle(self) -> float:
         """
-        face-normal angle on the base circle, rad
+        start angle phi0 (rad, ground frame) of the arm with the follower on the base circle
         """
     @property
     def turn(self) -> str:
-        ...
+        """
+        the arm's lifting sense
+        """
 class CamEccentricity:
     """
     An eccentric cam: its geometric centre at `radius` (m) from the bearing axis, in the direction `phase`

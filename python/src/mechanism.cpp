@@ -1,8 +1,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Bindings for the open mechanism core: follower types, the mechanism builder, the immutable
 // Mechanism (fixed-size Eigen up to 8 DOFs, dynamic above), the paper preset. Everything pickles.
+#include <cctype>
 #include <limits>
 #include <optional>
+#include <string>
+#include <string_view>
+#include <tuple>
+#include <type_traits>
+#include <utility>
 #include <variant>
 
 #include <pybind11/eigen.h>
@@ -75,9 +81,104 @@ private:
 
 namespace {
 
+// A turn as given from Python: the ArmTurn enum or its name ("counter_clockwise"/"ccw", "clockwise"/"cw").
+ArmTurn turn_argument(const py::object& turn) {
+    if (py::isinstance<ArmTurn>(turn)) return turn.cast<ArmTurn>();
+    if (py::isinstance<py::str>(turn)) return arm_turn_from(turn.cast<std::string>());
+    throw py::type_error(detail::concat("turn must be an ArmTurn or one of 'counter_clockwise', 'clockwise', got ",
+                                        std::string(py::str(py::type::of(turn).attr("__name__")))));
+}
+
+// A follower parameter's value (follower/parameters.hpp) to and from Python: a turn by its name,
+// a point as a length-2 array.
+template <class T>
+using python_parameter = std::conditional_t<std::is_same_v<T, ArmTurn>, py::object, T>;
+template <class T>
+T parameter_from_python(const python_parameter<T>& v) {
+    if constexpr (std::is_same_v<T, ArmTurn>) return turn_argument(v);
+    else return v;
+}
+template <class T>
+auto parameter_to_python(const T& v) {
+    if constexpr (std::is_same_v<T, ArmTurn>) return std::string(arm_turn_name(v));
+    else return T(v);
+}
+// "pivot=(0.1, 0.05)": a point as a tuple, so that the repr reads back.
+template <class T>
+std::string parameter_repr(const T& v) {
+    if constexpr (std::is_same_v<T, Eigen::Vector2d>) return std::string(py::repr(py::make_tuple(v.x(), v.y())));
+    else return std::string(py::repr(py::cast(parameter_to_python(v))));
+}
+
+// The keyword argument of F's I-th parameter, with its default.
+template <class F, std::size_t I>
+auto parameter_argument() {
+    constexpr FollowerParameter p = F::parameters[I];
+    if constexpr (p.required) return py::arg(p.name);
+    else if constexpr (p.kind == ParameterKind::turn)
+        return py::arg_v(p.name, arm_turn_name(ArmTurn::counter_clockwise));
+    else return py::arg_v(p.name, p.default_value);
+}
+
+// "translating_roller" -> "TranslatingRoller".
+std::string class_name_of(std::string_view type_name) {
+    std::string out;
+    bool upper = true;
+    for (char ch : type_name) {
+        if (ch == '_') {
+            upper = true;
+            continue;
+        }
+        out += upper ? static_cast<char>(std::toupper(static_cast<unsigned char>(ch))) : ch;
+        upper = false;
+    }
+    return out;
+}
+
+template <class F, class = void>
+struct has_start_angle : std::false_type {};
 template <class F>
-py::class_<F> bind_follower(py::module_& m, const char* name, const char* doc) {
-    py::class_<F> c(m, name, doc);
+struct has_start_angle<F, std::void_t<decltype(std::declval<const F&>().start_angle())>> : std::true_type {};
+
+// Constructor, read-only properties, pickling and repr of F, all from its parameter description.
+template <class F, std::size_t... I>
+void bind_parameters(py::class_<F>& c, std::index_sequence<I...>) {
+    c.def(py::init([](const python_parameter<follower_parameter_type<F, I>>&... v) {
+              return F(parameter_from_python<follower_parameter_type<F, I>>(v)...);
+          }),
+          parameter_argument<F, I>()...);
+    (c.def_property_readonly(
+         F::parameters[I].name, [](const F& f) { return parameter_to_python(std::get<I>(f.parameter_values())); },
+         F::parameters[I].meaning),
+     ...);
+    c.def(py::pickle(
+        [](const F& f) {
+            const auto values = f.parameter_values();
+            return py::make_tuple(parameter_to_python(std::get<I>(values))...);
+        },
+        [](const py::tuple& t) {
+            if (t.size() != sizeof...(I))
+                detail::fail(F::type_name, ": ", sizeof...(I), " pickled values expected, got ", t.size());
+            return F(parameter_from_python<follower_parameter_type<F, I>>(
+                t[I].template cast<python_parameter<follower_parameter_type<F, I>>>())...);
+        }));
+    c.def("__repr__", [](const F& f) {
+        const auto values = f.parameter_values();
+        std::string out = class_name_of(F::type_name) + "(";
+        ((out += std::string(I == 0 ? "" : ", ") + F::parameters[I].name + "=" + parameter_repr(std::get<I>(values))),
+         ...);
+        return out + ")";
+    });
+}
+
+template <class F>
+void bind_follower(py::module_& m) {
+    const std::string name = class_name_of(F::type_name);
+    py::class_<F> c(m, name.c_str(), F::description);
+    bind_parameters(c, std::make_index_sequence<F::parameters.size()>{});
+    if constexpr (has_start_angle<F>::value)
+        c.def_property_readonly("start_angle", &F::start_angle,
+                                "start angle phi0 (rad, ground frame) of the arm with the follower on the base circle");
     c.def(
          "contact",
          [](const F& f, const MotionProgram& program, double theta) {
@@ -129,25 +230,15 @@ py::class_<F> bind_follower(py::module_& m, const char* name, const char* doc) {
             "check", [](const F& f, const MotionProgram& program) { check_undercut(program, f); }, py::arg("program"),
             "Raise ValueError naming the cam angle if the cam undercuts, has a cusp or the pressure angle reaches 90 "
             "deg.");
-    return c;
+}
+
+template <class... F>
+void bind_followers(py::module_& m, const std::variant<F...>*) {
+    (bind_follower<F>(m), ...);
 }
 
 py::object follower_to_python(const Follower& f) {
     return std::visit([](const auto& x) { return py::cast(x); }, f);
-}
-
-std::string turn_name(ArmTurn t) { return t == ArmTurn::counter_clockwise ? "counter_clockwise" : "clockwise"; }
-ArmTurn turn_from(const std::string& s) {
-    if (s == "counter_clockwise" || s == "ccw") return ArmTurn::counter_clockwise;
-    if (s == "clockwise" || s == "cw") return ArmTurn::clockwise;
-    detail::fail("turn must be 'counter_clockwise' or 'clockwise', got '", detail::printable(s), "'");
-}
-// A turn as given from Python: the ArmTurn enum or its name ("counter_clockwise"/"ccw", "clockwise"/"cw").
-ArmTurn turn_argument(const py::object& turn) {
-    if (py::isinstance<ArmTurn>(turn)) return turn.cast<ArmTurn>();
-    if (py::isinstance<py::str>(turn)) return turn_from(turn.cast<std::string>());
-    throw py::type_error(detail::concat("turn must be an ArmTurn or one of 'counter_clockwise', 'clockwise', got ",
-                                        std::string(py::str(py::type::of(turn).attr("__name__")))));
 }
 
 // Builder state as plain, self-describing Python data (pickling, and Mechanism.__reduce__).
@@ -299,87 +390,7 @@ void bind_mechanism(py::module_& m) {
         .value("counter_clockwise", ArmTurn::counter_clockwise)
         .value("clockwise", ArmTurn::clockwise);
 
-    bind_follower<TranslatingRoller>(m, "TranslatingRoller",
-                                     "Translating roller follower with offset (m): the paper's follower.")
-        .def(py::init<double, double, double>(), py::arg("base_radius"), py::arg("roller_radius"),
-             py::arg("offset") = 0.0)
-        .def_property_readonly("base_radius", &TranslatingRoller::base_radius)
-        .def_property_readonly("roller_radius", &TranslatingRoller::roller_radius)
-        .def_property_readonly("offset", &TranslatingRoller::offset)
-        .def(py::pickle(
-            [](const TranslatingRoller& f) { return py::make_tuple(f.base_radius(), f.roller_radius(), f.offset()); },
-            [](const py::tuple& t) {
-                return TranslatingRoller(t[0].cast<double>(), t[1].cast<double>(), t[2].cast<double>());
-            }))
-        .def("__repr__", [](const TranslatingRoller& f) {
-            return detail::concat("TranslatingRoller(base_radius=", f.base_radius(),
-                                  ", roller_radius=", f.roller_radius(), ", offset=", f.offset(), ")");
-        });
-    bind_follower<TranslatingFlat>(
-        m, "TranslatingFlat",
-        "Translating flat-faced follower: face angle (rad) from the normal to the axis, offset (m).")
-        .def(py::init<double, double, double>(), py::arg("base_radius"), py::arg("face_angle") = 0.0,
-             py::arg("offset") = 0.0)
-        .def_property_readonly("base_radius", &TranslatingFlat::base_radius)
-        .def_property_readonly("face_angle", &TranslatingFlat::face_angle)
-        .def_property_readonly("offset", &TranslatingFlat::offset)
-        .def(py::pickle(
-            [](const TranslatingFlat& f) { return py::make_tuple(f.base_radius(), f.face_angle(), f.offset()); },
-            [](const py::tuple& t) {
-                return TranslatingFlat(t[0].cast<double>(), t[1].cast<double>(), t[2].cast<double>());
-            }))
-        .def("__repr__", [](const TranslatingFlat& f) {
-            return detail::concat("TranslatingFlat(base_radius=", f.base_radius(), ", face_angle=", f.face_angle(),
-                                  ", offset=", f.offset(), ")");
-        });
-    bind_follower<OscillatingRoller>(
-        m, "OscillatingRoller",
-        "Oscillating (swing-arm) roller follower: pivot (x, y) in m in the ground frame, arm "
-        "length (m); its lift program is the arm rotation in rad.")
-        .def(py::init([](double rb, double rr, const Eigen::Vector2d& pivot, double arm, const py::object& turn) {
-                 return OscillatingRoller(rb, rr, pivot, arm, turn_argument(turn));
-             }),
-             py::arg("base_radius"), py::arg("roller_radius"), py::arg("pivot"), py::arg("arm_length"),
-             py::arg("turn") = "counter_clockwise")
-        .def_property_readonly("base_radius", &OscillatingRoller::base_radius)
-        .def_property_readonly("roller_radius", &OscillatingRoller::roller_radius)
-        .def_property_readonly("pivot", [](const OscillatingRoller& f) { return Eigen::Vector2d(f.pivot()); })
-        .def_property_readonly("arm_length", &OscillatingRoller::arm_length)
-        .def_property_readonly("turn", [](const OscillatingRoller& f) { return turn_name(f.turn()); })
-        .def_property_readonly("start_angle", &OscillatingRoller::start_angle, "arm angle on the base circle, rad")
-        .def(py::pickle(
-            [](const OscillatingRoller& f) {
-                return py::make_tuple(f.base_radius(), f.roller_radius(), Eigen::Vector2d(f.pivot()), f.arm_length(),
-                                      turn_name(f.turn()));
-            },
-            [](const py::tuple& t) {
-                return OscillatingRoller(t[0].cast<double>(), t[1].cast<double>(), t[2].cast<Eigen::Vector2d>(),
-                                         t[3].cast<double>(), turn_from(t[4].cast<std::string>()));
-            }));
-    bind_follower<OscillatingFlat>(
-        m, "OscillatingFlat",
-        "Oscillating flat-faced follower: pivot (x, y) in m, face offset from the pivot (m); its "
-        "lift program is the arm rotation in rad.")
-        .def(py::init([](double rb, const Eigen::Vector2d& pivot, double face_offset, const py::object& turn) {
-                 return OscillatingFlat(rb, pivot, face_offset, turn_argument(turn));
-             }),
-             py::arg("base_radius"), py::arg("pivot"), py::arg("face_offset") = 0.0,
-             py::arg("turn") = "counter_clockwise")
-        .def_property_readonly("base_radius", &OscillatingFlat::base_radius)
-        .def_property_readonly("pivot", [](const OscillatingFlat& f) { return Eigen::Vector2d(f.pivot()); })
-        .def_property_readonly("face_offset", &OscillatingFlat::face_offset)
-        .def_property_readonly("turn", [](const OscillatingFlat& f) { return turn_name(f.turn()); })
-        .def_property_readonly("start_angle", &OscillatingFlat::start_angle,
-                               "face-normal angle on the base circle, rad")
-        .def(py::pickle(
-            [](const OscillatingFlat& f) {
-                return py::make_tuple(f.base_radius(), Eigen::Vector2d(f.pivot()), f.face_offset(),
-                                      turn_name(f.turn()));
-            },
-            [](const py::tuple& t) {
-                return OscillatingFlat(t[0].cast<double>(), t[1].cast<Eigen::Vector2d>(), t[2].cast<double>(),
-                                       turn_from(t[3].cast<std::string>()));
-            }));
+    bind_followers(m, static_cast<const Follower*>(nullptr));
 
     py::class_<CamEccentricity>(
         m, "CamEccentricity",

@@ -134,14 +134,14 @@ inline py::dict dict_of(const std::shared_ptr<RunOutput>& out) {
     stats["steps_per_shortest_period"] = 1.0 / (result.highest_mode_hz * result.time_step);
     const SettleReport& sr = result.settle_report;
     if (sr.requested) {
-        py::dict st;
-        st["settled"] = sr.settled;
-        st["revolutions"] = sr.revolutions;
-        st["change"] = sr.change;
-        st["change_absolute"] = sr.change_absolute;
-        st["tolerance"] = out->settle.tolerance;
-        st["history"] = sr.history;
-        stats["settle"] = st;
+        py::dict settle;
+        settle["settled"] = sr.settled;
+        settle["revolutions"] = sr.revolutions;
+        settle["change"] = sr.change;
+        settle["change_absolute"] = sr.change_absolute;
+        settle["tolerance"] = out->settle.tolerance;
+        settle["history"] = sr.history;
+        stats["settle"] = settle;
     }
     d["stats"] = stats;
     py::dict losses;

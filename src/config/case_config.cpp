@@ -332,60 +332,71 @@ decltype(auto) with_offset_hint(const ContactLengths& lengths, F&& validate) {
     }
 }
 
-// `owner` names the contact in messages ("contact 'cam'"). Its lengths written as bare numbers are
-// checked against each other (lengths.hpp) before the follower is built, the offset's with it.
+// One parameter of a follower as the config writes it (follower/parameters.hpp): a length in m, an
+// angle in rad, a point [x, y] in m, a turn by name. A length the plausibility rules know (lengths.hpp)
+// is noted in `lengths` as written.
+double read_parameter(const Section& s, const FollowerParameter& p, ContactLengths& lengths, double*) {
+    if (p.kind == ParameterKind::angle)
+        return p.required ? s.quantity(p.name, "rad") : s.quantity(p.name, "rad", p.default_value);
+    const double v = p.required ? s.quantity(p.name, "m") : s.quantity(p.name, "m", p.default_value);
+    if (std::optional<Length>* slot = lengths.slot(p.name); slot && s.has(p.name)) *slot = written(s, p.name, v);
+    return v;
+}
+Eigen::Vector2d read_parameter(const Section& s, const FollowerParameter& p, ContactLengths& lengths,
+                               Eigen::Vector2d*) {
+    const Eigen::Vector2d v = point(s, p.name);
+    if (std::optional<Length>* slot = lengths.slot(p.name)) {
+        Length L = written(s, p.name, v.norm());
+        const std::vector<std::string> units = s.units(p.name);
+        L.bare = std::all_of(units.begin(), units.end(), [](const std::string& u) { return u.empty(); });
+        L.parts = {v.x(), v.y()};
+        *slot = L;
+    }
+    return v;
+}
+ArmTurn read_parameter(const Section& s, const FollowerParameter& p, ContactLengths&, ArmTurn*) {
+    return arm_turn_from(s.choice(p.name, p.required ? "" : arm_turn_name(ArmTurn::counter_clockwise),
+                                  {arm_turn_name(ArmTurn::counter_clockwise), arm_turn_name(ArmTurn::clockwise)}));
+}
+
+// A follower of type F from its parameters, in their order. Its lengths written as bare numbers are
+// checked against each other (lengths.hpp) before it is built, its offset after the model's own check
+// (which names an offset beyond the base and roller radii; the hint is added to that message).
+template <class F, std::size_t... I>
+F read_follower_of(const Section& s, ContactLengths& lengths, std::index_sequence<I...>) {
+    const follower_parameter_values<F> values{
+        read_parameter(s, F::parameters[I], lengths, static_cast<follower_parameter_type<F, I>*>(nullptr))...};
+    check_follower_lengths(lengths, false);
+    return with_offset_hint(lengths, [&] { return std::make_from_tuple<F>(values); });
+}
+
+// The reader of every type the Follower variant holds: `type` picks one, and only its keys are taken.
+template <class... F>
+Follower read_follower_among(const Section& s, const std::string& type, ContactLengths& lengths,
+                             const std::variant<F...>*) {
+    std::optional<Follower> out;
+    static_cast<void>(
+        ((type == F::type_name &&
+          (out = read_follower_of<F>(s, lengths, std::make_index_sequence<F::parameters.size()>{}), true)) ||
+         ...));
+    // Every type's keys are known here; another type's reads "does not apply here".
+    std::vector<std::string_view> keys{"type"};
+    const auto add = [&](const auto& parameters) {
+        for (const FollowerParameter& p : parameters)
+            if (std::find(keys.begin(), keys.end(), p.name) == keys.end()) keys.emplace_back(p.name);
+    };
+    (add(F::parameters), ...);
+    s.finish(keys);
+    return *std::move(out);
+}
+
+// `owner` names the contact in messages ("contact 'cam'").
 Follower read_follower(const Section& s, const std::string& owner) {
     const std::vector<std::string> types = follower_type_names();
     const std::string type = s.choice("type", "", {types.begin(), types.end()});
     return located(s, [&]() -> Follower {
-        const double rb = s.quantity("base_radius", "m");
-        ContactLengths lengths{owner, written(s, "base_radius", rb), {}, {}, {}, {}, {}};
-        // A length (required without a fallback), kept as written.
-        const auto length = [&](std::string_view key, std::optional<double> fallback, std::optional<Length>& slot) {
-            const double v = fallback ? s.quantity(key, "m", *fallback) : s.quantity(key, "m");
-            if (s.has(key)) slot = written(s, key, v);
-            return v;
-        };
-        const auto pivot = [&] {
-            const Eigen::Vector2d v = point(s, "pivot");
-            Length L = written(s, "pivot", v.norm());
-            const std::vector<std::string> units = s.units("pivot");
-            L.bare = std::all_of(units.begin(), units.end(), [](const std::string& u) { return u.empty(); });
-            L.parts = {v.x(), v.y()};
-            lengths.pivot = L;
-            return v;
-        };
-        Follower f = [&]() -> Follower {
-            if (type == "translating_roller") {
-                const double rr = length("roller_radius", std::nullopt, lengths.roller_radius);
-                const double e = length("offset", 0.0, lengths.offset);
-                check_follower_lengths(lengths, false);
-                return with_offset_hint(lengths, [&] { return TranslatingRoller(rb, rr, e); });
-            }
-            if (type == "translating_flat") {
-                const double angle = s.quantity("face_angle", "rad", 0.0), e = length("offset", 0.0, lengths.offset);
-                check_follower_lengths(lengths, false);
-                return with_offset_hint(lengths, [&] { return TranslatingFlat(rb, angle, e); });
-            }
-            const ArmTurn turn =
-                s.choice("turn", "counter_clockwise", {"counter_clockwise", "clockwise"}) == "clockwise"
-                    ? ArmTurn::clockwise
-                    : ArmTurn::counter_clockwise;
-            if (type == "oscillating_roller") {
-                const double rr = length("roller_radius", std::nullopt, lengths.roller_radius);
-                const Eigen::Vector2d at = pivot();
-                const double arm = length("arm_length", std::nullopt, lengths.arm_length);
-                check_follower_lengths(lengths);
-                return OscillatingRoller(rb, rr, at, arm, turn);
-            }
-            const Eigen::Vector2d at = pivot();
-            const double face = length("face_offset", 0.0, lengths.face_offset);
-            check_follower_lengths(lengths);
-            return OscillatingFlat(rb, at, face, turn);
-        }();
-        s.finish({"type", "base_radius", "roller_radius", "offset", "face_angle", "pivot", "arm_length", "face_offset",
-                  "turn"});
-        return f;
+        ContactLengths lengths{owner, written(s, "base_radius", s.quantity("base_radius", "m")), {}, {}, {}, {}, {}};
+        return read_follower_among(s, type, lengths, static_cast<const Follower*>(nullptr));
     });
 }
 

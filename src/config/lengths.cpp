@@ -61,6 +61,15 @@ std::string ten_base_radii(const ContactLengths& c) {
 
 }  // namespace
 
+std::optional<Length>* ContactLengths::slot(std::string_view name) {
+    if (name == "roller_radius") return &roller_radius;
+    if (name == "offset") return &offset;
+    if (name == "face_offset") return &face_offset;
+    if (name == "arm_length") return &arm_length;
+    if (name == "pivot") return &pivot;
+    return nullptr;
+}
+
 std::string offset_problem(const ContactLengths& c) {
     if (!c.offset || !usable(c.base_radius.value)) return "";
     return above(*c.offset, "the offset", 10.0 * c.base_radius.value, ten_base_radii(c));

@@ -9,6 +9,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace camfollower::config {
@@ -26,6 +27,10 @@ struct ContactLengths {
     std::string owner;
     Length base_radius;
     std::optional<Length> roller_radius, offset, face_offset, arm_length, pivot;
+
+    // The slot of the follower parameter `name` (its config key), or nullptr for a length these rules
+    // do not know (taken as written) and for base_radius, which is always present.
+    std::optional<Length>* slot(std::string_view name);
 };
 
 // Refuses (std::invalid_argument at the value's key) a bare length of the follower that is implausible

@@ -301,7 +301,7 @@ std::vector<std::pair<std::string, Section>> Section::named_tables(std::string_v
     return out;
 }
 
-void Section::finish(std::initializer_list<std::string_view> known) const {
+void Section::finish(const std::vector<std::string_view>& known) const {
     for (auto&& [k, v] : table_) {
         if (read_.count(k.str())) continue;
         std::string list;

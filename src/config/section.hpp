@@ -4,7 +4,6 @@
 // marked; finish() refuses the keys nobody read, so a misspelt or misplaced key never passes silently.
 #pragma once
 
-#include <initializer_list>
 #include <memory>
 #include <optional>
 #include <set>
@@ -51,7 +50,7 @@ public:
     std::vector<std::pair<std::string, Section>> named_tables(std::string_view key) const;
 
     // Refuse keys that were not read: "unknown key ...; known here: ...".
-    void finish(std::initializer_list<std::string_view> known) const;
+    void finish(const std::vector<std::string_view>& known) const;
 
     [[noreturn]] void fail(std::string_view key, const std::string& message) const;
     [[noreturn]] void fail_here(const std::string& message) const;

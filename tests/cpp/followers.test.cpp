@@ -391,7 +391,7 @@ TEST_CASE(
         CHECK(is_translating(follower) == translates);
         CHECK(is_translating(Follower(follower)) == translates);
         CHECK(std::string(follower_type_name(Follower(follower))) == F::type_name);
-        const std::string line = follower.describe(LengthUnit::mm);
+        const std::string line = describe_follower(follower, LengthUnit::mm);
         CHECK(line.rfind(std::string(F::type_name) + ": base_radius = " + std::to_string(int(rb * 1000)), 0) == 0);
         seen.insert(F::type_name);
     });

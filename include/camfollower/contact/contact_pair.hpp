@@ -34,6 +34,7 @@
 #include "camfollower/error.hpp"
 #include "camfollower/follower/oscillating_flat.hpp"
 #include "camfollower/follower/oscillating_roller.hpp"
+#include "camfollower/follower/parameters.hpp"
 #include "camfollower/follower/profile.hpp"
 #include "camfollower/follower/translating_flat.hpp"
 #include "camfollower/follower/translating_roller.hpp"
@@ -41,9 +42,18 @@
 
 namespace camfollower {
 
-// Every follower type, the one list: a new type joins here (and gets its config reader,
-// src/config/case_config.cpp, and Python binding, python/src/mechanism.cpp).
+// Every follower type, the one list: a new type joins here. The config reader and the Python
+// bindings take every alternative from its parameter description (follower/parameters.hpp); Python
+// re-exports the class in python/camfollower/__init__.py.
 using Follower = std::variant<TranslatingRoller, TranslatingFlat, OscillatingRoller, OscillatingFlat>;
+
+namespace detail {
+template <class... F>
+constexpr bool check_follower_types(const std::variant<F...>*) {
+    return (check_follower_parameters<F>() && ...);
+}
+static_assert(check_follower_types(static_cast<const Follower*>(nullptr)));
+}  // namespace detail
 
 inline const char* follower_type_name(const Follower& f) {
     return std::visit([](const auto& x) { return std::decay_t<decltype(x)>::type_name; }, f);

@@ -23,7 +23,9 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <tuple>
 #include <string>
 #include <limits>
 
@@ -32,7 +34,7 @@
 #include "camfollower/error.hpp"
 #include "camfollower/follower/arm_turn.hpp"
 #include "camfollower/follower/contact_geometry.hpp"
-#include "camfollower/follower/follower_text.hpp"
+#include "camfollower/follower/parameters.hpp"
 #include "camfollower/follower/plane.hpp"
 #include "camfollower/follower/profile.hpp"
 #include "camfollower/motion/program.hpp"
@@ -44,6 +46,16 @@ public:
     // Its name in configs, messages and exports; its lift is the arm's rotation (rad).
     static constexpr const char* type_name = "oscillating_flat";
     static constexpr bool translating = false;
+    static constexpr const char* description =
+        "Oscillating flat-faced follower: pivot (x, y) in m, face offset from the pivot (m); its lift program is "
+        "the arm rotation in rad.";
+    static constexpr std::array parameters{
+        required_parameter("base_radius", ParameterKind::length, "base circle radius r_b (m, > 0)"),
+        required_parameter("pivot", ParameterKind::point, "arm pivot P (m, ground frame, outside the base circle)"),
+        optional_parameter("face_offset", ParameterKind::length,
+                           "distance f of the face from the pivot (m, |r_b - f| < |P|)", 0.0),
+        optional_parameter("turn", ParameterKind::turn, "the arm's lifting sense"),
+    };
 
     // base_radius r_b (m, > 0), pivot P (m, ground frame, outside the base circle), face_offset f (m,
     // |r_b - f| < |P| so the face can touch the base circle), turn: the arm's lifting sense.
@@ -68,6 +80,7 @@ public:
         phi0_ = detail::arm_angle_with_projection(pivot, std::clamp(projection, -d, d), sigma_);
     }
 
+    auto parameter_values() const { return std::make_tuple(base_radius_, pivot_, face_offset_, turn_); }
     double base_radius() const { return base_radius_; }
     const Eigen::Vector2d& pivot() const { return pivot_; }
     double face_offset() const { return face_offset_; }
@@ -110,13 +123,6 @@ public:
     double face_position(const FollowerMotion& m) const {
         const Eigen::Vector2d n = planar::unit(arm_angle(m));
         return planar::perp(n).dot(pivot_) / (sigma_ * m.dh - 1.0);
-    }
-
-    // One line naming the type and its parameters, lengths in `unit`.
-    std::string describe(LengthUnit unit) const {
-        return detail::concat(type_name, ": ", detail::length_text("base_radius", base_radius(), unit), ", ",
-                              detail::pivot_text(pivot(), unit), ", ",
-                              detail::length_text("face_offset", face_offset(), unit), ", ", detail::turn_text(turn()));
     }
 
 private:

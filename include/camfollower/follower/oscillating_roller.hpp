@@ -15,7 +15,9 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <tuple>
 #include <string>
 
 #include <Eigen/Core>
@@ -23,7 +25,7 @@
 #include "camfollower/error.hpp"
 #include "camfollower/follower/arm_turn.hpp"
 #include "camfollower/follower/contact_geometry.hpp"
-#include "camfollower/follower/follower_text.hpp"
+#include "camfollower/follower/parameters.hpp"
 #include "camfollower/follower/plane.hpp"
 #include "camfollower/follower/profile.hpp"
 #include "camfollower/follower/roller_pitch.hpp"
@@ -36,6 +38,16 @@ public:
     // Its name in configs, messages and exports; its lift is the arm's rotation (rad).
     static constexpr const char* type_name = "oscillating_roller";
     static constexpr bool translating = false;
+    static constexpr const char* description =
+        "Oscillating (swing-arm) roller follower: pivot (x, y) in m in the ground frame, arm length (m); its lift "
+        "program is the arm rotation in rad.";
+    static constexpr std::array parameters{
+        required_parameter("base_radius", ParameterKind::length, "base circle radius r_b (m, > 0)"),
+        required_parameter("roller_radius", ParameterKind::length, "roller radius r_r (m, > 0)"),
+        required_parameter("pivot", ParameterKind::point, "arm pivot P (m, ground frame, outside the base circle)"),
+        required_parameter("arm_length", ParameterKind::length, "pivot to roller centre L (m, > 0)"),
+        optional_parameter("turn", ParameterKind::turn, "the arm's lifting sense"),
+    };
 
     // base_radius r_b (m, > 0), roller_radius r_r (m, > 0), pivot P (m, ground frame, outside the
     // base circle), arm_length L (m, > 0, with | |P| - (r_b + r_r) | < L < |P| + r_b + r_r),
@@ -68,6 +80,7 @@ public:
         phi0_ = detail::arm_angle_with_projection(pivot, std::clamp(projection, -d, d), sigma_);
     }
 
+    auto parameter_values() const { return std::make_tuple(base_radius_, roller_radius_, pivot_, arm_length_, turn_); }
     double base_radius() const { return base_radius_; }
     double roller_radius() const { return roller_radius_; }
     const Eigen::Vector2d& pivot() const { return pivot_; }
@@ -113,14 +126,6 @@ public:
 
     // Signed curvature of the pitch curve (roller-centre path in the cam frame), 1/m, > 0 convex.
     double pitch_curvature(const FollowerMotion& m) const { return roller_pitch_curvature(roller_path(m)); }
-
-    // One line naming the type and its parameters, lengths in `unit`.
-    std::string describe(LengthUnit unit) const {
-        return detail::concat(type_name, ": ", detail::length_text("base_radius", base_radius(), unit), ", ",
-                              detail::length_text("roller_radius", roller_radius(), unit), ", ",
-                              detail::pivot_text(pivot(), unit), ", ",
-                              detail::length_text("arm_length", arm_length(), unit), ", ", detail::turn_text(turn()));
-    }
 
 private:
     double base_radius_, roller_radius_;

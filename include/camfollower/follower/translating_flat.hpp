@@ -16,7 +16,9 @@
 // the contact lies (face_position).
 #pragma once
 
+#include <array>
 #include <cmath>
+#include <tuple>
 #include <string>
 #include <limits>
 
@@ -24,7 +26,7 @@
 
 #include "camfollower/error.hpp"
 #include "camfollower/follower/contact_geometry.hpp"
-#include "camfollower/follower/follower_text.hpp"
+#include "camfollower/follower/parameters.hpp"
 #include "camfollower/follower/plane.hpp"
 #include "camfollower/follower/profile.hpp"
 #include "camfollower/motion/laws.hpp"
@@ -37,6 +39,14 @@ public:
     // Its name in configs, messages and exports; its lift is a length (m).
     static constexpr const char* type_name = "translating_flat";
     static constexpr bool translating = true;
+    static constexpr const char* description =
+        "Translating flat-faced follower: face angle (rad) from the normal to the axis, offset (m).";
+    static constexpr std::array parameters{
+        required_parameter("base_radius", ParameterKind::length, "base circle radius r_b (m, > 0)"),
+        optional_parameter("face_angle", ParameterKind::angle,
+                           "face angle g from the normal to the axis (rad, |g| < pi/2)", 0.0),
+        optional_parameter("offset", ParameterKind::length, "lateral position e of the axis (m)", 0.0),
+    };
 
     // base_radius r_b (m, > 0); face_angle g (rad, |g| < pi/2; > 0 tilts the face normal towards -x);
     // offset e (m, finite): lateral position of the follower axis.
@@ -51,6 +61,7 @@ public:
         sin_g_ = std::sin(face_angle);
     }
 
+    auto parameter_values() const { return std::make_tuple(base_radius_, face_angle_, offset_); }
     double base_radius() const { return base_radius_; }
     double face_angle() const { return face_angle_; }
     double offset() const { return offset_; }
@@ -88,13 +99,6 @@ public:
         const Eigen::Vector2d contact_point =
             (base_radius_ + cos_g_ * m.h) * face_normal() + cos_g_ * m.dh * face_direction();
         return (contact_point - axis_point(m)).dot(face_direction());
-    }
-
-    // One line naming the type and its parameters, lengths in `unit`, the angle in deg.
-    std::string describe(LengthUnit unit) const {
-        return detail::concat(type_name, ": ", detail::length_text("base_radius", base_radius(), unit),
-                              ", face_angle = ", radians_to_degrees(face_angle()), " deg, ",
-                              detail::length_text("offset", offset(), unit));
     }
 
 private:

@@ -11,14 +11,16 @@
 // profile() draws the cam in the frame X_cam = Rot(-theta) X_ground.
 #pragma once
 
+#include <array>
 #include <cmath>
+#include <tuple>
 #include <string>
 
 #include <Eigen/Core>
 
 #include "camfollower/error.hpp"
 #include "camfollower/follower/contact_geometry.hpp"
-#include "camfollower/follower/follower_text.hpp"
+#include "camfollower/follower/parameters.hpp"
 #include "camfollower/follower/plane.hpp"
 #include "camfollower/follower/profile.hpp"
 #include "camfollower/follower/roller_pitch.hpp"
@@ -43,10 +45,16 @@ public:
     // Its name in configs, messages and exports; its lift is a length (m).
     static constexpr const char* type_name = "translating_roller";
     static constexpr bool translating = true;
+    static constexpr const char* description = "Translating roller follower with offset (m): the paper's follower.";
+    static constexpr std::array parameters{
+        required_parameter("base_radius", ParameterKind::length, "base circle radius r_b (m, > 0)"),
+        required_parameter("roller_radius", ParameterKind::length, "roller radius r_r (m, > 0)"),
+        optional_parameter("offset", ParameterKind::length, "lateral offset e of the axis (m, |e| < r_b + r_r)", 0.0),
+    };
 
     // base_radius r_b (m, > 0), roller_radius r_r (m, > 0), offset e (m, |e| < r_b + r_r: the axis
     // must cut the base pitch circle).
-    TranslatingRoller(double base_radius, double roller_radius, double offset)
+    TranslatingRoller(double base_radius, double roller_radius, double offset = 0.0)
         : base_radius_(base_radius), roller_radius_(roller_radius), offset_(offset) {
         detail::require_length(base_radius, "base_radius");
         detail::require_length(roller_radius, "roller_radius");
@@ -56,6 +64,7 @@ public:
         pitch_base_ = std::sqrt(rp * rp - offset * offset);
     }
 
+    auto parameter_values() const { return std::make_tuple(base_radius_, roller_radius_, offset_); }
     double base_radius() const { return base_radius_; }
     double roller_radius() const { return roller_radius_; }
     double offset() const { return offset_; }
@@ -105,13 +114,6 @@ public:
 
     // Signed curvature of the pitch curve (roller-centre path in the cam frame), 1/m, > 0 convex.
     double pitch_curvature(const FollowerMotion& m) const { return curvature(kinematics(m), offset_); }
-
-    // One line naming the type and its parameters, lengths in `unit`.
-    std::string describe(LengthUnit unit) const {
-        return detail::concat(type_name, ": ", detail::length_text("base_radius", base_radius(), unit), ", ",
-                              detail::length_text("roller_radius", roller_radius(), unit), ", ",
-                              detail::length_text("offset", offset(), unit));
-    }
 
 private:
     double base_radius_, roller_radius_, offset_;

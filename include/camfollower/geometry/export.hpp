@@ -100,13 +100,9 @@ inline CamOutline cam_outline(const Follower& follower, const MotionProgram& pro
     return std::visit([&](const auto& f) { return cam_outline(f, program, points, cutter_radius, unit); }, follower);
 }
 
-// One line naming the follower type and its parameters, lengths in `unit`, angles in deg.
-template <class F>
-std::string describe_follower(const F& f, LengthUnit unit) {
-    return f.describe(unit);
-}
+// describe_follower (follower/parameters.hpp) for any type the Follower variant holds.
 inline std::string describe_follower(const Follower& f, LengthUnit unit) {
-    return std::visit([&](const auto& x) { return x.describe(unit); }, f);
+    return std::visit([&](const auto& x) { return describe_follower(x, unit); }, f);
 }
 
 // The header lines of an export (without comment marks): units, rotation, zero reference, follower,

@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "camfollower/constants.hpp"
 #include "camfollower/detail/extremum.hpp"
 #include "camfollower/error.hpp"
 #include "camfollower/motion/continuity.hpp"
@@ -27,10 +28,6 @@
 #include "camfollower/motion/profile_error.hpp"
 
 namespace camfollower {
-
-inline constexpr double two_pi = 2.0 * pi;
-inline double degrees_to_radians(double deg) { return deg * pi / 180.0; }
-inline double radians_to_degrees(double rad) { return rad * 180.0 / pi; }
 
 struct Segment {
     MotionLaw law;
