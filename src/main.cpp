@@ -120,6 +120,19 @@ int kinematics(const std::string& config, double rpm) {
                 "changes per revolution\n",
                 1e3 * p.groove->clearance, over.empty() ? "no" : over.c_str(), k.flank_changes);
         }
+        // Conjugate cams: where the rigid check puts the load on the other cam.
+        if (!k.conjugate.empty()) {
+            std::string over;
+            char span[64];
+            for (const auto& [from, to] : k.other_cam) {
+                std::snprintf(span, sizeof span, "%s%.1f-%.1f", over.empty() ? "" : ", ", deg(from), deg(to));
+                over += span;
+            }
+            std::printf(
+                "  conjugate to '%s', which carries the load (rigid) over %s deg, %d changes of cam per "
+                "revolution\n",
+                k.conjugate.c_str(), over.empty() ? "no" : over.c_str(), k.flank_changes);
+        }
     }
     return 0;
 }

@@ -2,6 +2,7 @@
 // camfollower: dynamics of flexible cam-follower mechanisms. Facade header: the whole public API.
 #pragma once
 
+#include "camfollower/contact/conjugate.hpp"
 #include "camfollower/contact/contact_pair.hpp"  // with every follower type (Follower)
 #include "camfollower/contact/hertz.hpp"
 #include "camfollower/contact/line_contact.hpp"

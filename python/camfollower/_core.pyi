@@ -292,6 +292,11 @@ class MotionProgram:
     """
     Segments tiling one revolution; h(theta) and its theta-derivatives.
     """
+    def complement(self, total: typing.SupportsFloat | typing.SupportsIndex) -> MotionProgram:
+        """
+        The conjugate program total - h(theta) (a conjugate pair's return cam), from the design lift (a
+        profile error is not carried over); built-in laws only: a spline or polynomial segment is refused.
+        """
     @staticmethod
     def from_table(theta: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], h: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], degree: typing.SupportsInt | typing.SupportsIndex = 5, smoothing: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> MotionProgram:
         """
@@ -927,7 +932,17 @@ class MechanismBuilder:
         (m) and meets a wall law F = k delta^n (1 + chi delta') beyond; with friction > 0, regularized Coulomb
         friction mu F tanh(v / slip_velocity) on sliding_dof. Channels <name>.force, .side, .gap, .friction.
         """
-    def add_contact(self, name: str, program: MotionProgram, follower: typing.Any, *, follower_dof: str, stiffness: typing.SupportsFloat | typing.SupportsIndex, exponent: typing.SupportsFloat | typing.SupportsIndex = 1.0, damping_factor: typing.SupportsFloat | typing.SupportsIndex = 0.0, phase: typing.SupportsFloat | typing.SupportsIndex = 0.0, cam_x: str = 'ground', cam_y: str = 'ground', lateral: str = 'ground', eccentricity: CamEccentricity | None = None, cam_twist: str = 'ground', groove: Groove | None = None) -> None:
+    def add_conjugate_cams(self, name: str, program: MotionProgram, follower: typing.Any, return_follower: typing.Any, *, follower_dof: str, stiffness: typing.SupportsFloat | typing.SupportsIndex, exponent: typing.SupportsFloat | typing.SupportsIndex = 1.0, damping_factor: typing.SupportsFloat | typing.SupportsIndex = 0.0, backlash: typing.SupportsFloat | typing.SupportsIndex = 0.0, phase: typing.SupportsFloat | typing.SupportsIndex = 0.0, return_program: MotionProgram | None = None, return_stiffness: typing.SupportsFloat | typing.SupportsIndex | None = None, return_exponent: typing.SupportsFloat | typing.SupportsIndex | None = None, return_damping_factor: typing.SupportsFloat | typing.SupportsIndex | None = None, cam_x: str = 'ground', cam_y: str = 'ground', lateral: str = 'ground', cam_twist: str = 'ground') -> None:
+        """
+        Conjugate cams: two cams on one shaft holding one follower both ways, the contacts '<name>.lift'
+        (program, follower) and '<name>.return' (return_follower on the cam of return_program, by default the
+        complement H - h with H the program's highest lift). A translating pair's return roller sits across
+        the cam centre (its frame turned by pi, its offset measured in that frame); an oscillating pair's
+        arms share the pivot and lift in opposite senses. backlash (m, or rad for an arm): the follower's play
+        between the cams (> 0) or the interference that preloads them (< 0). return_*: the return contact's
+        law where it differs.
+        """
+    def add_contact(self, name: str, program: MotionProgram, follower: typing.Any, *, follower_dof: str, stiffness: typing.SupportsFloat | typing.SupportsIndex, exponent: typing.SupportsFloat | typing.SupportsIndex = 1.0, damping_factor: typing.SupportsFloat | typing.SupportsIndex = 0.0, phase: typing.SupportsFloat | typing.SupportsIndex = 0.0, cam_x: str = 'ground', cam_y: str = 'ground', lateral: str = 'ground', eccentricity: CamEccentricity | None = None, cam_twist: str = 'ground', groove: Groove | None = None, follower_ratio: typing.SupportsFloat | typing.SupportsIndex = 1.0, follower_offset: typing.SupportsFloat | typing.SupportsIndex = 0.0, frame_angle: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
         """
         A cam-follower contact pair: the cam's lift program (m, or rad for an oscillating follower), the follower
         type, the DOF of the follower's coordinate, a Hertz law F = k delta^n (1 + chi delta'), the cam's
@@ -935,7 +950,9 @@ class MechanismBuilder:
         CamEccentricity, and the camshaft's twist DOF at the cam (rad; the cam angle is then omega t + phase +
         twist, a state, and the contact's moment loads the twist: channel <name>.cam_torque), and an optional
         Groove for a roller held between two flanks (channels <name>.penetration_rate, .outer_force,
-        .outer_penetration, .outer_in_contact; event <name>.outer_contact).
+        .outer_penetration, .outer_in_contact; event <name>.outer_contact). follower_ratio, follower_offset:
+        the pair's follower coordinate is follower_offset + follower_ratio * q_follower (a second roller on
+        one follower); frame_angle (rad): the pair's frame turned from the ground frame about the cam axis.
         """
     def add_damper(self, name: str, a: str, b: str = 'ground', *, damping: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...

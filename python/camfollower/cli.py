@@ -391,6 +391,15 @@ def kinematics(config, rpm=None) -> list:
                 f"  groove clearance {1e3 * c['groove'].clearance:.6g} mm: outer flank carries the roller (rigid) "
                 f"over {over} deg, {closed['flank_changes']} flank changes per revolution"
             )
+        if "conjugate" in closed:  # conjugate cams: where the rigid check puts the load on the other cam
+            row["conjugate"] = closed["conjugate"]
+            row["other_cam_deg"] = closed["other_cam_deg"]
+            row["flank_changes"] = closed["flank_changes"]
+            over = ", ".join(f"{a:.1f}-{b:.1f}" for a, b in closed["other_cam_deg"]) or "no"
+            print(
+                f"  conjugate to '{closed['conjugate']}', which carries the load (rigid) over {over} deg, "
+                f"{closed['flank_changes']} changes of cam per revolution"
+            )
     return rows
 
 

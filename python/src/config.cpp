@@ -307,6 +307,10 @@ py::dict force_closure(const MechanismBuilder& b, double rpm) {
         d["grooved"] = c.grooved;
         d["outer_flank_deg"] = intervals(c.outer_flank);
         d["flank_changes"] = c.flank_changes;
+        if (!c.conjugate.empty()) {
+            d["conjugate"] = c.conjugate;
+            d["other_cam_deg"] = intervals(c.other_cam);
+        }
         contacts.append(d);
     }
     py::dict out;

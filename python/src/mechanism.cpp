@@ -284,7 +284,9 @@ py::dict builder_state(const MechanismBuilder& b) {
             py::arg("eccentricity") = c.eccentricity, py::arg("cam_twist") = c.cam_twist,
             py::arg("paper_backlash") = py::make_tuple(c.paper_backlash.backlash, c.paper_backlash.switch_width,
                                                        c.paper_backlash.guide_dof, c.paper_backlash.guide_stiffness),
-            py::arg("groove") = c.groove ? py::cast(*c.groove) : py::none()));
+            py::arg("groove") = c.groove ? py::cast(*c.groove) : py::none(),
+            py::arg("follower_ratio") = c.follower_ratio, py::arg("follower_offset") = c.follower_offset,
+            py::arg("frame_angle") = c.frame_angle));
     py::list clearances;
     for (const ClearanceSpec& c : b.clearances)
         clearances.append(py::dict(py::arg("name") = c.name, py::arg("gap") = c.gap, py::arg("clearance") = c.clearance,
@@ -355,6 +357,9 @@ MechanismBuilder builder_from(const py::dict& t) {
                                    pb[3].cast<double>()};
         }
         if (c.contains("groove") && !c["groove"].is_none()) spec.groove = c["groove"].cast<Groove>();
+        if (c.contains("follower_ratio")) spec.follower_ratio = c["follower_ratio"].cast<double>();
+        if (c.contains("follower_offset")) spec.follower_offset = c["follower_offset"].cast<double>();
+        if (c.contains("frame_angle")) spec.frame_angle = c["frame_angle"].cast<double>();
         b.add_contact(spec);
     }
     if (t.contains("clearances"))
@@ -501,7 +506,7 @@ void bind_mechanism(py::module_& m) {
                const std::string& follower_dof, double stiffness, double exponent, double damping_factor, double phase,
                const std::string& cam_x, const std::string& cam_y, const std::string& lateral,
                const std::optional<CamEccentricity>& eccentricity, const std::string& cam_twist,
-               const std::optional<Groove>& groove) {
+               const std::optional<Groove>& groove, double follower_ratio, double follower_offset, double frame_angle) {
                 ContactPairSpec spec{name,
                                      program,
                                      follower_from(follower),
@@ -514,12 +519,15 @@ void bind_mechanism(py::module_& m) {
                                      eccentricity.value_or(CamEccentricity{}),
                                      cam_twist};
                 spec.groove = groove;
+                spec.follower_ratio = follower_ratio, spec.follower_offset = follower_offset;
+                spec.frame_angle = frame_angle;
                 b.add_contact(spec);
             },
             py::arg("name"), py::arg("program"), py::arg("follower"), py::kw_only(), py::arg("follower_dof"),
             py::arg("stiffness"), py::arg("exponent") = 1.0, py::arg("damping_factor") = 0.0, py::arg("phase") = 0.0,
             py::arg("cam_x") = ground_name, py::arg("cam_y") = ground_name, py::arg("lateral") = ground_name,
             py::arg("eccentricity") = py::none(), py::arg("cam_twist") = ground_name, py::arg("groove") = py::none(),
+            py::arg("follower_ratio") = 1.0, py::arg("follower_offset") = 0.0, py::arg("frame_angle") = 0.0,
             "A cam-follower contact pair: the cam's lift program (m, or rad for an oscillating follower), the "
             "follower\n"
             "type, the DOF of the follower's coordinate, a Hertz law F = k delta^n (1 + chi delta'), the cam's\n"
@@ -527,7 +535,51 @@ void bind_mechanism(py::module_& m) {
             "CamEccentricity, and the camshaft's twist DOF at the cam (rad; the cam angle is then omega t + phase +\n"
             "twist, a state, and the contact's moment loads the twist: channel <name>.cam_torque), and an optional\n"
             "Groove for a roller held between two flanks (channels <name>.penetration_rate, .outer_force,\n"
-            ".outer_penetration, .outer_in_contact; event <name>.outer_contact).")
+            ".outer_penetration, .outer_in_contact; event <name>.outer_contact). follower_ratio, follower_offset:\n"
+            "the pair's follower coordinate is follower_offset + follower_ratio * q_follower (a second roller on\n"
+            "one follower); frame_angle (rad): the pair's frame turned from the ground frame about the cam axis.")
+        .def(
+            "add_conjugate_cams",
+            [](MechanismBuilder& b, const std::string& name, const MotionProgram& program, const py::object& follower,
+               const py::object& return_follower, const std::string& follower_dof, double stiffness, double exponent,
+               double damping_factor, double backlash, double phase, const std::optional<MotionProgram>& return_program,
+               std::optional<double> return_stiffness, std::optional<double> return_exponent,
+               std::optional<double> return_damping_factor, const std::string& cam_x, const std::string& cam_y,
+               const std::string& lateral, const std::string& cam_twist) {
+                const HertzContact law{stiffness, exponent, damping_factor};
+                ConjugateCams c{name,
+                                program,
+                                follower_from(follower),
+                                follower_from(return_follower),
+                                return_program,
+                                law,
+                                std::nullopt,
+                                phase,
+                                backlash,
+                                cam_x,
+                                cam_y,
+                                follower_dof,
+                                lateral,
+                                cam_twist};
+                if (return_stiffness || return_exponent || return_damping_factor)
+                    c.return_law =
+                        HertzContact{return_stiffness.value_or(stiffness), return_exponent.value_or(exponent),
+                                     return_damping_factor.value_or(damping_factor)};
+                b.add_conjugate_cams(c);
+            },
+            py::arg("name"), py::arg("program"), py::arg("follower"), py::arg("return_follower"), py::kw_only(),
+            py::arg("follower_dof"), py::arg("stiffness"), py::arg("exponent") = 1.0, py::arg("damping_factor") = 0.0,
+            py::arg("backlash") = 0.0, py::arg("phase") = 0.0, py::arg("return_program") = py::none(),
+            py::arg("return_stiffness") = py::none(), py::arg("return_exponent") = py::none(),
+            py::arg("return_damping_factor") = py::none(), py::arg("cam_x") = ground_name,
+            py::arg("cam_y") = ground_name, py::arg("lateral") = ground_name, py::arg("cam_twist") = ground_name,
+            "Conjugate cams: two cams on one shaft holding one follower both ways, the contacts '<name>.lift'\n"
+            "(program, follower) and '<name>.return' (return_follower on the cam of return_program, by default the\n"
+            "complement H - h with H the program's highest lift). A translating pair's return roller sits across\n"
+            "the cam centre (its frame turned by pi, its offset measured in that frame); an oscillating pair's\n"
+            "arms share the pivot and lift in opposite senses. backlash (m, or rad for an arm): the follower's play\n"
+            "between the cams (> 0) or the interference that preloads them (< 0). return_*: the return contact's\n"
+            "law where it differs.")
         .def(
             "add_shaft",
             [](MechanismBuilder& b, const std::string& name, double length, double outer_diameter,

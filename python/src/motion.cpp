@@ -398,6 +398,9 @@ void bind_motion(py::module_& m) {
                 if (t.size() > 1 && !t[1].is_none()) p = p.with_profile_error(t[1].cast<ProfileError>());
                 return p;
             }))
+        .def("complement", &MotionProgram::complement, py::arg("total"),
+             "The conjugate program total - h(theta) (a conjugate pair's return cam), from the design lift (a\n"
+             "profile error is not carried over); built-in laws only: a spline or polynomial segment is refused.")
         .def("with_profile_error", &MotionProgram::with_profile_error, py::arg("error"),
              "A copy whose lift carries the cam's manufacturing error (replacing any it carries; ProfileError()\n"
              "removes it). It reaches evaluate, the contacts and the undercut / pressure-angle checks.")

@@ -638,10 +638,32 @@ void read_parts(const Section& root, const CaseConfig& c, const Dimensions& dims
             for (const char* key : {"at", "width", "cam_mass", "cam_inertia"})
                 if (s.has(key)) s.fail(key, "belongs to a cam mounted on a shaft (give shaft = \"<name>\")");
         }
+        // Conjugate cams (contact/conjugate.hpp): this contact's cam lifts, a second cam returns.
+        std::optional<ConjugateCams> conjugate;
+        if (const std::optional<Section> j = s.table("conjugate")) {
+            for (const char* key : {"groove", "eccentricity", "shaft"})
+                if (s.has(key)) s.fail(key, "does not combine with conjugate cams (not modelled)");
+            const std::optional<Section> back = j->table("follower");
+            if (!back) j->fail_here("conjugate cams need the return cam's follower: follower = { type = ... }");
+            conjugate =
+                ConjugateCams{p.name,       p.program,  p.follower,   read_follower(*back, owner + "'s return cam"),
+                              std::nullopt, p.law,      std::nullopt, p.phase,
+                              0.0,          p.cam_x,    p.cam_y,      p.follower_dof,
+                              p.lateral,    p.cam_twist};
+            if (j->has("program")) {
+                const std::string name = j->text("program");
+                located(*j, [&] { conjugate->return_program = c.program(name); });
+            }
+            conjugate->backlash = j->quantity("backlash", translating ? "m" : "rad", 0.0);
+            if (j->has("stiffness") || j->has("exponent") || j->has("damping_factor") || j->has("roller_width"))
+                conjugate->return_law = read_law(*j);
+            j->finish({"follower", "program", "backlash", "stiffness", "exponent", "damping_factor", "roller_width"});
+        }
         s.finish({"name",   "program",      "follower", "stiffness", "exponent", "damping_factor", "roller_width",
                   "phase",  "follower_dof", "cam_x",    "cam_y",     "lateral",  "cam_twist",      "eccentricity",
-                  "groove", "shaft",        "at",       "width",     "cam_mass", "cam_inertia"});
-        if (mounted) located(s, [&] { b.mount_cam(p, shaft, x, width, mass, inertia); });
+                  "groove", "shaft",        "at",       "width",     "cam_mass", "cam_inertia",    "conjugate"});
+        if (conjugate) located(s, [&] { b.add_conjugate_cams(*conjugate); });
+        else if (mounted) located(s, [&] { b.mount_cam(p, shaft, x, width, mass, inertia); });
         else located(s, [&] { b.add_contact(p); });
     }
     for (const Section& s : root.tables("clearance")) {

@@ -83,6 +83,16 @@ double first_negative(double a, double b, double c) {
     return lo;
 }
 
+// d delta / d q_follower of a pair at shaft angle theta: its g on its follower DOF.
+double follower_coefficient(const ContactPair& pair, double theta, double omega, const Eigen::VectorXd& q) {
+    ContactTerms c;
+    if (pair.twist() >= 0) pair.evaluate(theta + pair.spec().phase + q[pair.twist()], omega, c);
+    else pair.prepare(theta / omega, omega, c);
+    for (int k = 0; k < c.count; ++k)
+        if (c.dof[std::size_t(k)] == pair.follower()) return c.g[std::size_t(k)];
+    return 0.0;
+}
+
 ForceClosure check(const Model& m, double rpm) {
     ForceClosure out;
     out.rpm = rpm;
@@ -94,6 +104,17 @@ ForceClosure check(const Model& m, double rpm) {
     const double step = two_pi / steps, omega = m.omega();
     const std::size_t count = std::size_t(steps);
 
+    // Conjugate cams: the partner of each contact pushing the same follower DOF the other way (-1: none).
+    std::vector<int> partner(nc, -1);
+    for (std::size_t i = 0; i < nc; ++i)
+        for (std::size_t j = 0; j < nc; ++j) {
+            const ContactPairSpec &a = m.contacts()[i].spec(), &b = m.contacts()[j].spec();
+            if (i != j && a.follower_dof == b.follower_dof && a.follower_ratio * b.follower_ratio < 0.0)
+                partner[i] = int(j);
+        }
+    // The rigid check holds one of the two (the one mapped with a positive ratio, the lift cam).
+    const auto held = [&](std::size_t i) { return partner[i] < 0 || m.contacts()[i].spec().follower_ratio > 0.0; };
+
     std::vector<Eigen::VectorXd> q(count);
     try {
         for (int j = 0; j < steps; ++j) q[std::size_t(j)] = m.static_equilibrium(j * step);
@@ -103,6 +124,7 @@ ForceClosure check(const Model& m, double rpm) {
     }
     // Per contact and angle: the static force and the parts of the rigid check's force per omega and omega^2.
     std::vector<std::vector<double>> Fs(nc, std::vector<double>(count)), F1 = Fs, F2 = Fs;
+    std::vector<double> preload(nc, 0.0);  // a conjugate pair's largest static force (the net's scale)
     const int size = n + int(nc);
     Eigen::MatrixXd A(size, size), rhs(size, 2);
     for (int j = 0; j < steps; ++j) {
@@ -117,6 +139,11 @@ ForceClosure check(const Model& m, double rpm) {
             const ContactPair& pair = m.contacts()[i];
             ContactTerms c;
             const int col = n + int(i);
+            Fs[i][std::size_t(j)] = m.static_contact_force(theta, q0, i);
+            if (!held(i)) {  // its partner's force says where it carries the load
+                A(col, col) = 1.0;
+                continue;
+            }
             if (pair.twist() >= 0) {
                 pair.evaluate(theta + pair.spec().phase + q0[pair.twist()], omega, c);
                 double arm = c.delta0_theta;
@@ -129,7 +156,6 @@ ForceClosure check(const Model& m, double rpm) {
                 const int dof = c.dof[std::size_t(k)];
                 A(dof, col) += c.g[std::size_t(k)], A(col, dof) += c.g[std::size_t(k)];
             }
-            Fs[i][std::size_t(j)] = m.static_contact_force(theta, q0, i);
         }
         rhs.setZero();
         rhs.col(0).head(n) = -(m.mass() * a);
@@ -141,6 +167,16 @@ ForceClosure check(const Model& m, double rpm) {
             x = A.completeOrthogonalDecomposition().solve(rhs);
         for (std::size_t i = 0; i < nc; ++i)
             F2[i][std::size_t(j)] = x(n + int(i), 0), F1[i][std::size_t(j)] = x(n + int(i), 1);
+        // Conjugate cams both carry the preload; the rigid check's force on the held cam is the net one,
+        // the other's force taken over in the held one's terms (the ratio of their follower coefficients).
+        for (std::size_t i = 0; i < nc; ++i)
+            if (partner[i] >= 0 && held(i)) {
+                const std::size_t k = std::size_t(partner[i]);
+                const double share = follower_coefficient(m.contacts()[k], theta, omega, q0) /
+                                     follower_coefficient(m.contacts()[i], theta, omega, q0);
+                preload[i] = std::max({preload[i], std::abs(Fs[i][std::size_t(j)]), std::abs(Fs[k][std::size_t(j)])});
+                Fs[i][std::size_t(j)] += share * Fs[k][std::size_t(j)];
+            }
     }
 
     const double max_rpm = detail::max_camshaft_speed * 30.0 / pi;
@@ -168,7 +204,24 @@ ForceClosure check(const Model& m, double rpm) {
         r.rigid_min_force = F[rmin], r.rigid_min_angle = std::fmod(double(rmin) * step + phase, two_pi);
         r.rigid_limit_rpm = limit * 30.0 / pi > max_rpm ? std::numeric_limits<double>::infinity() : limit * 30.0 / pi;
         const std::string who = "contact '" + detail::printable(r.contact) + "'";
-        if (pair.grooved()) {
+        if (partner[i] >= 0) {
+            // Form-closed: the held cam's net force, where < 0, is on the other cam. The net is a difference
+            // of preloads: zero in a dwell to the static equilibrium's accuracy, so judged against them.
+            const std::size_t h = held(i) ? i : std::size_t(partner[i]);
+            const double net_tol = 1e-6 * (preload[h] + 1.0);
+            std::vector<bool> other(count);
+            std::vector<int> carrier;  // +1 the held cam, -1 the other, in order; where the net force is ~0
+            for (std::size_t j = 0; j < count; ++j) {  // (a dwell, only the preload) neither counts
+                const double net = Fs[h][j] + omega * F1[h][j] + omega * omega * F2[h][j];
+                other[j] = held(i) ? net < -net_tol : net > net_tol;
+                if (std::abs(net) > net_tol) carrier.push_back(net > 0.0 ? 1 : -1);
+            }
+            r.conjugate = m.contacts()[std::size_t(partner[i])].name();
+            r.other_cam = runs(other, step, phase);
+            for (std::size_t j = 0; j < carrier.size(); ++j)
+                r.flank_changes += carrier[j] != carrier[(j + 1) % carrier.size()] ? 1 : 0;
+            r.rigid_loss.clear();
+        } else if (pair.grooved()) {
             r.grooved = true;
             r.outer_flank = runs(lost, step, phase);
             for (std::size_t j = 0; j < count; ++j) r.flank_changes += lost[j] != lost[(j + 1) % count] ? 1 : 0;

@@ -15,7 +15,10 @@
 //    jump speed of camfollower.speed) loses contact at lower speeds still: this check finds the
 //    mechanisms that cannot work, it does not clear the others.
 //  A grooved cam holds its roller either way: the rigid check then says which flank carries it where
-//  (outer where F < 0) and how often the load changes flank.
+//  (outer where F < 0) and how often the load changes flank. Conjugate cams (two contacts on one
+//  follower DOF pushing it in opposite senses, follower_ratio of opposite signs) likewise: the rigid
+//  check holds the lift cam's contact only (both together are one constraint) and its force, where
+//  < 0, is carried by the return cam.
 #pragma once
 
 #include <limits>
@@ -45,6 +48,12 @@ struct ContactClosure {
     bool grooved = false;
     std::vector<std::pair<double, double>> outer_flank;
     int flank_changes = 0;
+    // One of conjugate cams (form-closed: no warnings): the other cam's contact, the cam-angle intervals
+    // (rad) where the rigid check puts the load on the other cam, and how often per revolution the load
+    // passes from one cam to the other (flank_changes; a dwell where the net force vanishes and both
+    // carry only their preload is not a change).
+    std::string conjugate;
+    std::vector<std::pair<double, double>> other_cam;
 };
 
 struct ForceClosure {

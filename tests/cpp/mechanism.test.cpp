@@ -413,3 +413,80 @@ TEST_CASE("a model's size is bounded before it is assembled; a shaft mesh absurd
     CHECK(b.structure.size() == 2 * 401 * 5);
     CHECK_THROWS_WITH(Mechanism<>(b), Catch::Contains("the mechanism has 4010 DOFs, more than the 3000"));
 }
+
+TEST_CASE("a pair's follower map and frame move the plain pair's penetration as they say", "[contact][conjugate]") {
+    // s = offset + ratio q on the follower and lateral DOFs; the normal turned by frame_angle on the cam
+    // centre's. Checked against the plain pair evaluated at the mapped coordinates: a second method.
+    const MotionProgram program = MotionProgram::paper_default(0.010);
+    ContactPairSpec plain{"plain",
+                          program,
+                          TranslatingRoller(0.04, 0.01, 0.004),
+                          HertzContact{1e8, 1.0, 0.0},
+                          0.3,
+                          "cx",
+                          "cy",
+                          "f",
+                          "lat",
+                          CamEccentricity{},
+                          "ground"};
+    ContactPairSpec mapped = plain;
+    mapped.name = "mapped";
+    mapped.follower_ratio = -1.7, mapped.follower_offset = 0.0123, mapped.frame_angle = 2.1;
+    const ContactPair a(plain, 0, 1, 2, 3), b(mapped, 0, 1, 2, 3);
+    const Eigen::Vector4d q(3e-5, -2e-5, 0.004, 1e-5);  // cam x, cam y, follower, lateral
+    const double c = std::cos(2.1), s = std::sin(2.1);
+    for (double theta : {0.2, 1.1, 2.5, 4.0, 5.9}) {
+        ContactTerms ta, tb;
+        a.evaluate(theta, 50.0, ta);
+        b.evaluate(theta, 50.0, tb);
+        // The cam centre's ground displacement seen in the turned frame: R(-phi) d.
+        const Eigen::Vector4d seen(c * q[0] + s * q[1], -s * q[0] + c * q[1], 0.0123 - 1.7 * q[2], -1.7 * q[3]);
+        const double expected = ContactPair::penetration(ta, seen);
+        CHECK(ContactPair::penetration(tb, q) == Approx(expected).margin(1e-15));
+        // The rate likewise (velocities map as displacements, without the offset).
+        const Eigen::Vector4d v(0.1, -0.2, 0.3, 0.05);
+        const Eigen::Vector4d seen_v(c * v[0] + s * v[1], -s * v[0] + c * v[1], -1.7 * v[2], -1.7 * v[3]);
+        CHECK(ContactPair::penetration_rate(tb, q, v) ==
+              Approx(ContactPair::penetration_rate(ta, seen, seen_v)).margin(1e-12));
+    }
+}
+
+TEST_CASE("conjugate cams: complement, the return pair's map and the pair's checks", "[contact][conjugate]") {
+    const MotionProgram program = MotionProgram::paper_default(0.010);
+    const MotionProgram back = program.complement(0.010);
+    for (double theta = 0.0; theta < two_pi; theta += 0.05) {
+        const FollowerMotion m = program.evaluate(theta), r = back.evaluate(theta);
+        CHECK(m.h + r.h == Approx(0.010).margin(1e-17));
+        CHECK(r.d2h == Approx(-m.d2h).margin(1e-15));
+    }
+    ConjugateCams cams{"cams",
+                       program,
+                       TranslatingRoller(0.04, 0.01),
+                       TranslatingRoller(0.05, 0.012),
+                       std::nullopt,
+                       HertzContact{1e9, 1.0, 0.0},
+                       std::nullopt,
+                       0.0,
+                       -2e-5,
+                       "ground",
+                       "ground",
+                       "f"};
+    const std::vector<ContactPairSpec> pairs = cams.contacts();
+    REQUIRE(pairs.size() == 2);
+    CHECK(pairs[0].name == "cams.lift");
+    CHECK(pairs[1].name == "cams.return");
+    CHECK(pairs[1].follower_ratio == -1.0);
+    CHECK(pairs[1].follower_offset == Approx(0.010 - 2e-5));
+    CHECK(pairs[1].frame_angle == Approx(pi));
+    // No spring: the interference alone holds the follower, both contacts pressed equally at rest.
+    MechanismBuilder b;
+    b.add_dof("f", 0.5);
+    b.add_conjugate_cams(cams);
+    const Mechanism<> m(b);
+    const Eigen::VectorXd q = m.static_equilibrium(0.0);
+    CHECK(m.static_contact_force(0.0, q, 0) == Approx(1e9 * 1e-5).epsilon(1e-9));
+    CHECK(m.static_contact_force(0.0, q, 1) == Approx(1e9 * 1e-5).epsilon(1e-9));
+    // A return program that is not the complement is refused by name.
+    cams.return_program = program;
+    CHECK_THROWS_WITH(cams.contacts(), Catch::Contains("conjugate cams 'cams': the return program is not conjugate"));
+}

@@ -8,7 +8,10 @@
 // Its penetration is linear in q with coefficients that depend on the cam angle only
 // (contact_geometry.hpp):
 //   delta = g(theta)^T q + delta0(theta),  g = n_x e_cam_x + n_y e_cam_y - n_x e_lateral - lever e_follower,
-//   delta0 = lever s(theta),               theta = omega t + phase (+ q_twist).
+//   delta0 = lever s(theta),               theta = omega t + phase (+ q_twist),
+// for a follower whose DOF is its lift in the ground frame; a pair's follower map and frame
+// (ContactPairSpec::follower_ratio, follower_offset, frame_angle) scale the follower's terms, shift
+// s and turn n for the cam centre's.
 // Without a twist DOF theta depends on time only (terms prepared once per step). With one the cam angle
 // is a state: delta depends on q_twist through theta, the generalized force on the twist is the
 // contact force's moment about the shaft axis, F d delta / d theta (virtual work), and the terms are
@@ -88,6 +91,17 @@ struct ContactPairSpec {
     std::string cam_twist = "ground";  // the shaft's twist DOF at the cam (ground: a rigid camshaft)
     PaperBacklash paper_backlash{};    // off by default
     std::optional<Groove> groove{};    // a face groove's outer flank (form closure); none: force-closed
+    // How the follower's DOFs move this pair's follower, and where it sits around the cam (a second
+    // roller on the same follower, contact/conjugate.hpp). The pair's follower coordinate is
+    // s = follower_offset + follower_ratio * q_follower (m or rad as the lift; ratio finite, non-zero)
+    // and its lateral one follower_ratio * q_lateral. frame_angle (rad): the pair's frame (its
+    // follower's axis or pivot frame) turned from the ground frame about the cam axis; the cam angle
+    // it sees stays omega t + phase (so the cam sits at phase + frame_angle on the shaft), and the
+    // contact normal reaches cam_x, cam_y turned by it.
+    double follower_ratio = 1.0, follower_offset = 0.0, frame_angle = 0.0;
+
+    // The plain pair: the follower's DOF is its lift, in the ground frame.
+    bool plain_mapping() const { return follower_ratio == 1.0 && follower_offset == 0.0 && frame_angle == 0.0; }
 
     // The roles in the order of require_distinct_roles' messages (and ContactPair's indices).
     static constexpr int role_count = 6;
@@ -182,6 +196,7 @@ public:
             detail::fail(who, ": an unbalance mass loads the cam centre, so cam_x or cam_y must be a DOF");
         check_paper_backlash(who);
         if (spec_.groove) check_groove(who);
+        check_mapping(who);
         // Where each role's coefficient goes in the sparse g (the guide's is zero: a load only).
         const int roles[ContactTerms::slots] = {cam_x_, cam_y_, lateral_, follower_, guide_};
         for (int r = 0; r < ContactTerms::slots; ++r) {
@@ -206,7 +221,8 @@ public:
 
     const ContactPairSpec& spec() const { return spec_; }
     const std::string& name() const { return spec_.name; }
-    int twist() const { return twist_; }  // the twist DOF, -1 on a rigid camshaft
+    int twist() const { return twist_; }        // the twist DOF, -1 on a rigid camshaft
+    int follower() const { return follower_; }  // the follower's DOF
     // The distinct DOFs of g (the twist not included).
     std::vector<int> dofs() const { return std::vector<int>(dofs_.begin(), dofs_.begin() + count_); }
 
@@ -223,13 +239,20 @@ public:
         c.count = count_;
         c.dof = dofs_;
         c.g.fill(0.0), c.g_theta.fill(0.0);
-        const double g[4] = {k.normal.x(), k.normal.y(), -k.normal.x(), -k.lever};
-        const double g_theta[4] = {k.dnormal.x(), k.dnormal.y(), -k.dnormal.x(), -k.dlever};
-        for (int r = 0; r < 4; ++r)
-            if (slot_[r] >= 0) c.g[slot_[r]] += g[r], c.g_theta[slot_[r]] += g_theta[r];
+        // The normal's ground components (the pair's frame turned by frame_angle) act on the cam centre;
+        // the follower's coordinates enter through the pair's map s = offset + ratio q.
+        const double ratio = spec_.follower_ratio, lift = k.lift - spec_.follower_offset;
+        const double g[4] = {cos_frame_ * k.normal.x() - sin_frame_ * k.normal.y(),
+                             sin_frame_ * k.normal.x() + cos_frame_ * k.normal.y(), -ratio * k.normal.x(),
+                             -ratio * k.lever};
+        const double g_theta[4] = {cos_frame_ * k.dnormal.x() - sin_frame_ * k.dnormal.y(),
+                                   sin_frame_ * k.dnormal.x() + cos_frame_ * k.dnormal.y(), -ratio * k.dnormal.x(),
+                                   -ratio * k.dlever};
+        for (int i = 0; i < 4; ++i)
+            if (slot_[i] >= 0) c.g[slot_[i]] += g[i], c.g_theta[slot_[i]] += g_theta[i];
         for (int i = 0; i < ContactTerms::slots; ++i) c.g_dot[i] = omega * c.g_theta[i];
-        c.delta0 = k.lever * k.lift;
-        c.delta0_theta = k.dlever * k.lift + k.lever * k.dlift;
+        c.delta0 = k.lever * lift;
+        c.delta0_theta = k.dlever * lift + k.lever * k.dlift;
         c.cos_alpha = k.cos_alpha, c.sin_alpha = k.sin_alpha;
         const CamEccentricity& ecc = spec_.eccentricity;
         c.loaded = false;
@@ -303,6 +326,28 @@ public:
     }
 
 private:
+    // The follower map and frame: finite, a non-zero ratio; the formulations written for a follower
+    // whose DOF is its lift in the ground frame refuse any other.
+    void check_mapping(const std::string& who) {
+        const double r = spec_.follower_ratio, phi = spec_.frame_angle;
+        if (!(std::isfinite(r) && r != 0.0 && std::abs(r) <= 1e6 && std::abs(r) >= 1e-6))
+            detail::fail(who, ": follower_ratio must be finite with 1e-6 <= |ratio| <= 1e6, got ", r);
+        detail::require_finite(spec_.follower_offset, (who + " follower_offset").c_str());
+        if (!(std::isfinite(phi) && std::abs(phi) <= 4.0 * pi))
+            detail::fail(who, ": frame_angle must be in [-4 pi, 4 pi] rad, got ", phi);
+        cos_frame_ = std::cos(phi), sin_frame_ = std::sin(phi);
+        if (phi == 0.0) cos_frame_ = 1.0, sin_frame_ = 0.0;
+        if (spec_.plain_mapping()) return;
+        if (spec_.paper_backlash.any())
+            detail::fail(who,
+                         ": the paper backlash is written for a follower whose DOF is its lift in the ground "
+                         "frame (follower_ratio 1, follower_offset 0, frame_angle 0)");
+        if (spec_.eccentricity.any() && (phi != 0.0 || spec_.eccentricity.paper_force()))
+            detail::fail(who, ": an eccentric cam (", eccentricity_formulation_name(spec_.eccentricity.formulation),
+                         ") is modelled for a follower in the ground frame with its DOF as its lift (frame_angle 0",
+                         spec_.eccentricity.paper_force() ? ", follower_ratio 1, follower_offset 0" : "", ")");
+    }
+
     // A groove holds a roller: the clearance below its radius, the outer flank free of undercut. The
     // paper's literal backlash is the groove's clearance imposed as an offset: one or the other.
     void check_groove(const std::string& who) const {
@@ -395,6 +440,7 @@ private:
     std::array<int, ContactTerms::slots> dofs_{}, slot_{};  // the distinct DOFs of g; slot of each role (-1: ground)
     int count_ = 0;
     BacklashSide backlash_side_;
+    double cos_frame_ = 1.0, sin_frame_ = 0.0;
 };
 
 }  // namespace camfollower

@@ -306,7 +306,7 @@ auto Mechanism<N>::static_equilibrium(double theta) const -> Vector {
     if (solve_static(K_, load_, dq) && dq.cwiseAbs().maxCoeff() < 1e3) q = dq;
     const double scale = load_.cwiseAbs().maxCoeff() + 1.0;
     const double norm_K = K_.cwiseAbs().rowwise().sum().maxCoeff();
-    Vector r(n_);
+    Vector r(n_), previous_step = Vector::Zero(n_);
     Matrix Kt(n_, n_);
     for (int it = 0; it < 200; ++it) {
         static_residual(w, q, r, Kt);
@@ -330,6 +330,11 @@ auto Mechanism<N>::static_equilibrium(double theta) const -> Vector {
                              "or a shaft without bearings or drive); unconstrained: ",
                              unconstrained_dofs(dq));
         }
+        // Two contacts pressing one DOF from both sides (conjugate cams with no spring) make Newton
+        // jump between their zero-force points, each step undoing the last: take half of it, where
+        // both touch.
+        if ((dq + previous_step).cwiseAbs().maxCoeff() <= 1e-9 * dq.cwiseAbs().maxCoeff()) dq *= 0.5;
+        previous_step = dq;
         q -= dq;
         // A very stiff contact (1e13 N/m) turns the rounding of its gap into newtons above the
         // load's 1e-12: a step at the rounding level of the position is as converged as it gets.

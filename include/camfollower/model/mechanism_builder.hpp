@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 
 #include "camfollower/contact/clearance.hpp"
+#include "camfollower/contact/conjugate.hpp"
 #include "camfollower/contact/contact_pair.hpp"
 #include "camfollower/error.hpp"
 #include "camfollower/structure/network.hpp"
@@ -46,6 +47,10 @@ struct MechanismBuilder {
         require_unused_name(c.name, "contact");
         c.require_distinct_roles();
         contacts.push_back(c);
+    }
+    // Conjugate cams (contact/conjugate.hpp): the contacts "<name>.lift" and "<name>.return".
+    void add_conjugate_cams(const ConjugateCams& c) {
+        for (const ContactPairSpec& pair : c.contacts()) add_contact(pair);
     }
     // A radial clearance (contact/clearance.hpp); add_guide adds one per bushing.
     void add_clearance(const ClearanceSpec& c) {

@@ -190,6 +190,26 @@ public:
         return copy;
     }
 
+    // The conjugate program total - h(theta) (the return cam of a conjugate pair: its lift falls where
+    // this one rises), from the design lift: a profile error belongs to one cam and is not carried
+    // over. Segments of built-in laws only (each keeps its law between mirrored levels); a spline or
+    // polynomial segment is refused (give the return program yourself: ConjugateCams checks it).
+    MotionProgram complement(double total) const {
+        if (!(std::abs(total) <= detail::max_part_length))
+            detail::fail("complement: total must be in [", -detail::max_part_length, ", ", detail::max_part_length,
+                         "], got ", total);
+        std::vector<Segment> mirrored = segments_;
+        for (std::size_t i = 0; i < mirrored.size(); ++i) {
+            Segment& s = mirrored[i];
+            if (s.law.is_custom())
+                detail::fail("complement: segments[", i, "] is a ", s.law.name(),
+                             " segment; only built-in laws are mirrored (give the conjugate program as its own "
+                             "table or segments)");
+            s.h_start = total - s.h_start, s.h_end = total - s.h_end;
+        }
+        return MotionProgram(std::move(mirrored));
+    }
+
     // The manufacturing error the lift carries; nullptr for a design program.
     const ProfileError* profile_error() const { return error_.get(); }
 
