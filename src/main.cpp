@@ -108,30 +108,30 @@ int kinematics(const std::string& config, double rpm) {
                     translating ? "m/s^2" : "rad/s^2", deg(acc.x));
         // A grooved cam: where the rigid check puts the roller on the outer flank (as Python prints it).
         const cf::config::ContactClosure& k = closure.contacts.at(index++);
-        if (p.groove) {
-            std::string over;
+        // "30.0-89.5, 270.5-330.0" (deg), or "no".
+        const auto spans = [&](const std::vector<std::pair<double, double>>& intervals) {
+            std::string out;
             char span[64];
-            for (const auto& [from, to] : k.outer_flank) {
-                std::snprintf(span, sizeof span, "%s%.1f-%.1f", over.empty() ? "" : ", ", deg(from), deg(to));
-                over += span;
+            for (const auto& [from, to] : intervals) {
+                std::snprintf(span, sizeof span, "%s%.1f-%.1f", out.empty() ? "" : ", ", deg(from), deg(to));
+                out += span;
             }
+            return out.empty() ? std::string("no") : out;
+        };
+        if (p.groove) {
+            const std::string over = spans(k.outer_flank);
             std::printf(
                 "  groove clearance %.6g mm: outer flank carries the roller (rigid) over %s deg, %d flank "
                 "changes per revolution\n",
-                1e3 * p.groove->clearance, over.empty() ? "no" : over.c_str(), k.flank_changes);
+                1e3 * p.groove->clearance, over.c_str(), k.flank_changes);
         }
         // Conjugate cams: where the rigid check puts the load on the other cam.
         if (!k.conjugate.empty()) {
-            std::string over;
-            char span[64];
-            for (const auto& [from, to] : k.other_cam) {
-                std::snprintf(span, sizeof span, "%s%.1f-%.1f", over.empty() ? "" : ", ", deg(from), deg(to));
-                over += span;
-            }
+            const std::string over = spans(k.other_cam);
             std::printf(
                 "  conjugate to '%s', which carries the load (rigid) over %s deg, %d changes of cam per "
                 "revolution\n",
-                k.conjugate.c_str(), over.empty() ? "no" : over.c_str(), k.flank_changes);
+                k.conjugate.c_str(), over.c_str(), k.flank_changes);
         }
     }
     return 0;

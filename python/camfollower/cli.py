@@ -330,6 +330,11 @@ def _peak(program, key: str):
     return max(best, (f(t), t))
 
 
+def _spans(intervals) -> str:
+    """Cam-angle intervals (deg) as the C++ command prints them: "30.0-89.5, 270.5-330.0", or "no"."""
+    return ", ".join(f"{a:.1f}-{b:.1f}" for a, b in intervals) or "no"
+
+
 def kinematics(config, rpm=None) -> list:
     """Print the kinematic checks of every contact of `config` (the paper preset without one) at `rpm`
     (default: the config's); return them as dicts (SI units, angles in degrees)."""
@@ -386,18 +391,17 @@ def kinematics(config, rpm=None) -> list:
             row["groove_clearance"] = c["groove"].clearance
             row["outer_flank_deg"] = closed["outer_flank_deg"]
             row["flank_changes"] = closed["flank_changes"]
-            over = ", ".join(f"{a:.1f}-{b:.1f}" for a, b in closed["outer_flank_deg"]) or "no"
             print(
                 f"  groove clearance {1e3 * c['groove'].clearance:.6g} mm: outer flank carries the roller (rigid) "
-                f"over {over} deg, {closed['flank_changes']} flank changes per revolution"
+                f"over {_spans(closed['outer_flank_deg'])} deg, {closed['flank_changes']} flank changes per revolution"
             )
         if "conjugate" in closed:  # conjugate cams: where the rigid check puts the load on the other cam
             row["conjugate"] = closed["conjugate"]
             row["other_cam_deg"] = closed["other_cam_deg"]
             row["flank_changes"] = closed["flank_changes"]
-            over = ", ".join(f"{a:.1f}-{b:.1f}" for a, b in closed["other_cam_deg"]) or "no"
             print(
-                f"  conjugate to '{closed['conjugate']}', which carries the load (rigid) over {over} deg, "
+                f"  conjugate to '{closed['conjugate']}', which carries the load (rigid) over "
+                f"{_spans(closed['other_cam_deg'])} deg, "
                 f"{closed['flank_changes']} changes of cam per revolution"
             )
     return rows

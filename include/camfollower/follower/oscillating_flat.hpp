@@ -50,11 +50,11 @@ public:
         "Oscillating flat-faced follower: pivot (x, y) in m, face offset from the pivot (m); its lift program is "
         "the arm rotation in rad.";
     static constexpr std::array parameters{
-        required_parameter("base_radius", ParameterKind::length, "base circle radius r_b (m, > 0)"),
-        required_parameter("pivot", ParameterKind::point, "arm pivot P (m, ground frame, outside the base circle)"),
+        common_parameter::base_radius,
+        common_parameter::pivot,
         optional_parameter("face_offset", ParameterKind::length,
                            "distance f of the face from the pivot (m, |r_b - f| < |P|)", 0.0),
-        optional_parameter("turn", ParameterKind::turn, "the arm's lifting sense"),
+        common_parameter::turn,
     };
 
     // base_radius r_b (m, > 0), pivot P (m, ground frame, outside the base circle), face_offset f (m,

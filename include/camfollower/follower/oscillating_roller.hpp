@@ -42,11 +42,11 @@ public:
         "Oscillating (swing-arm) roller follower: pivot (x, y) in m in the ground frame, arm length (m); its lift "
         "program is the arm rotation in rad.";
     static constexpr std::array parameters{
-        required_parameter("base_radius", ParameterKind::length, "base circle radius r_b (m, > 0)"),
-        required_parameter("roller_radius", ParameterKind::length, "roller radius r_r (m, > 0)"),
-        required_parameter("pivot", ParameterKind::point, "arm pivot P (m, ground frame, outside the base circle)"),
+        common_parameter::base_radius,
+        common_parameter::roller_radius,
+        common_parameter::pivot,
         required_parameter("arm_length", ParameterKind::length, "pivot to roller centre L (m, > 0)"),
-        optional_parameter("turn", ParameterKind::turn, "the arm's lifting sense"),
+        common_parameter::turn,
     };
 
     // base_radius r_b (m, > 0), roller_radius r_r (m, > 0), pivot P (m, ground frame, outside the

@@ -46,6 +46,17 @@ constexpr FollowerParameter optional_parameter(const char* name, ParameterKind k
     return {name, kind, meaning, false, default_value};
 }
 
+// The parameters several types share, described once.
+namespace common_parameter {
+inline constexpr FollowerParameter base_radius =
+    required_parameter("base_radius", ParameterKind::length, "base circle radius r_b (m, > 0)");
+inline constexpr FollowerParameter roller_radius =
+    required_parameter("roller_radius", ParameterKind::length, "roller radius r_r (m, > 0)");
+inline constexpr FollowerParameter pivot =
+    required_parameter("pivot", ParameterKind::point, "arm pivot P (m, ground frame, outside the base circle)");
+inline constexpr FollowerParameter turn = optional_parameter("turn", ParameterKind::turn, "the arm's lifting sense");
+}  // namespace common_parameter
+
 // The C++ type that holds a parameter of this kind.
 template <ParameterKind K>
 using parameter_type = std::conditional_t<K == ParameterKind::point, Eigen::Vector2d,

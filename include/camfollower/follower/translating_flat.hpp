@@ -42,7 +42,7 @@ public:
     static constexpr const char* description =
         "Translating flat-faced follower: face angle (rad) from the normal to the axis, offset (m).";
     static constexpr std::array parameters{
-        required_parameter("base_radius", ParameterKind::length, "base circle radius r_b (m, > 0)"),
+        common_parameter::base_radius,
         optional_parameter("face_angle", ParameterKind::angle,
                            "face angle g from the normal to the axis (rad, |g| < pi/2)", 0.0),
         optional_parameter("offset", ParameterKind::length, "lateral position e of the axis (m)", 0.0),

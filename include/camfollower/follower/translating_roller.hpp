@@ -47,8 +47,8 @@ public:
     static constexpr bool translating = true;
     static constexpr const char* description = "Translating roller follower with offset (m): the paper's follower.";
     static constexpr std::array parameters{
-        required_parameter("base_radius", ParameterKind::length, "base circle radius r_b (m, > 0)"),
-        required_parameter("roller_radius", ParameterKind::length, "roller radius r_r (m, > 0)"),
+        common_parameter::base_radius,
+        common_parameter::roller_radius,
         optional_parameter("offset", ParameterKind::length, "lateral offset e of the axis (m, |e| < r_b + r_r)", 0.0),
     };
 
