@@ -106,8 +106,10 @@ int kinematics(const std::string& config, double rpm) {
                     translating ? "m/s" : "rad/s", deg(vel.x));
         std::printf("  max |follower acceleration| (rigid): %.6g %s at theta = %.3f deg\n", omega * omega * acc.value,
                     translating ? "m/s^2" : "rad/s^2", deg(acc.x));
-        // A grooved cam: where the rigid check puts the roller on the outer flank (as Python prints it).
-        const cf::config::ContactClosure& k = closure.contacts.at(index++);
+        // The force-closure check reports no contact when it could not run (a static equilibrium not
+        // found; its warning says so): the kinematics above still hold.
+        if (index >= closure.contacts.size()) continue;
+        const cf::config::ContactClosure& k = closure.contacts[index++];
         // "30.0-89.5, 270.5-330.0" (deg), or "no".
         const auto spans = [&](const std::vector<std::pair<double, double>>& intervals) {
             std::string out;
@@ -118,6 +120,7 @@ int kinematics(const std::string& config, double rpm) {
             }
             return out.empty() ? std::string("no") : out;
         };
+        // A grooved cam: where the rigid check puts the roller on the outer flank (as Python prints it).
         if (p.groove) {
             const std::string over = spans(k.outer_flank);
             std::printf(

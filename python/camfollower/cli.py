@@ -344,7 +344,9 @@ def kinematics(config, rpm=None) -> list:
     print(f"{_origin(case)} at {rpm:.6g} rpm")
     rows = []
     closure = force_closure(case.builder, rpm)["contacts"]
-    for c, closed in zip(case.builder.contacts, closure):
+    for i, c in enumerate(case.builder.contacts):
+        # The check reports no contact when it could not run (a static equilibrium not found).
+        closed = closure[i] if i < len(closure) else None
         follower, program = c["follower"], c["program"]
         translating = type(follower).__name__.startswith("Translating")
         alpha_at, alpha = follower.max_pressure_angle(program)
@@ -387,7 +389,7 @@ def kinematics(config, rpm=None) -> list:
             f"  max |follower acceleration| (rigid): {row['max_abs_acceleration']:.6g} {rate}^2 at theta = "
             f"{row['acceleration_at_deg']:.3f} deg"
         )
-        if c["groove"] is not None:  # where the rigid check puts the roller on the outer flank (as C++ prints it)
+        if c["groove"] is not None and closed:  # where the rigid check puts the roller on the outer flank (as C++)
             row["groove_clearance"] = c["groove"].clearance
             row["outer_flank_deg"] = closed["outer_flank_deg"]
             row["flank_changes"] = closed["flank_changes"]
@@ -395,7 +397,7 @@ def kinematics(config, rpm=None) -> list:
                 f"  groove clearance {1e3 * c['groove'].clearance:.6g} mm: outer flank carries the roller (rigid) "
                 f"over {_spans(closed['outer_flank_deg'])} deg, {closed['flank_changes']} flank changes per revolution"
             )
-        if "conjugate" in closed:  # conjugate cams: where the rigid check puts the load on the other cam
+        if closed and "conjugate" in closed:  # conjugate cams: where the rigid check puts the load on the other cam
             row["conjugate"] = closed["conjugate"]
             row["other_cam_deg"] = closed["other_cam_deg"]
             row["flank_changes"] = closed["flank_changes"]

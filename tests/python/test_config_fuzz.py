@@ -262,3 +262,23 @@ def test_unknown_names_in_a_config_list_at_most_twenty_known_ones(tmp_path):
     message = str(e.value)
     assert "unknown DOF 'valve9'" in message and "in all)" in message
     assert message.count(",") <= 21 and len(message) < 1000
+
+
+@pytest.mark.skipif(not CLI.exists(), reason="the command line is built by scripts/test.sh (ctest)")
+def test_kinematics_print_every_contact_when_the_force_closure_check_cannot_run(tmp_path):
+    """Found by the test above: a valve spring of 2.5 N/m (meant as N/mm) leaves no static equilibrium
+    at some cam angles, so the force-closure check reports no contact; both command lines still print
+    every contact's kinematics (the C++ one indexed the empty report and failed)."""
+    from camfollower import cli
+
+    text = (ROOT / "examples" / "camshaft.toml").read_text()
+    assert text.count('stiffness = "45 N/mm"') == 2
+    path = tmp_path / "camshaft.toml"
+    path.write_text(text.replace('stiffness = "45 N/mm"', "stiffness = 2.5", 1))
+    r = subprocess.run([str(CLI), "kinematics", str(path)], capture_output=True, timeout=60)
+    assert r.returncode == 0, r.stderr
+    printed = re.findall(r"^contact '([^']+)'", r.stdout.decode(), re.M)
+    case = cf.load_config(path)
+    assert printed == [c["name"] for c in case.builder.contacts] and len(printed) == 2
+    rows = cli.kinematics(str(path))
+    assert [row["contact"] for row in rows] == printed
