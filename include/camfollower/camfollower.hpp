@@ -18,6 +18,7 @@
 #include "camfollower/model/presets/valve_train.hpp"
 #include "camfollower/motion/laws.hpp"
 #include "camfollower/motion/program.hpp"
+#include "camfollower/motion/speed_program.hpp"
 #include "camfollower/motion/smoothness.hpp"
 #include "camfollower/solver/choose_method.hpp"
 #include "camfollower/solver/dispatch.hpp"

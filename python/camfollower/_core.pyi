@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['ArmTurn', 'BoundaryContinuity', 'CamEccentricity', 'ContinuityReport', 'Elastic', 'Groove', 'LineContact', 'MAX_CAMSHAFT_SPEED', 'MAX_PART_LENGTH', 'MAX_POINTS', 'METHODS', 'MIN_CAMSHAFT_SPEED', 'Mechanism', 'MechanismBuilder', 'MotionLaw', 'MotionProgram', 'OscillatingFlat', 'OscillatingRoller', 'Parameters', 'PeakCoefficients', 'ProfileError', 'RUNGE_KUTTA_DEFAULT_TOLERANCE', 'Segment', 'SolverSettings', 'TranslatingFlat', 'TranslatingRoller', 'cam_outline', 'check_output_target', 'length_units', 'paper_preset', 'realistic_damping_ratio', 'valve_train_parameter_units', 'valve_train_preset', 'write_cam_csv', 'write_file_atomically']
+__all__: list[str] = ['ArmTurn', 'BoundaryContinuity', 'CamEccentricity', 'ContinuityReport', 'Elastic', 'Groove', 'LineContact', 'MAX_CAMSHAFT_SPEED', 'MAX_PART_LENGTH', 'MAX_POINTS', 'METHODS', 'MIN_CAMSHAFT_SPEED', 'Mechanism', 'MechanismBuilder', 'MotionLaw', 'MotionProgram', 'OscillatingFlat', 'OscillatingRoller', 'Parameters', 'PeakCoefficients', 'ProfileError', 'RUNGE_KUTTA_DEFAULT_TOLERANCE', 'Segment', 'SolverSettings', 'SpeedModulation', 'SpeedProgram', 'SpeedRamp', 'TranslatingFlat', 'TranslatingRoller', 'cam_outline', 'check_output_target', 'length_units', 'paper_preset', 'realistic_damping_ratio', 'valve_train_parameter_units', 'valve_train_preset', 'write_cam_csv', 'write_file_atomically']
 class PeakCoefficients:
     """
     Peaks of |V|, |A|, |J| of a normalized law.
@@ -360,6 +360,123 @@ class MotionProgram:
         """
     @property
     def segments(self) -> list[Segment]:
+        ...
+class SpeedRamp:
+    """
+    A change of the camshaft's base speed to to_speed (rad/s, >= 0) over [start, start +
+    duration] (s). shape 'smooth' (the acceleration rises and falls as 1 - cos: no step in it)
+    or 'linear' (a constant acceleration, stepping at the ends).
+    """
+    def __getstate__(self) -> tuple:
+        ...
+    def __init__(self, start: typing.SupportsFloat | typing.SupportsIndex, duration: typing.SupportsFloat | typing.SupportsIndex, to_speed: typing.SupportsFloat | typing.SupportsIndex, shape: str = 'smooth') -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
+        ...
+    @property
+    def duration(self) -> float:
+        """
+        s
+        """
+    @property
+    def shape(self) -> str:
+        """
+        'smooth' or 'linear'
+        """
+    @property
+    def start(self) -> float:
+        """
+        s
+        """
+    @property
+    def to_speed(self) -> float:
+        """
+        rad/s
+        """
+class SpeedModulation:
+    """
+    speed = base speed * (1 + amplitude sin(harmonic theta_base + phase)): amplitude in
+    (-1, 1), harmonic a whole number of speed cycles per revolution, phase in rad.
+    """
+    def __getstate__(self) -> tuple[float, int, float]:
+        ...
+    def __init__(self, amplitude: typing.SupportsFloat | typing.SupportsIndex, harmonic: typing.SupportsInt | typing.SupportsIndex = 1, phase: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
+        ...
+    @property
+    def amplitude(self) -> float:
+        ...
+    @property
+    def harmonic(self) -> int:
+        ...
+    @property
+    def phase(self) -> float:
+        """
+        rad
+        """
+class SpeedProgram:
+    """
+    The camshaft's rotation over time: initial_speed (rad/s, >= 0), then the ramps in time order from t >= 0,
+    and an optional modulation on top; angle 0 at t = 0. Closed-form angle, speed and acceleration.
+    Give it to MechanismBuilder.speed_program: camshaft_speed becomes its nominal (highest base) speed,
+    and changing that speed scales the whole program.
+    """
+    @staticmethod
+    def constant(speed: typing.SupportsFloat | typing.SupportsIndex) -> SpeedProgram:
+        """
+        Turning at `speed` rad/s.
+        """
+    def __getstate__(self) -> tuple[float, list[SpeedRamp], SpeedModulation | None]:
+        ...
+    def __init__(self, initial_speed: typing.SupportsFloat | typing.SupportsIndex, ramps: collections.abc.Sequence[SpeedRamp] = [], modulation: SpeedModulation | None = None) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
+        ...
+    def evaluate(self, t: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> dict:
+        """
+        The camshaft's angle (rad), speed (rad/s) and angular acceleration (rad/s^2) at t (s; scalar or
+        array) as a dict.
+        """
+    def scaled_to(self, speed: typing.SupportsFloat | typing.SupportsIndex) -> SpeedProgram:
+        """
+        The same program with its base speeds scaled to the nominal speed `speed` (rad/s).
+        """
+    def time_at_angle(self, angle: typing.SupportsFloat | typing.SupportsIndex) -> float:
+        """
+        The first time (s) the camshaft reaches `angle` (rad).
+        """
+    @property
+    def constant_speed(self) -> bool:
+        """
+        turning at one speed all the time
+        """
+    @property
+    def initial_speed(self) -> float:
+        """
+        rad/s
+        """
+    @property
+    def modulation(self) -> SpeedModulation | None:
+        ...
+    @property
+    def nominal_speed(self) -> float:
+        """
+        the highest base speed, rad/s
+        """
+    @property
+    def periodic(self) -> bool:
+        """
+        the motion repeats every revolution (no ramps): a periodic steady state exists
+        """
+    @property
+    def ramps(self) -> list[SpeedRamp]:
         ...
 class Parameters:
     """
@@ -1033,7 +1150,9 @@ class MechanismBuilder:
         """
     @property
     def camshaft_speed_rpm(self) -> float:
-        ...
+        """
+        The camshaft speed, rpm (with a speed program its nominal speed: setting it scales the program).
+        """
     @camshaft_speed_rpm.setter
     def camshaft_speed_rpm(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
@@ -1065,6 +1184,15 @@ class MechanismBuilder:
         """
         Point masses added to DOFs, as (dof, mass) tuples (kg).
         """
+    @property
+    def speed_program(self) -> SpeedProgram | None:
+        """
+        A variable camshaft speed (SpeedProgram), or None: constant camshaft_speed_rpm. Setting one makes its
+        nominal speed the camshaft speed.
+        """
+    @speed_program.setter
+    def speed_program(self, arg1: SpeedProgram | None) -> None:
+        ...
     @property
     def springs(self) -> list:
         """
@@ -1144,12 +1272,22 @@ class Mechanism:
     @property
     def omega(self) -> float:
         """
-        rad/s
+        camshaft speed, rad/s (with a speed program its nominal speed)
         """
     @property
     def period(self) -> float:
         """
-        one camshaft revolution, s
+        one camshaft revolution at omega, s
+        """
+    @property
+    def periodic(self) -> bool:
+        """
+        The motion repeats every period (no speed ramps): settling and the periodic steady state apply.
+        """
+    @property
+    def speed_program(self) -> SpeedProgram:
+        """
+        The camshaft's rotation (a SpeedProgram; constant at omega without a speed program).
         """
     @property
     def size(self) -> int:

@@ -180,6 +180,10 @@ def figures(config: str, out: str) -> dict:
         "config": str(case.path),
         "camshaft_speed_rpm": rpm,
         "rows": result.rows,
+        "drive": {
+            "peak_torque_N_m": float(np.abs(result["drive.torque"]).max()),
+            "peak_power_W": float(np.abs(result["drive.power"]).max()),
+        },
         "time_step_s": result.time_step,
         "contacts": {},
     }
@@ -192,7 +196,15 @@ def figures(config: str, out: str) -> dict:
             (plot.profile(follower, program), f"profile_{name}.png"),
             (plot.pressure_angle_and_curvature(follower, program), f"pressure_angle_curvature_{name}.png"),
             (
-                plot.acceleration(result, program, omega, dof, phase=c["phase"], unit="rad/s²" if angular else "m/s²"),
+                plot.acceleration(
+                    result,
+                    program,
+                    omega,
+                    dof,
+                    phase=c["phase"],
+                    unit="rad/s²" if angular else "m/s²",
+                    speed_program=m.speed_program,
+                ),
                 f"acceleration_{name}.png",
             ),
             (plot.contact_force(result, name), f"contact_force_{name}.png"),

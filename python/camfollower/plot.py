@@ -177,21 +177,32 @@ def acceleration(
     ax=None,
     phase: float = 0.0,
     unit: str = "m/s²",
+    speed_program=None,
 ):
     """A follower DOF's simulated acceleration a.<dof> against the rigid-follower ω²h″ (``unit``:
     m/s², rad/s² for an oscillating follower's arm), over the recorded run (or its last
     ``revolutions``), against the cam's own angle: the shaft angle of channel ``theta`` plus the
     contact's ``phase`` (rad), folded onto 0-360° whatever revolutions were recorded (each recorded
-    revolution over the same axis, the line broken where the angle wraps)."""
+    revolution over the same axis, the line broken where the angle wraps). With a variable-speed
+    ``speed_program`` (the mechanism's) against time instead, the rigid one h″θ′² + h′θ″."""
     plt = _pyplot()
     t = np.asarray(result["t"])
     a = np.asarray(result[f"a.{dof}"])
     theta = np.asarray(result["theta"])
     if revolutions is not None:
         keep = t >= t[-1] - revolutions * 2 * math.pi / omega
-        a, theta = a[keep], theta[keep]
+        t, a, theta = t[keep], a[keep], theta[keep]
     if ax is None:
         fig, ax = plt.subplots(figsize=(9, 4.5))
+    if speed_program is not None and not speed_program.constant_speed:
+        drive = speed_program.evaluate(t)
+        m = program.evaluate(drive["angle"] + phase)
+        rigid = np.asarray(m["d2h"]) * drive["speed"] ** 2 + np.asarray(m["dh"]) * drive["acceleration"]
+        ax.plot(t, a, lw=0.8, label=f"simulated a.{dof}")
+        ax.plot(t, rigid, "k--", lw=0.8, label="rigid h″θ′² + h′θ″")
+        ax.set_xlabel("time (s)"), ax.set_ylabel(f"acceleration ({unit})"), ax.set_xlim(t[0], t[-1])
+        ax.legend(loc="best"), ax.grid(alpha=0.3)
+        return ax.figure
     deg, a = per_revolution(theta + phase, a)
     ax.plot(deg, a, lw=0.8, label=f"simulated a.{dof}")
     grid = _theta(3601)  # the rigid follower on its own grid: one revolution, drawn once

@@ -61,6 +61,7 @@ inline double number_argument(const std::string& name, const py::handle& value) 
 Follower follower_from(const py::handle& f);
 
 void bind_motion(py::module_& m);
+void bind_speed(py::module_& m);
 void bind_parameters(py::module_& m);
 void bind_settings(py::module_& m);
 void bind_mechanism(py::module_& m);

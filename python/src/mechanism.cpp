@@ -299,7 +299,8 @@ py::dict builder_state(const MechanismBuilder& b) {
                     py::arg("rayleigh_alpha") = b.structure.rayleigh_alpha(),
                     py::arg("rayleigh_beta") = b.structure.rayleigh_beta(),
                     py::arg("modal_ratios") = b.structure.modal_ratios(), py::arg("contacts") = contacts,
-                    py::arg("camshaft_speed") = b.camshaft_speed);
+                    py::arg("camshaft_speed") = b.camshaft_speed,
+                    py::arg("speed_program") = b.speed_program ? py::cast(*b.speed_program) : py::none());
 }
 
 MechanismBuilder builder_from(const py::dict& t) {
@@ -373,6 +374,8 @@ MechanismBuilder builder_from(const py::dict& t) {
                              c["friction"].cast<double>(), c["sliding_dof"].cast<std::string>(),
                              c["slip_velocity"].cast<double>()});
         }
+    if (t.contains("speed_program") && !t["speed_program"].is_none())
+        b.speed_program = t["speed_program"].cast<SpeedProgram>();
     b.camshaft_speed = t["camshaft_speed"].cast<double>();
     return b;
 }
@@ -680,8 +683,17 @@ void bind_mechanism(py::module_& m) {
             "A rod in a guide of `length` (m) with one or two bushings at axial positions (m, in [0, length]); two\n"
             "bushings need the rod's tilt DOF (rad, about tilt_reference). One clearance per bushing\n"
             "(<name>, or <name>.bushing1/.bushing2).")
-        .def_property("camshaft_speed_rpm", &MechanismBuilder::camshaft_speed_rpm,
-                      &MechanismBuilder::set_camshaft_speed_rpm)
+        .def_property(
+            "camshaft_speed_rpm", &MechanismBuilder::camshaft_speed_rpm, &MechanismBuilder::set_camshaft_speed_rpm,
+            "The camshaft speed, rpm (with a speed program its nominal speed: setting it scales the program).")
+        .def_property(
+            "speed_program", [](const MechanismBuilder& b) { return b.speed_program; },
+            [](MechanismBuilder& b, const std::optional<SpeedProgram>& p) {
+                if (p) b.set_speed_program(*p);
+                else b.speed_program.reset();
+            },
+            "A variable camshaft speed (SpeedProgram), or None: constant camshaft_speed_rpm. Setting one makes its\n"
+            "nominal speed the camshaft speed.")
         .def_property_readonly("dof_names",
                                [](const MechanismBuilder& b) {
                                    std::vector<std::string> n;
@@ -773,10 +785,17 @@ void bind_mechanism(py::module_& m) {
             },
             "static equilibrium at t = 0 (m or rad per DOF)")
         .def_property_readonly(
-            "omega", [](const AnyMechanism& a) { return a.visit([](const auto& x) { return x.omega(); }); }, "rad/s")
+            "omega", [](const AnyMechanism& a) { return a.visit([](const auto& x) { return x.omega(); }); },
+            "camshaft speed, rad/s (with a speed program its nominal speed)")
         .def_property_readonly(
             "period", [](const AnyMechanism& a) { return a.visit([](const auto& x) { return x.period(); }); },
-            "one camshaft revolution, s")
+            "one camshaft revolution at omega, s")
+        .def_property_readonly(
+            "speed_program", [](const AnyMechanism& a) { return a.visit([](const auto& x) { return x.drive(); }); },
+            "The camshaft's rotation (a SpeedProgram; constant at omega without a speed program).")
+        .def_property_readonly(
+            "periodic", [](const AnyMechanism& a) { return a.visit([](const auto& x) { return x.periodic(); }); },
+            "The motion repeats every period (no speed ramps): settling and the periodic steady state apply.")
         .def_property_readonly("camshaft_speed_rpm",
                                [](const AnyMechanism& a) {
                                    return a.visit([](const auto& x) { return x.description().camshaft_speed_rpm(); });

@@ -11,6 +11,7 @@ PYBIND11_MODULE(_core, m) {
     m.attr("MIN_CAMSHAFT_SPEED") = camfollower::detail::min_camshaft_speed;  // rad/s
     m.attr("MAX_CAMSHAFT_SPEED") = camfollower::detail::max_camshaft_speed;  // rad/s
     camfollower::python::bind_motion(m);
+    camfollower::python::bind_speed(m);
     camfollower::python::bind_parameters(m);
     camfollower::python::bind_settings(m);
     camfollower::python::bind_mechanism(m);

@@ -722,6 +722,64 @@ void read_parts(const Section& root, const CaseConfig& c, const Dimensions& dims
 
 // ---- the paper preset ------------------------------------------------------------------------
 
+// [camshaft] run_up, run_down and modulation: a speed program around `speed` (its nominal speed).
+//   run_up = { from = "0 rpm", start = "0 s", duration = "0.5 s", shape = "smooth" }
+//   run_down = { start = "3 s", duration = "0.5 s", to = "0 rpm", shape = "smooth" }
+//   modulation = { amplitude = 0.1, harmonic = 2, phase = "0 deg" }
+std::optional<SpeedProgram> read_speed_program(const Section& cam, double rpm) {
+    const std::optional<Section> up = cam.table("run_up"), down = cam.table("run_down"), mod = cam.table("modulation");
+    if (!up && !down && !mod) return std::nullopt;
+    const double speed = rpm * two_pi / 60.0;
+    double initial = speed, end_of_run_up = 0.0;
+    std::vector<SpeedRamp> ramps;
+    const auto shape = [](const Section& s) {
+        return ramp_shape_from(s.choice("shape", "smooth", {"smooth", "linear"}));
+    };
+    const auto duration = [](const Section& s) {
+        const double d = s.quantity("duration", "s");
+        if (!(d > 0.0 && d <= 1e6)) s.fail("duration", detail::concat("must be in (0, 1e6] s, got ", d, " s"));
+        return d;
+    };
+    if (up) {
+        const double from = up->quantity("from", "rpm", 0.0);
+        if (!(from >= 0.0 && from < rpm))
+            up->fail("from", detail::concat("must be in [0, speed) = [0, ", rpm, ") rpm, got ", from, " rpm"));
+        const double start = up->quantity("start", "s", 0.0);
+        if (!(start >= 0.0 && start <= 1e6))
+            up->fail("start", detail::concat("must be in [0, 1e6] s, got ", start, " s"));
+        initial = from * two_pi / 60.0;
+        ramps.push_back({start, duration(*up), speed, shape(*up)});
+        end_of_run_up = start + ramps.back().duration;
+        up->finish({"from", "start", "duration", "shape"});
+    }
+    if (down) {
+        const double start = down->quantity("start", "s");
+        if (!(start >= end_of_run_up && start <= 1e6))
+            down->fail("start", detail::concat("must be in [", end_of_run_up, ", 1e6] s (after the run-up ends), got ",
+                                               start, " s"));
+        const double to = down->quantity("to", "rpm", 0.0);
+        if (!(to >= 0.0 && to < rpm))
+            down->fail("to", detail::concat("must be in [0, speed) = [0, ", rpm, ") rpm, got ", to, " rpm"));
+        ramps.push_back({start, duration(*down), to * two_pi / 60.0, shape(*down)});
+        down->finish({"start", "duration", "to", "shape"});
+    }
+    std::optional<SpeedModulation> modulation;
+    if (mod) {
+        SpeedModulation m;
+        m.amplitude = mod->quantity("amplitude", "-");
+        if (!(std::abs(m.amplitude) < 1.0))
+            mod->fail(
+                "amplitude",
+                detail::concat("must be in (-1, 1) (a fraction of the speed; at +-1 the camshaft would stop), got ",
+                               m.amplitude));
+        m.harmonic = int(mod->integer("harmonic", 1, 1, 1000));
+        m.phase = mod->quantity("phase", "rad", 0.0);
+        modulation = m;
+        mod->finish({"amplitude", "harmonic", "phase"});
+    }
+    return SpeedProgram(initial, std::move(ramps), modulation);
+}
+
 // The valve-train preset: parameters by name (SI units as in presets::ValveTrainParameters); the
 // camshaft speed is [camshaft] speed (the engine turns twice as fast).
 MechanismBuilder read_valve_train(const Section& s, double rpm) {
@@ -997,13 +1055,15 @@ CaseConfig build_case(const toml::table& table, const std::string& origin, const
         lengths[name] = std::move(p.lengths);
     }
     double rpm = 0.0;
+    std::optional<SpeedProgram> speed_program;
     if (const std::optional<Section> cam = root.table("camshaft")) {
         rpm = cam->quantity("speed", "rpm");
         // The model's own bounds (error.hpp), checked here so that the message names the line.
         const double lo = detail::min_camshaft_speed * 30.0 / pi, hi = detail::max_camshaft_speed * 30.0 / pi;
         if (!(rpm >= lo && rpm <= hi))
             cam->fail("speed", detail::concat("must be in [", lo, ", ", hi, "] rpm, got ", rpm));
-        cam->finish({"speed"});
+        speed_program = read_speed_program(*cam, rpm);
+        cam->finish({"speed", "run_up", "run_down", "modulation"});
     } else {
         root.fail_here("a [camshaft] table with its speed is required, e.g. [camshaft] speed = \"750 rpm\"");
     }
@@ -1023,6 +1083,7 @@ CaseConfig build_case(const toml::table& table, const std::string& origin, const
         read_parts(root, c, dims, lengths, c.mechanism);
         c.mechanism.set_camshaft_speed_rpm(rpm);
     }
+    if (speed_program) c.mechanism.set_speed_program(*speed_program);
     if (const std::optional<Section> s = root.table("solver")) c.solver = read_solver(*s);
     if (const std::optional<Section> s = root.table("output")) {
         c.output = read_output(*s);

@@ -87,7 +87,7 @@ double first_negative(double a, double b, double c) {
 double follower_coefficient(const ContactPair& pair, double theta, double omega, const Eigen::VectorXd& q) {
     ContactTerms c;
     if (pair.twist() >= 0) pair.evaluate(theta + pair.spec().phase + q[pair.twist()], omega, c);
-    else pair.prepare(theta / omega, omega, c);
+    else pair.evaluate(theta + pair.spec().phase, omega, c);
     for (int k = 0; k < c.count; ++k)
         if (c.dof[std::size_t(k)] == pair.follower()) return c.g[std::size_t(k)];
     return 0.0;
@@ -150,7 +150,7 @@ ForceClosure check(const Model& m, double rpm) {
                 for (int k = 0; k < c.count; ++k) arm += c.g_theta[std::size_t(k)] * q0[c.dof[std::size_t(k)]];
                 A(pair.twist(), col) += arm, A(col, pair.twist()) += arm;
             } else {
-                pair.prepare(theta / omega, omega, c);
+                pair.evaluate(theta + pair.spec().phase, omega, c);
             }
             for (int k = 0; k < c.count; ++k) {
                 const int dof = c.dof[std::size_t(k)];

@@ -8,7 +8,7 @@
 // Its penetration is linear in q with coefficients that depend on the cam angle only
 // (contact_geometry.hpp):
 //   delta = g(theta)^T q + delta0(theta),  g = n_x e_cam_x + n_y e_cam_y - n_x e_lateral - lever e_follower,
-//   delta0 = lever s(theta),               theta = omega t + phase (+ q_twist),
+//   delta0 = lever s(theta),               theta = theta_drive(t) + phase (+ q_twist),
 // for a follower whose DOF is its lift in the ground frame; a pair's follower map and frame
 // (ContactPairSpec::follower_ratio, follower_offset, frame_angle) scale the follower's terms, shift
 // s and turn n for the cam centre's.
@@ -42,6 +42,7 @@
 #include "camfollower/follower/translating_flat.hpp"
 #include "camfollower/follower/translating_roller.hpp"
 #include "camfollower/motion/program.hpp"
+#include "camfollower/motion/speed_program.hpp"
 
 namespace camfollower {
 
@@ -85,7 +86,7 @@ struct ContactPairSpec {
     MotionProgram program;
     Follower follower;
     HertzContact law;
-    double phase = 0.0;  // rad: cam angle = omega t + phase
+    double phase = 0.0;  // rad: cam angle = drive angle + phase
     std::string cam_x = "ground", cam_y = "ground", follower_dof, lateral = "ground";
     CamEccentricity eccentricity;      // none by default
     std::string cam_twist = "ground";  // the shaft's twist DOF at the cam (ground: a rigid camshaft)
@@ -96,7 +97,7 @@ struct ContactPairSpec {
     // s = follower_offset + follower_ratio * q_follower (m or rad as the lift; ratio finite, non-zero)
     // and its lateral one follower_ratio * q_lateral. frame_angle (rad): the pair's frame (its
     // follower's axis or pivot frame) turned from the ground frame about the cam axis; the cam angle
-    // it sees stays omega t + phase (so the cam sits at phase + frame_angle on the shaft), and the
+    // it sees stays the drive angle + phase (so the cam sits at phase + frame_angle on the shaft), and the
     // contact normal reaches cam_x, cam_y turned by it.
     double follower_ratio = 1.0, follower_offset = 0.0, frame_angle = 0.0;
 
@@ -226,12 +227,16 @@ public:
     // The distinct DOFs of g (the twist not included).
     std::vector<int> dofs() const { return std::vector<int>(dofs_.begin(), dofs_.begin() + count_); }
 
-    // The terms at time t on a rigid camshaft turning at omega (theta = omega t + phase).
-    void prepare(double t, double omega, ContactTerms& c) const { evaluate(omega * t + spec_.phase, omega, c); }
+    // The terms at time t on a rigid camshaft driven by `drive` (theta = drive angle + phase).
+    void prepare(double t, const SpeedProgram& drive, ContactTerms& c) const {
+        const DriveState d = drive.at(t);
+        evaluate(d.angle + spec_.phase, d.rate, c, d.acceleration);
+    }
 
-    // The terms at cam angle theta turning at theta_rate (rad/s): on a twisting camshaft
-    // theta = omega t + phase + q_twist and theta_rate = omega + v_twist.
-    void evaluate(double theta, double theta_rate, ContactTerms& c) const {
+    // The terms at cam angle theta turning at theta_rate (rad/s) and accelerating at
+    // theta_acceleration (rad/s^2, loads of an unbalance only): on a twisting camshaft
+    // theta = drive angle + phase + q_twist and theta_rate = drive rate + v_twist.
+    void evaluate(double theta, double theta_rate, ContactTerms& c, double theta_acceleration = 0.0) const {
         const double omega = theta_rate;
         c.theta = theta;
         c.twist = twist_;
@@ -267,11 +272,17 @@ public:
             c.delta0_theta += k.dnormal.dot(u) + k.normal.dot(du);
         }
         c.delta0_dot = omega * c.delta0_theta;
-        // Loads along +q of each role, and their time rates (d/dt = omega d/dtheta).
+        // Loads along +q of each role, and their time rates (d/dt = omega d/dtheta). The unbalance at
+        // u(theta) loads the cam centre with m (omega^2 u - theta'' du); the rates keep theta'' but
+        // leave out its own rate (they only set the quasi-static start).
         double p[4] = {0.0, 0.0, 0.0, 0.0}, p_dot[4] = {0.0, 0.0, 0.0, 0.0};
-        const double centrifugal = ecc.unbalance_mass * omega * omega;
-        p[0] = centrifugal * u.x(), p_dot[0] = omega * centrifugal * du.x();
-        p[1] = centrifugal * u.y(), p_dot[1] = omega * centrifugal * du.y();
+        const double m_u = ecc.unbalance_mass, centrifugal = m_u * omega * omega;
+        const double tangential = m_u * theta_acceleration,
+                     rate_of_centrifugal = 2.0 * m_u * omega * theta_acceleration;
+        p[0] = centrifugal * u.x() - tangential * du.x();
+        p[1] = centrifugal * u.y() - tangential * du.y();
+        p_dot[0] = omega * centrifugal * du.x() + (rate_of_centrifugal + omega * tangential) * u.x();
+        p_dot[1] = omega * centrifugal * du.y() + (rate_of_centrifugal + omega * tangential) * u.y();
         if (ecc.paper_force()) {
             const double F = spec_.law.stiffness * u.y(), F_dot = omega * spec_.law.stiffness * du.y();
             const bool on_cam = ecc.formulation != EccentricityFormulation::paper_force_roller;

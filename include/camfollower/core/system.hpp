@@ -173,6 +173,15 @@ template <class S>
 struct has_period<S, void_t<decltype(double(std::declval<const S&>().period()))>> : std::true_type {};
 }  // namespace detail
 
+// A system whose forcing may not repeat every period (a camshaft speeding up) says so with
+// periodic(); the periodic steady state refuses it.
+namespace detail {
+template <class S, class = void>
+struct has_periodic : std::false_type {};
+template <class S>
+struct has_periodic<S, void_t<decltype(bool(std::declval<const S&>().periodic()))>> : std::true_type {};
+}  // namespace detail
+
 template <class S>
 inline constexpr bool is_nonlinear_system_v = detail::has_workspace_type<S>::value;
 

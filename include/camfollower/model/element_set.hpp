@@ -10,7 +10,7 @@
 //   using Spec;                                    its description, as the builder holds it
 //   struct State;                                  its per-run scratch and path memory (workspace)
 //   static const std::vector<Spec>& specs(const MechanismBuilder&);   the builder's list of them
-//   E(const Spec&, const NetworkSpec&, double omega);   resolve DOF names, validate (omega: camshaft speed)
+//   E(const Spec&, const NetworkSpec&, const SpeedProgram&);   resolve DOF names, validate (the camshaft's rotation)
 //   const std::string& name() const;
 //   int max_rank() const;                          tangent columns it can add
 //   std::vector<int> tangent_dofs() const;         the DOFs those columns touch (sparse fill pattern)
@@ -42,6 +42,8 @@
 #include <utility>
 #include <vector>
 
+#include "camfollower/motion/speed_program.hpp"
+
 namespace camfollower {
 
 template <class... Kinds>
@@ -51,9 +53,9 @@ public:
 
     // Every kind's elements built from its specs in the builder, in the builder's order.
     template <class Builder, class Network>
-    static ElementSet build(const Builder& builder, const Network& net, double omega) {
+    static ElementSet build(const Builder& builder, const Network& net, const SpeedProgram& drive) {
         ElementSet set;
-        (set.fill<Kinds>(Kinds::specs(builder), net, omega), ...);
+        (set.fill<Kinds>(Kinds::specs(builder), net, drive), ...);
         return set;
     }
 
@@ -92,10 +94,10 @@ public:
 
 private:
     template <class E, class Specs, class Network>
-    void fill(const Specs& specs, const Network& net, double omega) {
+    void fill(const Specs& specs, const Network& net, const SpeedProgram& drive) {
         std::vector<E>& list = std::get<std::vector<E>>(elements_);
         list.reserve(specs.size());
-        for (const auto& spec : specs) list.emplace_back(spec, net, omega);
+        for (const auto& spec : specs) list.emplace_back(spec, net, drive);
     }
     template <class E, class F>
     void for_each_of(F& f) const {

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // A cam mechanism built from a runtime description (model/mechanism_builder.hpp): the linear structure
 // (structure/network.hpp) and its nonlinear elements (model/element_set.hpp: cam-follower contact
-// pairs, clearances) on one camshaft turning at a constant nominal speed; with flexible shafts
-// (structure/shaft_spec.hpp) a cam's angle adds the shaft's twist at the cam, a state. Mechanism<N> is
+// pairs, clearances) on one camshaft turning at a constant speed or by a speed program
+// (motion/speed_program.hpp); with flexible shafts (structure/shaft_spec.hpp) a cam's angle adds the
+// shaft's twist at the cam, a state, and a speed change loads the twists with the shafts' inertia. Mechanism<N> is
 // immutable and implements the system contract (core/system.hpp); N is the DOF count when known at
 // compile time (fixed-size Eigen, the fast path), Eigen::Dynamic otherwise.
 //
@@ -53,6 +54,7 @@ public:
         // tangent(), event_values() and accepted(), which the stepper calls at the same q, v:
         // core/system.hpp) and path memory (contact-loss intervals).
         mutable MechanismElements::States states;
+        double drive_acceleration = 0.0;  // the camshaft's angular acceleration at t, rad/s^2 (shafts only)
         template <class E>
         std::vector<typename E::State>& of() const {
             return std::get<std::vector<typename E::State>>(states);
@@ -80,10 +82,13 @@ public:
     Workspace workspace() const;
     void prepare(double t, Workspace& w) const {
         w.t = t;
+        if (rotation_loaded_) w.drive_acceleration = drive_.at(t).acceleration;
         elements_.for_each(w.states, [&](const auto& e, auto& s) { e.prepare(t, s); });
     }
     void force(const Workspace& w, const Vector& q, const Vector& v, Vector& f) const {
         f = -load_;
+        // Twists are measured from the rigid rotation: its acceleration loads them with M e theta''.
+        if (rotation_loaded_) f.noalias() += w.drive_acceleration * rotation_inertia_;
         elements_.for_each(w.states, [&](const auto& e, auto& s) { e.add_force(w.t, q, v, s, f); });
     }
     void tangent(const Workspace& w, const Vector&, const Vector& v, double cq, double cv, LowRank<Vector>& uv) const {
@@ -106,8 +111,11 @@ public:
         elements_.event_located(w.states, index, time, direction);
     }
     std::vector<std::string> dof_names() const;
-    // "theta" (rad), then each element's channels (model/elements/: a contact's <name>.force,
-    // .penetration, ...; a clearance's <name>.force, .side, .gap, .friction).
+    // "theta" (the drive's angle, rad), "drive.speed" (rad/s), "drive.torque" (N m: the torque the
+    // cams take from the camshaft, sum of (F - F_outer) d delta / d theta over the contacts) and
+    // "drive.power" (W: each cam's torque times its speed, summed), then each element's channels
+    // (model/elements/: a contact's <name>.force, .penetration, ...; a clearance's <name>.force,
+    // .side, .gap, .friction).
     std::vector<std::string> channel_names() const;
     // Switching functions (solver/events.hpp): per contact <name>.contact, its penetration (m); per
     // clearance <name>.wall, |u| - c (m): > 0 while touching.
@@ -117,7 +125,14 @@ public:
         elements_.for_each(w.states, [&](const auto& e, const auto& s) { g = e.event_values(s, g); });
     }
     void observe(const Workspace& w, const Vector& q, const Vector& v, double* out) const {
-        *out++ = spec_.camshaft_speed * w.t;
+        const DriveState d = drive_.at(w.t);
+        double torque = 0.0, power = 0.0;
+        const auto& states = w.template of<ContactElement>();
+        for (std::size_t i = 0; i < contacts().size(); ++i) {
+            const ContactElement::DriveLoad l = contacts()[i].drive_load(w.t, states[i], q, v);
+            torque += l.torque, power += l.power;
+        }
+        *out++ = d.angle, *out++ = d.rate, *out++ = torque, *out++ = power;
         elements_.for_each(w.states, [&](const auto& e, const auto& s) { out = e.observe(w.t, s, q, v, out); });
     }
 
@@ -133,8 +148,13 @@ public:
     std::size_t contact_index(const std::string& name) const;
     // Contact force of contact i at rest at camshaft angle theta and displacement q, N.
     double static_contact_force(double theta, const Vector& q, std::size_t i) const;
+    // The nominal camshaft speed (rad/s; with a speed program its highest base speed) and the period of
+    // a revolution at it (s).
     double omega() const { return spec_.camshaft_speed; }
     double period() const { return two_pi / spec_.camshaft_speed; }
+    // The camshaft's rotation; periodic(): it repeats every period (no speed ramps).
+    const SpeedProgram& drive() const { return drive_; }
+    bool periodic() const { return drive_.periodic(); }
     const Vector& constant_load() const { return load_; }
     int dof_index(const std::string& name) const { return spec_.structure.index(name, "dof_index"); }
 
@@ -201,6 +221,9 @@ private:
     Eigen::SparseMatrix<double> M_sparse_, C_sparse_, K_sparse_;
     Vector load_, initial_, initial_velocity_;
     MechanismElements elements_;
+    SpeedProgram drive_ = SpeedProgram::constant(1.0);
+    Vector rotation_inertia_;       // M e, e = 1 on every shaft twist (the rigid rotation's inertia)
+    bool rotation_loaded_ = false;  // a variable speed and shafts that twist
     int max_rank_ = 0;
     std::vector<std::string> warnings_;
 };
@@ -221,13 +244,18 @@ Mechanism<N>::Mechanism(MechanismBuilder description) : spec_(std::move(descript
                      " GB for M, C and K alone); coarsen the shafts' "
                      "meshes (max_element_length) or split the model");
     if (N != Eigen::Dynamic && n_ != N) detail::fail("Mechanism<", N, "> built from a description with ", n_, " DOFs");
-    detail::require_camshaft_speed(spec_.camshaft_speed, "camshaft_speed");
+    drive_ = spec_.drive();
     NetworkSpec::Triplets tm, tc, tk;
     net.assemble(tm, tc, tk);
     M_ = dense(tm), C_ = dense(tc), K_ = dense(tk);
     const Eigen::VectorXd p = net.constant_load();
     load_ = p;
-    elements_ = MechanismElements::build(spec_, net, spec_.camshaft_speed);
+    elements_ = MechanismElements::build(spec_, net, drive_);
+    Vector rigid_rotation = Vector::Zero(n_);
+    for (const ShaftEntry& shaft : net.shafts())
+        for (std::size_t k = 0; k < shaft.nodes.size(); ++k) rigid_rotation[shaft.index(int(k), 3)] = 1.0;
+    rotation_inertia_ = M_ * rigid_rotation;
+    rotation_loaded_ = !drive_.is_constant() && !rotation_inertia_.isZero(0.0);
     elements_.for_each([&](const auto& e) { max_rank_ += e.max_rank(); });
     if (net.rayleigh_alpha() != 0.0 || net.rayleigh_beta() != 0.0)
         C_ += net.rayleigh_alpha() * M_ + net.rayleigh_beta() * K_;
@@ -271,7 +299,7 @@ auto Mechanism<N>::dof_names() const -> std::vector<std::string> {
 
 template <int N>
 auto Mechanism<N>::channel_names() const -> std::vector<std::string> {
-    std::vector<std::string> names{"theta"};
+    std::vector<std::string> names{"theta", "drive.speed", "drive.torque", "drive.power"};
     elements_.for_each([&](const auto& e) { e.add_channel_names(names); });
     return names;
 }
@@ -356,7 +384,7 @@ auto Mechanism<N>::tangent_stiffness(double theta, const Vector& q) const -> Mat
 template <int N>
 auto Mechanism<N>::workspace_at(double theta) const -> Workspace {
     Workspace w = workspace();
-    prepare(theta / spec_.camshaft_speed, w);
+    prepare(drive_.time_at_angle(theta), w);
     return w;
 }
 

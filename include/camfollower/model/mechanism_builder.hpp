@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "camfollower/contact/conjugate.hpp"
 #include "camfollower/contact/contact_pair.hpp"
 #include "camfollower/error.hpp"
+#include "camfollower/motion/speed_program.hpp"
 #include "camfollower/structure/network.hpp"
 
 namespace camfollower {
@@ -23,7 +25,11 @@ struct MechanismBuilder {
     NetworkSpec structure;
     std::vector<ContactPairSpec> contacts;
     std::vector<ClearanceSpec> clearances;
-    double camshaft_speed = 750.0 * two_pi / 60.0;  // rad/s
+    double camshaft_speed = 750.0 * two_pi / 60.0;  // rad/s; with a speed program its nominal speed
+    // A variable camshaft speed (motion/speed_program.hpp; none: constant camshaft_speed). The
+    // program's speeds are scaled so that its nominal speed is camshaft_speed: changing the speed
+    // (a study's sweep) scales the whole program.
+    std::optional<SpeedProgram> speed_program;
 
     // The structure's elements (structure/network.hpp), by DOF name ("ground" for the frame).
     void add_dof(const std::string& name, double mass, const Eigen::Vector3d& direction = Eigen::Vector3d::Zero()) {
@@ -80,7 +86,7 @@ struct MechanismBuilder {
     }
 
     // The drive as an imposed speed through a compliance: a torsional spring-damper (N m/rad, N m s/rad)
-    // from the shaft's twist at station x to the rigid rotation omega t.
+    // from the shaft's twist at station x to the rigid rotation (the camshaft's speed program).
     void add_drive(const std::string& name, const std::string& shaft, double x, double stiffness,
                    double damping = 0.0) {
         detail::require_positive(stiffness, ("stiffness of drive '" + name + "'").c_str(), "(N m/rad)");
@@ -144,6 +150,16 @@ struct MechanismBuilder {
         camshaft_speed = rpm * two_pi / 60.0;
     }
     double camshaft_speed_rpm() const { return camshaft_speed * 60.0 / two_pi; }
+    // Drive the camshaft by a speed program; camshaft_speed becomes its nominal speed.
+    void set_speed_program(const SpeedProgram& program) {
+        speed_program = program;
+        camshaft_speed = program.nominal_speed();
+    }
+    // The camshaft's rotation as built: the speed program at camshaft_speed, or that constant speed.
+    SpeedProgram drive() const {
+        detail::require_camshaft_speed(camshaft_speed, "camshaft_speed");
+        return speed_program ? speed_program->scaled_to(camshaft_speed) : SpeedProgram::constant(camshaft_speed);
+    }
 
 private:
     // Elements name their channels ("<name>.force", ...): one name, one element, whatever its kind.

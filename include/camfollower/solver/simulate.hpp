@@ -24,6 +24,16 @@
 
 namespace camfollower {
 
+// The periodic steady state and settling need forcing that repeats every period.
+template <class System>
+void require_periodic(const System& system, const char* what) {
+    if constexpr (detail::has_periodic<System>::value)
+        if (!system.periodic())
+            detail::fail(what,
+                         " needs a camshaft whose motion repeats every revolution; this one's speed program ramps "
+                         "(run-up, run-down): simulate it over a duration instead");
+}
+
 struct RunOptions {
     double duration = 0.0;  // s
     RecordOptions record;
@@ -82,6 +92,7 @@ RunResult<System> run(const System& system, const SolverSettings& settings, cons
             result.highest_mode_hz = highest_angular_frequency(system, result.final_state) / (2.0 * pi);
     RecordOptions record = options.record;
     if (options.settle.enabled) {
+        require_periodic(system, "settling on the periodic response");
         const std::uint64_t planned =
             std::uint64_t(options.settle.max_revolutions) * steps_for(options.settle.period, settings.time_step);
         result.settle =
@@ -198,6 +209,7 @@ PeriodicOrbit periodic_orbit(const System& system, const SolverSettings& request
     if constexpr (detail::has_period<System>::value) {
         if (options.period == 0.0) options.period = system.period();
     }
+    require_periodic(system, "the periodic steady state");
     check_initial(system, q0, "initial q", true);
     check_initial(system, v0, "initial v", false);
     check_time_step(system, requested, options.period);

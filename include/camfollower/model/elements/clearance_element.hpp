@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "camfollower/contact/clearance.hpp"
+#include "camfollower/motion/speed_program.hpp"
 #include "camfollower/model/mechanism_builder.hpp"
 #include "camfollower/structure/network.hpp"
 
@@ -22,7 +23,7 @@ public:
     };
     static const std::vector<Spec>& specs(const MechanismBuilder& b) { return b.clearances; }
 
-    ClearanceElement(const Spec& c, const NetworkSpec& net, double)
+    ClearanceElement(const Spec& c, const NetworkSpec& net, const SpeedProgram&)
         : Clearance(c, gap_dofs(c, net), sliding_dof(c, net)) {}
 
     using Clearance::max_rank;

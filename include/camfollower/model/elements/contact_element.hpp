@@ -32,12 +32,12 @@ public:
     };
     static const std::vector<Spec>& specs(const MechanismBuilder& b) { return b.contacts; }
 
-    ContactElement(const Spec& c, const NetworkSpec& net, double omega)
+    ContactElement(const Spec& c, const NetworkSpec& net, const SpeedProgram& drive)
         : ContactPair(c, net.index(c.cam_x, who(c) + " cam_x"), net.index(c.cam_y, who(c) + " cam_y"),
                       net.index(c.follower_dof, who(c) + " follower_dof"), net.index(c.lateral, who(c) + " lateral"),
                       net.index(c.cam_twist, who(c) + " cam_twist"),
                       net.index(c.paper_backlash.guide_dof, who(c) + " paper_backlash.guide_dof")),
-          omega_(omega) {}
+          drive_(drive) {}
 
     int max_rank() const { return 1; }
     std::vector<int> tangent_dofs() const {
@@ -47,7 +47,7 @@ public:
     }
 
     void prepare(double t, State& s) const {
-        if (twist() < 0) ContactPair::prepare(t, omega_, s.terms);
+        if (twist() < 0) ContactPair::prepare(t, drive_, s.terms);
     }
     template <class Vector>
     void add_force(double t, const Vector& q, const Vector& v, State& s, Vector& f) const {
@@ -133,6 +133,22 @@ public:
         }
         return out;
     }
+    // The torque (N m) the camshaft must give this cam, (F - F_outer) d delta / d theta, and its power
+    // (W) at the cam's speed (the drive's, plus the twist rate on a twisting camshaft).
+    struct DriveLoad {
+        double torque, power;
+    };
+    template <class Vector>
+    DriveLoad drive_load(double t, const State& s, const Vector& q, const Vector& v) const {
+        const ContactTerms& c = s.terms;
+        const double rate = penetration_rate(c, q, v);
+        const ContactResponse r = spec().law(penetration(c, q), rate);
+        const double force = grooved() ? r.force - outer_response(r, rate).force : r.force;
+        if (force == 0.0) return {0.0, 0.0};
+        const double torque = force * moment_arm(c, q);
+        return {torque, torque * (drive_.rate(t) + (c.twist >= 0 ? v[c.twist] : 0.0))};
+    }
+
     // <name>.contact: the penetration (m), > 0 in contact; in a groove <name>.outer_contact likewise.
     void add_event_names(std::vector<std::string>& names) const {
         names.push_back(name() + ".contact");
@@ -208,14 +224,20 @@ private:
         return {inner.force - outer.force, inner.stiffness + outer.stiffness};
     }
 
-    // The terms at time t, displacement q and twist rate v_twist: theta = omega t + phase + q_twist,
-    // and the moment arm d delta / d theta at q.
+    // The terms at time t, displacement q and twist rate v_twist: theta = drive angle + phase +
+    // q_twist, and the moment arm d delta / d theta at q.
     template <class Vector>
     void twist_terms(double t, const Vector& q, double v_twist, ContactTerms& c) const {
-        evaluate(omega_ * t + spec().phase + q[twist()], omega_ + v_twist, c);
+        const DriveState d = drive_.at(t);
+        evaluate(d.angle + spec().phase + q[twist()], d.rate + v_twist, c, d.acceleration);
+        c.moment_arm = moment_arm(c, q);
+    }
+    // d delta / d theta at q: the contact force's moment arm about the shaft axis, m.
+    template <class Vector>
+    static double moment_arm(const ContactTerms& c, const Vector& q) {
         double arm = c.delta0_theta;
         for (int k = 0; k < c.count; ++k) arm += c.g_theta[k] * q[c.dof[k]];
-        c.moment_arm = arm;
+        return arm;
     }
     // d delta' / d q_twist without the arm's own rate: g_theta . v.
     template <class Vector>
@@ -231,7 +253,7 @@ private:
         if (c.twist >= 0) f(c.twist, c.moment_arm);
     }
 
-    double omega_;  // camshaft speed, rad/s
+    SpeedProgram drive_;  // the camshaft's rotation
 };
 
 }  // namespace camfollower
