@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['ArmTurn', 'BoundaryContinuity', 'CamEccentricity', 'ContinuityReport', 'Elastic', 'Groove', 'LineContact', 'MAX_CAMSHAFT_SPEED', 'MAX_PART_LENGTH', 'MAX_POINTS', 'METHODS', 'MIN_CAMSHAFT_SPEED', 'Mechanism', 'MechanismBuilder', 'MotionLaw', 'MotionProgram', 'OscillatingFlat', 'OscillatingRoller', 'Parameters', 'PeakCoefficients', 'ProfileError', 'RUNGE_KUTTA_DEFAULT_TOLERANCE', 'Segment', 'SolverSettings', 'SpeedModulation', 'SpeedProgram', 'SpeedRamp', 'TranslatingFlat', 'TranslatingRoller', 'cam_outline', 'check_output_target', 'length_units', 'paper_preset', 'realistic_damping_ratio', 'valve_train_parameter_units', 'valve_train_preset', 'write_cam_csv', 'write_file_atomically']
+__all__: list[str] = ['ArmTurn', 'BoundaryContinuity', 'CamEccentricity', 'ContinuityReport', 'CouplerLinkage', 'Elastic', 'Groove', 'LineContact', 'MAX_CAMSHAFT_SPEED', 'MAX_PART_LENGTH', 'MAX_POINTS', 'METHODS', 'MIN_CAMSHAFT_SPEED', 'Mechanism', 'MechanismBuilder', 'MotionLaw', 'MotionProgram', 'OscillatingFlat', 'OscillatingRoller', 'Parameters', 'PeakCoefficients', 'ProfileError', 'RUNGE_KUTTA_DEFAULT_TOLERANCE', 'Segment', 'SolverSettings', 'SpeedModulation', 'SpeedProgram', 'SpeedRamp', 'TranslatingFlat', 'TranslatingRoller', 'cam_outline', 'check_output_target', 'length_units', 'paper_preset', 'realistic_damping_ratio', 'valve_train_parameter_units', 'valve_train_preset', 'write_cam_csv', 'write_file_atomically']
 class PeakCoefficients:
     """
     Peaks of |V|, |A|, |J| of a normalized law.
@@ -630,6 +630,96 @@ class Parameters:
         """
         spring_stiffness (N/m); read-only: use replace(spring_stiffness=...)
         """
+class CouplerLinkage:
+    """
+    A cam-driven linkage in its own plane frame (m, rad): the swing arm (arm_dof, the follower's DOF) turning
+    about arm_pivot, its pin at arm_length and at arm_angle when q = 0, lifting in the sense arm_turn; a
+    coupler of coupler_length (m), coupler_mass (kg) and coupler_inertia about its mid-length (kg m^2); the
+    output a 'slider' (output_dof in m along the line through output_origin at output_direction) or a
+    'rocker' (output_dof in rad about the pivot output_origin, pin at output_length, positive in
+    output_turn); branch +1/-1 picks the assembly. In a mechanism (MechanismBuilder.add_linkage) the coupler
+    is a rigid body with DOFs <name>.x, <name>.y, <name>.angle joined to the two pins by pin joints
+    <name>.input, <name>.output of joint_stiffness (N/m) and joint_damping (N s/m).
+    """
+    def __getstate__(self) -> tuple[str, str, str, typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"], float, float, str, float, float, float, str, typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"], float, float, str, int, float, float]:
+        ...
+    def __init__(self, name: str, arm_dof: str, output_dof: str, *, arm_pivot: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[2, 1]"] = ..., arm_length: typing.SupportsFloat | typing.SupportsIndex, arm_angle: typing.SupportsFloat | typing.SupportsIndex, arm_turn: ArmTurn | str = 'counter_clockwise', coupler_length: typing.SupportsFloat | typing.SupportsIndex, coupler_mass: typing.SupportsFloat | typing.SupportsIndex, coupler_inertia: typing.SupportsFloat | typing.SupportsIndex, output: str = 'slider', output_origin: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[2, 1]"] = ..., output_direction: typing.SupportsFloat | typing.SupportsIndex = 0.0, output_length: typing.SupportsFloat | typing.SupportsIndex = 0.0, output_turn: ArmTurn | str = 'counter_clockwise', branch: typing.SupportsInt | typing.SupportsIndex = 1, joint_stiffness: typing.SupportsFloat | typing.SupportsIndex, joint_damping: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
+        ...
+    def backward(self, wanted: MotionProgram, points: typing.SupportsInt | typing.SupportsIndex = 3600, degree: typing.SupportsInt | typing.SupportsIndex = 5) -> MotionProgram:
+        """
+        The backward solution: the arm's lift program (rad) that moves the output by `wanted` (its displacement
+        from the reference, m or rad, per cam angle), from the inverse linkage at `points` equally spaced cam
+        angles, fitted by a periodic B-spline of `degree` (MotionProgram.from_table).
+        """
+    def input_at(self, s: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+        """
+        The arm's displacement (rad) that puts the output at s (the inverse of output_at).
+        """
+    def output_at(self, q: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+        """
+        The rigid linkage's output displacement (m or rad from its reference) at the arm's displacement q (rad;
+        scalar or array). Raises ValueError where the linkage cannot close.
+        """
+    def svaj(self, program: MotionProgram, theta: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> dict:
+        """
+        The output's displacement and its derivatives per radian of cam angle (s, ds, d2s, d3s) when the arm
+        follows `program` (its lift, rad): exact (Taylor arithmetic through the closed-form linkage). Times
+        omega^k for velocity, acceleration and jerk at a constant speed.
+        """
+    @property
+    def arm_angle(self) -> float:
+        """
+        rad
+        """
+    @property
+    def arm_dof(self) -> str:
+        ...
+    @property
+    def arm_length(self) -> float:
+        """
+        m
+        """
+    @property
+    def branch(self) -> int:
+        ...
+    @property
+    def coupler_inertia(self) -> float:
+        """
+        kg m^2
+        """
+    @property
+    def coupler_length(self) -> float:
+        """
+        m
+        """
+    @property
+    def coupler_mass(self) -> float:
+        """
+        kg
+        """
+    @property
+    def joint_damping(self) -> float:
+        """
+        N s/m
+        """
+    @property
+    def joint_stiffness(self) -> float:
+        """
+        N/m
+        """
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def output(self) -> str:
+        ...
+    @property
+    def output_dof(self) -> str:
+        ...
 class ArmTurn:
     """
     Sense in which an oscillating follower's arm turns to lift.
@@ -1088,6 +1178,11 @@ class MechanismBuilder:
         bushings need the rod's tilt DOF (rad, about tilt_reference). One clearance per bushing
         (<name>, or <name>.bushing1/.bushing2).
         """
+    def add_linkage(self, linkage: CouplerLinkage) -> None:
+        """
+        Add a CouplerLinkage: its coupler's DOFs <name>.x, <name>.y, <name>.angle and the pin joints
+        <name>.input, <name>.output (channels .force, .stretch), assembled at q = 0.
+        """
     def add_load(self, dof: str, force: typing.SupportsFloat | typing.SupportsIndex) -> None:
         """
         Constant load along +q (N).
@@ -1172,7 +1267,12 @@ class MechanismBuilder:
     @property
     def dofs(self) -> list:
         """
-        DOFs in order, as dicts (name, mass, direction); a shaft's DOFs as one dict describing the shaft.
+        DOFs in order, as dicts (name, mass, direction); a shaft's DOFs as one dict describing the shaft, a linkage's coupler DOFs as one dict naming the linkage.
+        """
+    @property
+    def linkages(self) -> list[CouplerLinkage]:
+        """
+        The linkages added, in order.
         """
     @property
     def loads(self) -> list:

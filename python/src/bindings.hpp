@@ -60,7 +60,16 @@ inline double number_argument(const std::string& name, const py::handle& value) 
 // variant of types without a default constructor.
 Follower follower_from(const py::handle& f);
 
+// A turn as given from Python: the ArmTurn enum or its name ("counter_clockwise"/"ccw", "clockwise"/"cw").
+inline ArmTurn turn_argument(const py::object& turn) {
+    if (py::isinstance<ArmTurn>(turn)) return turn.cast<ArmTurn>();
+    if (py::isinstance<py::str>(turn)) return arm_turn_from(turn.cast<std::string>());
+    throw py::type_error(detail::concat("turn must be an ArmTurn or one of 'counter_clockwise', 'clockwise', got ",
+                                        std::string(py::str(py::type::of(turn).attr("__name__")))));
+}
+
 void bind_motion(py::module_& m);
+void bind_linkage(py::module_& m);
 void bind_speed(py::module_& m);
 void bind_parameters(py::module_& m);
 void bind_settings(py::module_& m);

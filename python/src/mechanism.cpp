@@ -81,14 +81,6 @@ private:
 
 namespace {
 
-// A turn as given from Python: the ArmTurn enum or its name ("counter_clockwise"/"ccw", "clockwise"/"cw").
-ArmTurn turn_argument(const py::object& turn) {
-    if (py::isinstance<ArmTurn>(turn)) return turn.cast<ArmTurn>();
-    if (py::isinstance<py::str>(turn)) return arm_turn_from(turn.cast<std::string>());
-    throw py::type_error(detail::concat("turn must be an ArmTurn or one of 'counter_clockwise', 'clockwise', got ",
-                                        std::string(py::str(py::type::of(turn).attr("__name__")))));
-}
-
 // A follower parameter's value (follower/parameters.hpp) to and from Python: a turn by its name,
 // a point as a length-2 array.
 template <class T>
@@ -264,6 +256,15 @@ py::dict builder_state(const MechanismBuilder& b) {
             continue;
         }
         const DofSpec& d = all[k];
+        // A linkage's coupler DOFs (<name>.x, .y, .angle, added together): one entry naming the linkage.
+        const CouplerLinkage* linkage = nullptr;
+        for (const CouplerLinkage& l : b.linkages)
+            if (d.name == l.name + ".x") linkage = &l;
+        if (linkage) {
+            dofs.append(py::dict(py::arg("linkage") = linkage->name));
+            k += 2;
+            continue;
+        }
         dofs.append(py::dict(py::arg("name") = d.name, py::arg("mass") = d.mass,
                              py::arg("direction") = Eigen::Vector3d(d.direction)));
     }
@@ -300,7 +301,8 @@ py::dict builder_state(const MechanismBuilder& b) {
                     py::arg("rayleigh_beta") = b.structure.rayleigh_beta(),
                     py::arg("modal_ratios") = b.structure.modal_ratios(), py::arg("contacts") = contacts,
                     py::arg("camshaft_speed") = b.camshaft_speed,
-                    py::arg("speed_program") = b.speed_program ? py::cast(*b.speed_program) : py::none());
+                    py::arg("speed_program") = b.speed_program ? py::cast(*b.speed_program) : py::none(),
+                    py::arg("linkages") = b.linkages);
 }
 
 MechanismBuilder builder_from(const py::dict& t) {
@@ -314,6 +316,12 @@ MechanismBuilder builder_from(const py::dict& t) {
                          BeamSection{v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8]}, d["length"].cast<double>(),
                          d["max_element_length"].cast<double>(), d["stations"].cast<std::vector<double>>(),
                          d["axial"].cast<bool>(), d.contains("damping") ? d["damping"].cast<double>() : 0.0});
+            continue;
+        }
+        if (d.contains("linkage")) {
+            const std::string name = d["linkage"].cast<std::string>();
+            for (const CouplerLinkage& l : t["linkages"].cast<std::vector<CouplerLinkage>>())
+                if (l.name == name) b.add_linkage(l);
             continue;
         }
         b.add_dof(d["name"].cast<std::string>(), d["mass"].cast<double>(), d["direction"].cast<Eigen::Vector3d>());
@@ -683,6 +691,11 @@ void bind_mechanism(py::module_& m) {
             "A rod in a guide of `length` (m) with one or two bushings at axial positions (m, in [0, length]); two\n"
             "bushings need the rod's tilt DOF (rad, about tilt_reference). One clearance per bushing\n"
             "(<name>, or <name>.bushing1/.bushing2).")
+        .def("add_linkage", &MechanismBuilder::add_linkage, py::arg("linkage"),
+             "Add a CouplerLinkage: its coupler's DOFs <name>.x, <name>.y, <name>.angle and the pin joints\n"
+             "<name>.input, <name>.output (channels .force, .stretch), assembled at q = 0.")
+        .def_property_readonly(
+            "linkages", [](const MechanismBuilder& b) { return b.linkages; }, "The linkages added, in order.")
         .def_property(
             "camshaft_speed_rpm", &MechanismBuilder::camshaft_speed_rpm, &MechanismBuilder::set_camshaft_speed_rpm,
             "The camshaft speed, rpm (with a speed program its nominal speed: setting it scales the program).")
@@ -704,7 +717,9 @@ void bind_mechanism(py::module_& m) {
         .def(py::pickle(&builder_state, &builder_from));
     // The description read back, one list per kind (copies: change the builder through its add_ methods).
     const std::pair<const char*, const char*> parts[] = {
-        {"dofs", "DOFs in order, as dicts (name, mass, direction); a shaft's DOFs as one dict describing the shaft."},
+        {"dofs",
+         "DOFs in order, as dicts (name, mass, direction); a shaft's DOFs as one dict describing the shaft, a "
+         "linkage's coupler DOFs as one dict naming the linkage."},
         {"masses", "Point masses added to DOFs, as (dof, mass) tuples (kg)."},
         {"springs", "Springs and dampers, as dicts (name, a, b, stiffness, damping, preload)."},
         {"loads", "Constant loads, as dicts (dof, force)."},

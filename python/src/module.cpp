@@ -14,6 +14,7 @@ PYBIND11_MODULE(_core, m) {
     camfollower::python::bind_speed(m);
     camfollower::python::bind_parameters(m);
     camfollower::python::bind_settings(m);
+    camfollower::python::bind_linkage(m);
     camfollower::python::bind_mechanism(m);
     camfollower::python::bind_line_contact(m);
     camfollower::python::bind_export(m);

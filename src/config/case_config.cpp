@@ -699,6 +699,48 @@ void read_parts(const Section& root, const CaseConfig& c, const Dimensions& dims
                   "stiffness", "exponent", "damping_factor", "roller_width", "friction", "slip_velocity"});
         located(s, [&] { b.add_guide(g); });
     }
+    // [[linkage]]: a swing arm driving a slider or a rocker through a coupler (linkage/coupler_linkage.hpp).
+    for (const Section& s : root.tables("linkage")) {
+        CouplerLinkage l;
+        l.name = s.text("name");
+        l.arm_dof = dof_name(s, "arm_dof", b, false, "");
+        l.arm_pivot = s.has("arm_pivot") ? point(s, "arm_pivot") : Eigen::Vector2d::Zero();
+        l.arm_length = s.quantity("arm_length", "m");
+        l.arm_angle = s.quantity("arm_angle", "rad");
+        l.arm_turn =
+            arm_turn_from(s.choice("arm_turn", arm_turn_name(ArmTurn::counter_clockwise),
+                                   {arm_turn_name(ArmTurn::counter_clockwise), arm_turn_name(ArmTurn::clockwise)}));
+        l.joint_stiffness = s.quantity("joint_stiffness", "N/m");
+        l.joint_damping = s.quantity("joint_damping", "N s/m", 0.0);
+        const std::optional<Section> coupler = s.table("coupler");
+        if (!coupler) s.fail_here("needs coupler = { length = ..., mass = ..., inertia = ... }");
+        l.coupler_length = coupler->quantity("length", "m");
+        l.coupler_mass = coupler->quantity("mass", "kg");
+        l.coupler_inertia = coupler->quantity("inertia", "kg");
+        coupler->finish({"length", "mass", "inertia"});
+        const std::optional<Section> out = s.table("output");
+        if (!out) s.fail_here("needs output = { type = \"slider\" | \"rocker\", dof = ..., ... }");
+        const bool slider = out->choice("type", "slider", {"slider", "rocker"}) == "slider";
+        l.output = slider ? CouplerLinkage::Output::slider : CouplerLinkage::Output::rocker;
+        l.output_dof = dof_name(*out, "dof", b, false, "");
+        l.branch = int(out->integer("branch", 1, -1, 1));
+        if (l.branch == 0) out->fail("branch", "must be +1 or -1 (which of the two assemblies), got 0");
+        if (slider) {
+            l.output_origin = point(*out, "origin");
+            l.output_direction = out->quantity("direction", "rad", 0.0);
+            out->finish({"type", "dof", "branch", "origin", "direction"});
+        } else {
+            l.output_origin = point(*out, "pivot");
+            l.output_length = out->quantity("length", "m");
+            l.output_turn = arm_turn_from(
+                out->choice("turn", arm_turn_name(ArmTurn::counter_clockwise),
+                            {arm_turn_name(ArmTurn::counter_clockwise), arm_turn_name(ArmTurn::clockwise)}));
+            out->finish({"type", "dof", "branch", "pivot", "length", "turn"});
+        }
+        s.finish({"name", "arm_dof", "arm_pivot", "arm_length", "arm_angle", "arm_turn", "coupler", "output",
+                  "joint_stiffness", "joint_damping"});
+        located(s, [&] { b.add_linkage(l); });
+    }
     if (const std::optional<Section> s = root.table("damping")) {
         const double alpha = s->quantity("rayleigh_alpha", "-", 0.0), beta = s->quantity("rayleigh_beta", "-", 0.0);
         if (alpha != 0.0 || beta != 0.0) located(*s, [&] { b.set_rayleigh_damping(alpha, beta); });
@@ -1093,9 +1135,9 @@ CaseConfig build_case(const toml::table& table, const std::string& origin, const
     // montecarlo), which reads and checks them; they do not change the case.
     (void)root.table("sweep");
     (void)root.table("montecarlo");
-    root.finish({"camshaft", "program",   "preset", "dof",     "spring",       "damper", "load",
-                 "contact",  "clearance", "guide",  "damping", "gravity",      "solver", "output",
-                 "shaft",    "bearing",   "drive",  "motor",   "spring_chain", "sweep",  "montecarlo"});
+    root.finish({"camshaft",  "program", "preset",       "dof",     "spring",     "damper", "load",  "contact",
+                 "clearance", "guide",   "damping",      "gravity", "solver",     "output", "shaft", "bearing",
+                 "drive",     "motor",   "spring_chain", "sweep",   "montecarlo", "linkage"});
     // The description must build (DOF references, contact geometry): fail now, located at the table
     // of the element the message names, else at the file (a fault of the whole structure).
     try {

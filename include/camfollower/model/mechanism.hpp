@@ -18,6 +18,7 @@
 #include <limits>
 #include <string>
 #include <tuple>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -34,13 +35,14 @@
 #include "camfollower/model/element_set.hpp"
 #include "camfollower/model/elements/clearance_element.hpp"
 #include "camfollower/model/elements/contact_element.hpp"
+#include "camfollower/model/elements/pin_joint_element.hpp"
 #include "camfollower/model/mechanism_builder.hpp"
 #include "camfollower/structure/network.hpp"
 
 namespace camfollower {
 
 // Every element kind a Mechanism holds, in the order of their channels and events.
-using MechanismElements = ElementSet<ContactElement, ClearanceElement>;
+using MechanismElements = ElementSet<ContactElement, ClearanceElement, PinJointElement>;
 
 template <int N = Eigen::Dynamic>
 class Mechanism {
@@ -115,7 +117,7 @@ public:
     // cams take from the camshaft, sum of (F - F_outer) d delta / d theta over the contacts) and
     // "drive.power" (W: each cam's torque times its speed, summed), then each element's channels
     // (model/elements/: a contact's <name>.force, .penetration, ...; a clearance's <name>.force,
-    // .side, .gap, .friction).
+    // .side, .gap, .friction; a pin joint's <name>.force, .stretch).
     std::vector<std::string> channel_names() const;
     // Switching functions (solver/events.hpp): per contact <name>.contact, its penetration (m); per
     // clearance <name>.wall, |u| - c (m): > 0 while touching.
@@ -126,14 +128,15 @@ public:
     }
     void observe(const Workspace& w, const Vector& q, const Vector& v, double* out) const {
         const DriveState d = drive_.at(w.t);
-        double torque = 0.0, power = 0.0;
-        const auto& states = w.template of<ContactElement>();
-        for (std::size_t i = 0; i < contacts().size(); ++i) {
-            const ContactElement::DriveLoad l = contacts()[i].drive_load(w.t, states[i], q, v);
-            torque += l.torque, power += l.power;
-        }
-        *out++ = d.angle, *out++ = d.rate, *out++ = torque, *out++ = power;
-        elements_.for_each(w.states, [&](const auto& e, const auto& s) { out = e.observe(w.t, s, q, v, out); });
+        double* drive = out;  // theta, drive.speed, then drive.torque and drive.power from the contacts
+        out += 4;
+        ContactElement::DriveLoad load;
+        elements_.for_each(w.states, [&](const auto& e, const auto& s) {
+            if constexpr (std::is_same_v<std::decay_t<decltype(e)>, ContactElement>)
+                out = e.observe(w.t, s, q, v, out, &load);
+            else out = e.observe(w.t, s, q, v, out);
+        });
+        drive[0] = d.angle, drive[1] = d.rate, drive[2] = load.torque, drive[3] = load.power;
     }
 
     // --- queries ---
@@ -215,6 +218,25 @@ private:
 
     void add_modal_damping(const std::vector<double>& ratios);
 
+    // A linkage whose arm a cam drives must close at every lift of that cam's program (720 angles).
+    void check_linkages_close() const {
+        for (const CouplerLinkage& l : spec_.linkages)
+            for (const ContactElement& c : contacts()) {
+                const ContactPairSpec& p = c.spec();
+                if (p.follower_dof != l.arm_dof) continue;
+                for (int i = 0; i < 720; ++i) {
+                    const double theta = two_pi * i / 720.0;
+                    const double q = (p.program.evaluate(theta).h - p.follower_offset) / p.follower_ratio;
+                    try {
+                        (void)l.output_at(q);
+                    } catch (const std::invalid_argument& e) {
+                        detail::fail(e.what(), "; the cam of contact '", p.name,
+                                     "' turns the arm there at theta = ", radians_to_degrees(theta), " deg");
+                    }
+                }
+            }
+    }
+
     MechanismBuilder spec_;
     int n_ = 0;
     Matrix M_, C_, K_;
@@ -263,6 +285,7 @@ Mechanism<N>::Mechanism(MechanismBuilder description) : spec_(std::move(descript
     if (!net.modal_ratios().empty()) add_modal_damping(net.modal_ratios());
     M_sparse_ = M_.sparseView(), C_sparse_ = C_.sparseView(), K_sparse_ = K_.sparseView();
     initial_velocity_ = quasi_static_velocity(0.0, initial_);
+    check_linkages_close();
     for (const ContactPair& c : contacts()) {
         const double amplitude = c.paper_force_amplitude();
         if (amplitude == 0.0) continue;
@@ -364,9 +387,10 @@ auto Mechanism<N>::static_equilibrium(double theta) const -> Vector {
         if ((dq + previous_step).cwiseAbs().maxCoeff() <= 1e-9 * dq.cwiseAbs().maxCoeff()) dq *= 0.5;
         previous_step = dq;
         q -= dq;
-        // A very stiff contact (1e13 N/m) turns the rounding of its gap into newtons above the
-        // load's 1e-12: a step at the rounding level of the position is as converged as it gets.
-        if (dq.cwiseAbs().maxCoeff() <= 1e-14 * (q.cwiseAbs().maxCoeff() + 1e-3)) return q;
+        // A very stiff contact (1e13 N/m) or pin joint turns the rounding of its gap (of coordinates up
+        // to a metre: 1e-16 m) into newtons above the load's 1e-12: a step at the rounding level of
+        // the positions (1e-15 m, or 1e-14 of the displacement) is as converged as it gets.
+        if (dq.cwiseAbs().maxCoeff() <= 1e-14 * (q.cwiseAbs().maxCoeff() + 0.1)) return q;
     }
     throw ConvergenceError(detail::concat("static equilibrium at theta = ", radians_to_degrees(theta),
                                           " deg did not converge in 200 Newton iterations"));

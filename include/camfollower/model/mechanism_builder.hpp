@@ -4,6 +4,7 @@
 // clearances). Mutable; Mechanism<N>(builder) (model/mechanism.hpp) makes the immutable model.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -15,6 +16,7 @@
 #include "camfollower/contact/conjugate.hpp"
 #include "camfollower/contact/contact_pair.hpp"
 #include "camfollower/error.hpp"
+#include "camfollower/linkage/coupler_linkage.hpp"
 #include "camfollower/motion/speed_program.hpp"
 #include "camfollower/structure/network.hpp"
 
@@ -25,6 +27,8 @@ struct MechanismBuilder {
     NetworkSpec structure;
     std::vector<ContactPairSpec> contacts;
     std::vector<ClearanceSpec> clearances;
+    std::vector<PinJointSpec> pin_joints;
+    std::vector<CouplerLinkage> linkages;           // as added (their coupler DOFs and joints are in the lists above)
     double camshaft_speed = 750.0 * two_pi / 60.0;  // rad/s; with a speed program its nominal speed
     // A variable camshaft speed (motion/speed_program.hpp; none: constant camshaft_speed). The
     // program's speeds are scaled so that its nominal speed is camshaft_speed: changing the speed
@@ -66,6 +70,40 @@ struct MechanismBuilder {
     }
     void add_guide(const GuideSpec& g) {
         for (const ClearanceSpec& c : g.clearances()) add_clearance(c);
+    }
+    // A pin joint between two points of two links (linkage/coupler_linkage.hpp).
+    void add_pin_joint(const PinJointSpec& j) {
+        j.validate();
+        require_unused_name(j.name, "pin joint");
+        pin_joints.push_back(j);
+    }
+    // A cam-driven linkage (linkage/coupler_linkage.hpp): the coupler's DOFs <name>.x, <name>.y (its
+    // mass) and <name>.angle (its inertia about its centre), and the pin joints <name>.input (arm's
+    // pin to the coupler) and <name>.output (coupler to the output's pin), assembled at q = 0.
+    void add_linkage(const CouplerLinkage& l) {
+        l.validate();
+        require_unused_name(l.name, "linkage");
+        for (const CouplerLinkage& o : linkages)
+            if (o.name == l.name) detail::fail("linkage '", l.name, "' is defined twice");
+        const Eigen::Vector2d A = l.arm_pin_at(0.0), B = l.output_pin(0.0), centre = 0.5 * (A + B);
+        const double angle = std::atan2(B.y() - A.y(), B.x() - A.x()), half = 0.5 * l.coupler_length;
+        const std::array<std::string, 3> body{l.name + ".x", l.name + ".y", l.name + ".angle"};
+        add_dof(body[0], l.coupler_mass);
+        add_dof(body[1], l.coupler_mass);
+        add_dof(body[2], l.coupler_inertia);
+        add_pin_joint(
+            {l.name + ".input",
+             PlanarPoint::on_rotating(l.arm_dof, l.arm_pivot, l.arm_length, l.arm_angle, turn_sign(l.arm_turn)),
+             PlanarPoint::on_body(body, centre, angle, {-half, 0.0}), l.joint_stiffness, l.joint_damping});
+        const Eigen::Vector2d from_pivot = B - l.output_origin;
+        const PlanarPoint output =
+            l.output == CouplerLinkage::Output::slider
+                ? PlanarPoint::on_slider(l.output_dof, B, l.output_direction)
+                : PlanarPoint::on_rotating(l.output_dof, l.output_origin, l.output_length,
+                                           std::atan2(from_pivot.y(), from_pivot.x()), turn_sign(l.output_turn));
+        add_pin_joint({l.name + ".output", PlanarPoint::on_body(body, centre, angle, {half, 0.0}), output,
+                       l.joint_stiffness, l.joint_damping});
+        linkages.push_back(l);
     }
     // --- flexible camshafts (structure/shaft_spec.hpp); the shaft's axis is the global x axis, a cam's
     // contact frame has its x along global y and its y (a translating follower's axis) along global z.
@@ -168,6 +206,8 @@ private:
             if (c.name == name) detail::fail(kind, " '", name, "': the name is taken by contact '", name, "'");
         for (const ClearanceSpec& c : clearances)
             if (c.name == name) detail::fail(kind, " '", name, "': the name is taken by clearance '", name, "'");
+        for (const PinJointSpec& j : pin_joints)
+            if (j.name == name) detail::fail(kind, " '", name, "': the name is taken by pin joint '", name, "'");
         for (const SpringSpec& s : structure.springs())
             if (s.name == name) detail::fail(kind, " '", name, "': the name is taken by element '", name, "'");
     }

@@ -112,8 +112,15 @@ public:
             for (const char* s : {".penetration_rate", ".outer_force", ".outer_penetration", ".outer_in_contact"})
                 names.push_back(name() + s);
     }
+    // The torque (N m) the camshaft must give this cam, (F - F_outer) d delta / d theta, and its power
+    // (W) at the cam's speed (the drive's, plus the twist rate on a twisting camshaft): observe() adds
+    // them to `drive` (the mechanism's drive channels) from the response it computes anyway.
+    struct DriveLoad {
+        double torque = 0.0, power = 0.0;
+    };
     template <class Vector>
-    double* observe(double, const State& s, const Vector& q, const Vector& v, double* out) const {
+    double* observe(double t, const State& s, const Vector& q, const Vector& v, double* out,
+                    DriveLoad* drive = nullptr) const {
         const ContactTerms& c = s.terms;
         const double rate = penetration_rate(c, q, v);
         const ContactResponse r = spec().law(penetration(c, q), rate);
@@ -131,22 +138,13 @@ public:
             *out++ = o.delta;
             *out++ = o.in_contact ? 1.0 : 0.0;
         }
+        const double force = r.force - o.force;
+        if (drive && force != 0.0) {
+            const double torque = force * moment_arm(c, q);
+            drive->torque += torque;
+            drive->power += torque * (drive_.rate(t) + (c.twist >= 0 ? v[c.twist] : 0.0));
+        }
         return out;
-    }
-    // The torque (N m) the camshaft must give this cam, (F - F_outer) d delta / d theta, and its power
-    // (W) at the cam's speed (the drive's, plus the twist rate on a twisting camshaft).
-    struct DriveLoad {
-        double torque, power;
-    };
-    template <class Vector>
-    DriveLoad drive_load(double t, const State& s, const Vector& q, const Vector& v) const {
-        const ContactTerms& c = s.terms;
-        const double rate = penetration_rate(c, q, v);
-        const ContactResponse r = spec().law(penetration(c, q), rate);
-        const double force = grooved() ? r.force - outer_response(r, rate).force : r.force;
-        if (force == 0.0) return {0.0, 0.0};
-        const double torque = force * moment_arm(c, q);
-        return {torque, torque * (drive_.rate(t) + (c.twist >= 0 ? v[c.twist] : 0.0))};
     }
 
     // <name>.contact: the penetration (m), > 0 in contact; in a groove <name>.outer_contact likewise.
