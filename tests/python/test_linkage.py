@@ -249,3 +249,77 @@ def test_bad_linkages_are_refused_naming_the_value():
         b.build()
     with pytest.raises(ValueError, match="defined twice|is taken"):
         b.add_linkage(short)
+
+
+def linkage_config(**changes):
+    link = {
+        "name": "link",
+        "arm_dof": "arm",
+        "arm_length": "100 mm",
+        "arm_angle": "60 deg",
+        "coupler": {"length": "300 mm", "mass": "0.4 kg", "inertia": "3e-3 kg m^2"},
+        "output": {"type": "slider", "dof": "slide", "origin": ["0 mm", "50 mm"]},
+        "joint_stiffness": "1 N/um",
+    }
+    link.update(changes)
+    return {
+        "camshaft": {"speed": "100 rpm"},
+        "program": {
+            "swing": {
+                "segments": [
+                    {"law": "cycloidal", "end": "180 deg", "h": "10 deg"},
+                    {"law": "cycloidal", "end": "360 deg", "h": 0},
+                ]
+            }
+        },
+        "dof": [{"name": "arm", "mass": "1e-3 kg m^2"}, {"name": "slide", "mass": "1 kg"}],
+        "spring": [{"name": "s", "a": "arm", "stiffness": "100 N m/rad", "preload": "5 N m"}],
+        "contact": [
+            {
+                "name": "cam",
+                "program": "swing",
+                "follower_dof": "arm",
+                "stiffness": 1e8,
+                "follower": {
+                    "type": "oscillating_roller",
+                    "base_radius": "40 mm",
+                    "roller_radius": "10 mm",
+                    "pivot": ["120 mm", "0 mm"],
+                    "arm_length": "100 mm",
+                },
+            }
+        ],
+        "linkage": [link],
+    }
+
+
+def test_the_config_reads_a_linkage_and_names_bad_keys():
+    from camfollower.config import config_from_dict
+
+    case = config_from_dict(linkage_config())
+    (link,) = case.builder.linkages
+    assert (link.arm_length, link.arm_angle, link.coupler_length, link.output) == (
+        pytest.approx(0.1),
+        pytest.approx(60 * DEG),
+        pytest.approx(0.3),
+        "slider",
+    )
+    q = np.linspace(-0.2, 0.2, 9)
+    np.testing.assert_allclose(link.output_at(q), slider_crank().output_at(q), rtol=0, atol=1e-15)
+    assert case.mechanism.dof_names == ["arm", "slide", "link.x", "link.y", "link.angle"]
+    for bad, where in (
+        (
+            {"coupler": {"length": "300 mm", "mass": "0.4 kg"}},
+            r"linkage\[0\]\.coupler: the key 'inertia' is required",
+        ),
+        ({"output": {"type": "piston", "dof": "slide", "origin": [0, 0.05]}}, "output.type"),
+        ({"output": {"type": "slider", "dof": "slide", "origin": [0, 0.05], "branch": 0}}, "output.branch"),
+        ({"arm_dof": "nowhere"}, "arm_dof"),
+        ({"joint_stiffnes": "1 N/um"}, "joint_stiffnes"),
+        ({"coupler_length": "1 m"}, "coupler_length"),
+    ):
+        with pytest.raises(ValueError, match=where):
+            config_from_dict(linkage_config(**bad))
+    # A coupler too short for the slider's line is refused with the linkage named.
+    with pytest.raises(ValueError, match="linkage 'link'.*cannot reach the slider's line"):
+        config_from_dict(linkage_config(output={"type": "slider", "dof": "slide", "origin": ["0 mm", "500 mm"]}))
