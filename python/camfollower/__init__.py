@@ -19,6 +19,8 @@ _api_errors.install(_core)  # argument mismatches: short TypeErrors naming the c
 from . import export, motion, presets
 from ._core import (  # noqa: E402
     ArmTurn,
+    BarrelArmRoller,
+    BarrelRoller,
     BoundaryContinuity,
     CamEccentricity,
     ContinuityReport,
@@ -54,6 +56,8 @@ METHODS = {name: {"order": order, "summary": summary} for name, (order, summary)
 __all__ = [
     "METHODS",
     "ArmTurn",
+    "BarrelArmRoller",
+    "BarrelRoller",
     "BoundaryContinuity",
     "CamEccentricity",
     "Config",

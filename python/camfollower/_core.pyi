@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['ArmTurn', 'BoundaryContinuity', 'CamEccentricity', 'ContinuityReport', 'CouplerLinkage', 'Elastic', 'Groove', 'LineContact', 'MAX_CAMSHAFT_SPEED', 'MAX_PART_LENGTH', 'MAX_POINTS', 'METHODS', 'MIN_CAMSHAFT_SPEED', 'Mechanism', 'MechanismBuilder', 'MotionLaw', 'MotionProgram', 'OscillatingFlat', 'OscillatingRoller', 'Parameters', 'PeakCoefficients', 'ProfileError', 'RUNGE_KUTTA_DEFAULT_TOLERANCE', 'Segment', 'SolverSettings', 'SpeedModulation', 'SpeedProgram', 'SpeedRamp', 'TranslatingFlat', 'TranslatingRoller', 'cam_outline', 'check_output_target', 'length_units', 'paper_preset', 'realistic_damping_ratio', 'valve_train_parameter_units', 'valve_train_preset', 'write_cam_csv', 'write_file_atomically']
+__all__: list[str] = ['ArmTurn', 'BarrelArmRoller', 'BarrelRoller', 'BoundaryContinuity', 'CamEccentricity', 'ContinuityReport', 'CouplerLinkage', 'Elastic', 'Groove', 'LineContact', 'MAX_CAMSHAFT_SPEED', 'MAX_PART_LENGTH', 'MAX_POINTS', 'METHODS', 'MIN_CAMSHAFT_SPEED', 'Mechanism', 'MechanismBuilder', 'MotionLaw', 'MotionProgram', 'OscillatingFlat', 'OscillatingRoller', 'Parameters', 'PeakCoefficients', 'ProfileError', 'RUNGE_KUTTA_DEFAULT_TOLERANCE', 'Segment', 'SolverSettings', 'SpeedModulation', 'SpeedProgram', 'SpeedRamp', 'TranslatingFlat', 'TranslatingRoller', 'barrel_groove', 'cam_outline', 'check_output_target', 'length_units', 'paper_preset', 'realistic_damping_ratio', 'valve_train_parameter_units', 'valve_train_preset', 'write_barrel_groove_csv', 'write_cam_csv', 'write_file_atomically']
 class PeakCoefficients:
     """
     Peaks of |V|, |A|, |J| of a normalized law.
@@ -219,6 +219,126 @@ class ProfileError:
     def components(self) -> list:
         """
         The components as dicts: {'kind': 'waviness' | 'dent' | 'fourier', and its parameters}.
+        """
+class BarrelArmRoller:
+    """
+    Barrel (cylindrical) cam with a swing-arm roller follower: the arm's pivot axis is radial, so the arm swings in the plane tangent to the cylinder; pivot (x across the station, y along the cam axis) in m; lift in rad.
+    """
+    translating: typing.ClassVar[bool] = False
+    type_name: typing.ClassVar[str] = 'barrel_arm_roller'
+    def __getstate__(self) -> tuple[float, float, float, typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"], float, str]:
+        ...
+    def __init__(self, cylinder_radius: typing.SupportsFloat | typing.SupportsIndex, groove_depth: typing.SupportsFloat | typing.SupportsIndex, roller_radius: typing.SupportsFloat | typing.SupportsIndex, pivot: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[2, 1]"], arm_length: typing.SupportsFloat | typing.SupportsIndex, turn: ArmTurn | str = 'counter_clockwise') -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
+        ...
+    def check(self, program: MotionProgram) -> None:
+        """
+        Raise ValueError naming the cam angle if the cam undercuts, has a cusp or the pressure angle reaches 90 deg.
+        """
+    def contact(self, program: MotionProgram, theta: typing.SupportsFloat | typing.SupportsIndex) -> dict:
+        """
+        Contact geometry at cam angle theta (rad): unit normal (ground frame), lever, lift and their theta-rates.
+        """
+    def max_pressure_angle(self, program: MotionProgram) -> tuple[float, float]:
+        """
+        (theta, alpha) in rad of the largest |pressure angle| over the revolution.
+        """
+    def min_surface_radius(self, program: MotionProgram) -> tuple[float, float]:
+        """
+        (theta, radius) of the smallest convex cam-surface radius of curvature (m).
+        """
+    def profile(self, program: MotionProgram, theta: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> dict:
+        """
+        Cam profile at theta (rad, scalar or array): surface and reference points in the cam frame (m), the
+        contact point in the ground frame (m), surface radius of curvature (m, > 0 convex), pressure angle.
+        """
+    @property
+    def arm_length(self) -> float:
+        """
+        pivot to roller centre L (m, > 0)
+        """
+    @property
+    def cylinder_radius(self) -> float:
+        """
+        outer radius R of the barrel cam (m, > 0)
+        """
+    @property
+    def groove_depth(self) -> float:
+        """
+        depth d of the groove (m, 0 < d < R); the pitch radius is R - d/2
+        """
+    @property
+    def pivot(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"]:
+        """
+        arm pivot (m): x across the follower's station (against the surface's motion), y along the cam axis; |x| <= arm_length
+        """
+    @property
+    def roller_radius(self) -> float:
+        """
+        roller radius r_r (m, > 0)
+        """
+    @property
+    def start_angle(self) -> float:
+        """
+        start angle phi0 (rad, ground frame) of the arm at zero lift (a disk cam's: the roller on the base circle)
+        """
+    @property
+    def turn(self) -> str:
+        """
+        the arm's lifting sense
+        """
+class BarrelRoller:
+    """
+    Barrel (cylindrical) cam with a translating roller follower: the roller's axis is radial and its carriage slides parallel to the cam axis; lift in m along the axis.
+    """
+    translating: typing.ClassVar[bool] = True
+    type_name: typing.ClassVar[str] = 'barrel_roller'
+    def __getstate__(self) -> tuple[float, float, float]:
+        ...
+    def __init__(self, cylinder_radius: typing.SupportsFloat | typing.SupportsIndex, groove_depth: typing.SupportsFloat | typing.SupportsIndex, roller_radius: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
+        ...
+    def check(self, program: MotionProgram) -> None:
+        """
+        Raise ValueError naming the cam angle if the cam undercuts, has a cusp or the pressure angle reaches 90 deg.
+        """
+    def contact(self, program: MotionProgram, theta: typing.SupportsFloat | typing.SupportsIndex) -> dict:
+        """
+        Contact geometry at cam angle theta (rad): unit normal (ground frame), lever, lift and their theta-rates.
+        """
+    def max_pressure_angle(self, program: MotionProgram) -> tuple[float, float]:
+        """
+        (theta, alpha) in rad of the largest |pressure angle| over the revolution.
+        """
+    def min_surface_radius(self, program: MotionProgram) -> tuple[float, float]:
+        """
+        (theta, radius) of the smallest convex cam-surface radius of curvature (m).
+        """
+    def profile(self, program: MotionProgram, theta: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> dict:
+        """
+        Cam profile at theta (rad, scalar or array): surface and reference points in the cam frame (m), the
+        contact point in the ground frame (m), surface radius of curvature (m, > 0 convex), pressure angle.
+        """
+    @property
+    def cylinder_radius(self) -> float:
+        """
+        outer radius R of the barrel cam (m, > 0)
+        """
+    @property
+    def groove_depth(self) -> float:
+        """
+        depth d of the groove (m, 0 < d < R); the pitch radius is R - d/2
+        """
+    @property
+    def roller_radius(self) -> float:
+        """
+        roller radius r_r (m, > 0)
         """
 class BoundaryContinuity:
     """
@@ -771,6 +891,8 @@ class TranslatingRoller:
     """
     Translating roller follower with offset (m): the paper's follower.
     """
+    translating: typing.ClassVar[bool] = True
+    type_name: typing.ClassVar[str] = 'translating_roller'
     def __getstate__(self) -> tuple[float, float, float]:
         ...
     def __init__(self, base_radius: typing.SupportsFloat | typing.SupportsIndex, roller_radius: typing.SupportsFloat | typing.SupportsIndex, offset: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
@@ -885,6 +1007,8 @@ class TranslatingFlat:
     """
     Translating flat-faced follower: face angle (rad) from the normal to the axis, offset (m).
     """
+    translating: typing.ClassVar[bool] = True
+    type_name: typing.ClassVar[str] = 'translating_flat'
     def __getstate__(self) -> tuple[float, float, float]:
         ...
     def __init__(self, base_radius: typing.SupportsFloat | typing.SupportsIndex, face_angle: typing.SupportsFloat | typing.SupportsIndex = 0.0, offset: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
@@ -933,6 +1057,8 @@ class OscillatingRoller:
     """
     Oscillating (swing-arm) roller follower: pivot (x, y) in m in the ground frame, arm length (m); its lift program is the arm rotation in rad.
     """
+    translating: typing.ClassVar[bool] = False
+    type_name: typing.ClassVar[str] = 'oscillating_roller'
     def __getstate__(self) -> tuple[float, float, typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"], float, str]:
         ...
     def __init__(self, base_radius: typing.SupportsFloat | typing.SupportsIndex, roller_radius: typing.SupportsFloat | typing.SupportsIndex, pivot: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[2, 1]"], arm_length: typing.SupportsFloat | typing.SupportsIndex, turn: ArmTurn | str = 'counter_clockwise') -> None:
@@ -985,7 +1111,7 @@ class OscillatingRoller:
     @property
     def start_angle(self) -> float:
         """
-        start angle phi0 (rad, ground frame) of the arm with the follower on the base circle
+        start angle phi0 (rad, ground frame) of the arm at zero lift (a disk cam's: the roller on the base circle)
         """
     @property
     def turn(self) -> str:
@@ -996,6 +1122,8 @@ class OscillatingFlat:
     """
     Oscillating flat-faced follower: pivot (x, y) in m, face offset from the pivot (m); its lift program is the arm rotation in rad.
     """
+    translating: typing.ClassVar[bool] = False
+    type_name: typing.ClassVar[str] = 'oscillating_flat'
     def __getstate__(self) -> tuple[float, typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"], float, str]:
         ...
     def __init__(self, base_radius: typing.SupportsFloat | typing.SupportsIndex, pivot: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[2, 1]"], face_offset: typing.SupportsFloat | typing.SupportsIndex = 0.0, turn: ArmTurn | str = 'counter_clockwise') -> None:
@@ -1043,7 +1171,7 @@ class OscillatingFlat:
     @property
     def start_angle(self) -> float:
         """
-        start angle phi0 (rad, ground frame) of the arm with the follower on the base circle
+        start angle phi0 (rad, ground frame) of the arm at zero lift (a disk cam's: the roller on the base circle)
         """
     @property
     def turn(self) -> str:
@@ -1224,8 +1352,9 @@ class MechanismBuilder:
         """
         A contact pair whose cam sits on a shaft at station `at` (m): the cam centre is the node's (u_y, u_z), its
         angle omega t + phase + the node's twist. Its contact frame has x along the global y and the follower's
-        axis along the global z. width (m) is checked against the other cams; cam_mass (kg) and cam_inertia
-        (kg m^2) are added to the node.
+        axis along the global z (a barrel cam's: x along the global y, its follower's axis along the shaft, so
+        the cam centre is the node's (u_y, u_x) and the shaft needs axial=True). width (m) is checked against
+        the other cams; cam_mass (kg) and cam_inertia (kg m^2) are added to the node.
         """
     def set_gravity(self, gravity: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> None:
         """
@@ -1506,6 +1635,17 @@ def _shoot(system: Mechanism, settings: SolverSettings, period: typing.SupportsF
     """
     Internal: camfollower.periodic_steady_state() calls this and wraps the output in a PeriodicOrbit.
     """
+def barrel_groove(follower: typing.Any, program: MotionProgram, points: typing.SupportsInt | typing.SupportsIndex = 3600, clearance: typing.SupportsFloat | typing.SupportsIndex = 0.0, roller: str = 'cylindrical') -> dict:
+    """
+    A barrel cam's groove (BarrelRoller or BarrelArmRoller) at theta_k = 2 pi k / points, SI units: the exact
+    walls (envelopes of the roller's positions) for a 'cylindrical' or the ideal 'tapered' roller at the
+    radii (top, pitch, bottom). Keys: theta, radii (m), centre_angle/centre_z (roller centre at the pitch
+    radius: position round the cam in rad, the roller's station being at theta, and height in m), lift_angle,
+    lift_z, back_angle, back_z (3 x points: the lifting flank and the opposite one, clearance m away),
+    pressure_angle (3 x points, rad, on the lifting flank), cutter_cross/cutter_axial/cutter_plunge (m: the
+    4-axis machining path of a cutter shaped as the roller, larger by clearance/2), clearance, roller.
+    Raises ValueError naming the radius and angle where the roller undercuts or jams.
+    """
 def cam_outline(follower: typing.Any, program: MotionProgram, points: typing.SupportsInt | typing.SupportsIndex = 3600, cutter_radius: typing.SupportsFloat | typing.SupportsIndex | None = None, unit: str = 'mm') -> dict:
     """
     Cam surface over one revolution (theta_k = 2 pi k / points, cam frame, lengths in `unit`), its outward unit
@@ -1539,6 +1679,12 @@ def valve_train_parameter_units() -> dict:
 def valve_train_preset(engine_speed_rpm: typing.SupportsFloat | typing.SupportsIndex, parameters: dict) -> Mechanism:
     """
     Internal: camfollower.presets.valve_train() calls this.
+    """
+def write_barrel_groove_csv(path: str, follower: typing.Any, program: MotionProgram, points: typing.SupportsInt | typing.SupportsIndex = 3600, clearance: typing.SupportsFloat | typing.SupportsIndex = 0.0, roller: str = 'cylindrical', unit: str = 'mm') -> None:
+    """
+    Write a barrel cam's groove as CSV, atomically: commented header (units, frame, radii, roller, machining
+    axes), then per cam angle the roller centre, both flanks and the pressure angle at the top, pitch and
+    bottom radii (angles in deg, lengths in `unit`) and the machining path.
     """
 def write_cam_csv(path: str, follower: typing.Any, program: MotionProgram, points: typing.SupportsInt | typing.SupportsIndex = 3600, cutter_radius: typing.SupportsFloat | typing.SupportsIndex | None = None, unit: str = 'mm') -> None:
     """

@@ -7,8 +7,9 @@ front door for every verb, each working on a config file (docs/config.md).
 - ``modes [CONFIG] [--theta DEG] [--count N]``: natural frequencies, contacts linearized at a cam angle
   (without CONFIG both describe the paper's mechanism);
 - ``run CONFIG [-o FILE]``: simulate the case, every recorded channel as CSV;
-- ``export CONFIG -o FILE [--contact NAME] [--unit mm] [--cutter-radius R] [--points N]``: the cam
-  surface (and cutter-centre path) for manufacturing, CSV, or DXF when FILE ends in ``.dxf``;
+- ``export CONFIG -o FILE [--contact NAME] [--unit mm] [--cutter-radius R] [--points N] [--roller R]``:
+  the cam surface (and cutter-centre path) for manufacturing, CSV, or DXF when FILE ends in ``.dxf``
+  (a barrel cam: its groove walls and 4-axis machining path);
 - ``figures``, ``camshaft``, ``sweep``, ``montecarlo CONFIG [-o DIR]``: the recorded channels, figures
   and ``summary.json`` of a run, a camshaft at several speeds, a speed sweep with the jump speed, a
   Monte-Carlo tolerance study;
@@ -160,12 +161,17 @@ def check_arguments(args: argparse.Namespace) -> None:
             _integer(args.seed, "--seed", 0, 2**63 - 1)
 
 
+def _groove_clearance(contact: dict) -> float:
+    """A contact's groove clearance (m), 0 without a groove."""
+    return contact["groove"].clearance if contact.get("groove") is not None else 0.0
+
+
 def figures(config: str, out: str) -> dict:
     """Run the case in `config` and write its CSV, figures and summary into `out`; return the summary."""
     import matplotlib
 
     matplotlib.use("Agg")
-    from . import plot
+    from . import export, plot
 
     case = _load(config)
     closure = _closure(case)
@@ -190,10 +196,14 @@ def figures(config: str, out: str) -> dict:
     omega = m.omega
     for c in contacts:
         name, program, follower, dof = c["name"], c["program"], c["follower"], c["follower_dof"]
-        angular = type(follower).__name__.startswith("Oscillating")  # the lift is the arm's rotation (rad)
+        angular = not follower.translating  # the lift is the arm's rotation (rad)
         for fig, file in (
             (plot.svaj(program, rpm=rpm, angular=angular), f"svaj_{name}.png"),
-            (plot.profile(follower, program), f"profile_{name}.png"),
+            (
+                (plot.groove(follower, program, clearance=_groove_clearance(c)), f"groove_{name}.png")
+                if export.is_barrel(follower)
+                else (plot.profile(follower, program), f"profile_{name}.png")
+            ),
             (plot.pressure_angle_and_curvature(follower, program), f"pressure_angle_curvature_{name}.png"),
             (
                 plot.acceleration(
@@ -360,7 +370,7 @@ def kinematics(config, rpm=None) -> list:
         # The check reports no contact when it could not run (a static equilibrium not found).
         closed = closure[i] if i < len(closure) else None
         follower, program = c["follower"], c["program"]
-        translating = type(follower).__name__.startswith("Translating")
+        translating = follower.translating
         alpha_at, alpha = follower.max_pressure_angle(program)
         rho_at, rho = follower.min_surface_radius(program)
         velocity, velocity_at = _peak(program, "dh")
@@ -486,10 +496,17 @@ def run(config: str, output=None) -> dict:
 
 
 def export(
-    config: str, output: str, contact=None, unit: str = "mm", cutter_radius: float = 0.0, points: int = 3600
+    config: str,
+    output: str,
+    contact=None,
+    unit: str = "mm",
+    cutter_radius: float = 0.0,
+    points: int = 3600,
+    roller: str = "cylindrical",
 ) -> dict:
     """Write the cam of `contact` (default: the first) in `config` for manufacturing: CSV, or DXF when
-    `output` ends in ``.dxf``; `cutter_radius` in `unit` (0: no cutter path)."""
+    `output` ends in ``.dxf``; `cutter_radius` in `unit` (0: no cutter path). A barrel cam's groove
+    instead, for a `roller` "cylindrical" or "tapered" (its cutter is shaped as the roller)."""
     from . import _core
     from . import export as ex
 
@@ -507,8 +524,29 @@ def export(
     cutter = cutter_radius * units[unit] if cutter_radius else None
     dxf = output.lower().endswith(".dxf")
     _files.check_target(output, protect=[config])
+    if ex.is_barrel(c["follower"]):
+        # A barrel cam: its groove, cut by a cutter shaped as the roller (the contact's groove sets the width).
+        if cutter:
+            raise ValueError(
+                f"--cutter-radius: contact '{name}' is a barrel cam, cut by a cutter shaped as its roller (the "
+                "machining path in the file); leave --cutter-radius out"
+            )
+        clearance = _groove_clearance(c)
+        (ex.write_groove_dxf if dxf else ex.write_groove_csv)(
+            output, c["follower"], c["program"], points=points, clearance=clearance, roller=roller, unit=unit
+        )
+        print(
+            f"contact '{name}': {points} cam angles of the barrel cam's groove and machining path in {unit} -> {output}"
+        )
+        return {"contact": name, "points": points, "unit": unit, "file": output, "format": "dxf" if dxf else "csv"}
     (ex.write_dxf if dxf else ex.write_csv)(
-        output, c["follower"], c["program"], points=points, cutter_radius=cutter, unit=unit
+        output,
+        c["follower"],
+        c["program"],
+        points=points,
+        cutter_radius=cutter,
+        unit=unit,
+        frame_angle=c["frame_angle"],
     )
     print(
         f"contact '{name}': {points} points of the cam surface{' and the cutter-centre path' if cutter else ''} "
@@ -770,6 +808,12 @@ def _main(argv=None) -> int:
         help="radius of the milling cutter or grinding wheel, in --unit (default 0: no cutter path)",
     )
     e.add_argument("--points", type=int, default=3600, help="points round the cam (default 3600)")
+    e.add_argument(
+        "--roller",
+        choices=("cylindrical", "tapered"),
+        default="cylindrical",
+        help="a barrel cam's roller: cylindrical or the ideal tapered one (its groove walls; default cylindrical)",
+    )
     sub.add_parser(
         "study",
         help="the paper's study (healthy / eccentricity / clearance) -> ./out; "
@@ -822,7 +866,7 @@ def _main(argv=None) -> int:
             run(args.config, args.output)
             return 0
         if args.command == "export":
-            export(args.config, args.output, args.contact, args.unit, args.cutter_radius, args.points)
+            export(args.config, args.output, args.contact, args.unit, args.cutter_radius, args.points, args.roller)
             return 0
         if args.command == "camshaft":
             study = camshaft(args.config, args.out, args.rpm, args.engine_rpm, args.revolutions)

@@ -16,6 +16,11 @@ Conventions stated in every file: the cam turns counter-clockwise viewed from +z
 (docs/followers.md), so the rows run clockwise round the cam; at theta = 0 the cam frame coincides
 with the ground frame and the zero mark is the contact point at theta = 0 (the first row).
 
+A barrel (cylindrical) cam has no disk outline: its groove comes from :func:`groove_points`,
+:func:`write_groove_csv` and :func:`write_groove_dxf` (the exact walls along the depth for a
+cylindrical or the ideal tapered roller, the pressure angle at each radius and a 4-axis machining
+path; ``include/camfollower/geometry/barrel_groove.hpp``).
+
 Files are written atomically by the core's writer: a temporary in the target's folder, then a
 rename; a target that exists and is not a regular file (a directory, FIFO or device) is refused and
 a failure leaves nothing behind. The DXF writer needs ezdxf (``pip install camfollower[dxf]``).
@@ -68,16 +73,37 @@ def profile_points(
     return _core.cam_outline(follower, program, points, cutter_radius, unit)
 
 
+def mounting_note(frame_angle: float) -> list:
+    """The header line that says where a cam whose contact frame is turned by ``frame_angle`` (rad; a
+    conjugate pair's return cam) is mounted on the shaft, or none for an angle of 0."""
+    if frame_angle == 0.0:
+        return []
+    return [
+        f"mounting: this cam's frame is its contact's, turned by {math.degrees(frame_angle):.10g} deg from the ground "
+        "frame about the shaft axis (counter-clockwise seen from +z): mount it with its zero mark that far ahead "
+        "of the zero mark of a cam drawn in the ground frame (a conjugate pair's lift cam)"
+    ]
+
+
 def write_csv(
-    path, follower, program, *, points: int = 3600, cutter_radius: Optional[float] = None, unit: str = "mm"
+    path,
+    follower,
+    program,
+    *,
+    points: int = 3600,
+    cutter_radius: Optional[float] = None,
+    unit: str = "mm",
+    frame_angle: float = 0.0,
 ) -> None:
     """Write the outline as CSV: commented header (``# ``) with the conventions, then the columns
     ``theta_rad,surface_x_<unit>,surface_y_<unit>[,cutter_x_<unit>,cutter_y_<unit>]``, one row per
     point (17 significant digits). Read it back with
     ``numpy.loadtxt(path, delimiter=",", skiprows=<header lines + 1>)`` or any CSV reader with ``#``
-    comments."""
+    comments. ``frame_angle`` (rad): the contact's frame angle, stated as the cam's mounting (a
+    conjugate pair's return cam)."""
     points, cutter_radius = _check(points, cutter_radius, unit)
-    _core.write_cam_csv(os.fspath(path), follower, program, points, cutter_radius, unit)
+    notes = mounting_note(float(frame_angle))
+    _core.write_cam_csv(os.fspath(path), follower, program, points, cutter_radius, unit, notes)
 
 
 def _ezdxf():
@@ -91,7 +117,14 @@ def _ezdxf():
 
 
 def write_dxf(
-    path, follower, program, *, points: int = 3600, cutter_radius: Optional[float] = None, unit: str = "mm"
+    path,
+    follower,
+    program,
+    *,
+    points: int = 3600,
+    cutter_radius: Optional[float] = None,
+    unit: str = "mm",
+    frame_angle: float = 0.0,
 ) -> None:
     """Write the outline as a DXF drawing (R2010) in ``unit`` ($INSUNITS set accordingly):
 
@@ -101,8 +134,8 @@ def write_dxf(
       the contact point at theta = 0, labelled ``THETA = 0``) and the rotation (an arc with an
       arrowhead turning counter-clockwise, labelled ``CCW``).
 
-    The header lines of the CSV are stored as DXF custom header properties (``camfollower_1``, ...).
-    Written atomically, like the CSV."""
+    The header lines of the CSV are stored as DXF custom header properties (``camfollower_1``, ...),
+    with the mounting note for a ``frame_angle`` (rad) other than 0. Written atomically, like the CSV."""
     points, cutter_radius = _check(points, cutter_radius, unit)
     target = os.fspath(path)
     _files.check_target(target)  # before the drawing is built
@@ -112,7 +145,7 @@ def write_dxf(
     doc = ezdxf.new("R2010")
     doc.header["$INSUNITS"] = _DXF_INSUNITS[unit]
     doc.header["$MEASUREMENT"] = 0 if unit == "inch" else 1
-    for k, note in enumerate(outline["notes"], start=1):
+    for k, note in enumerate(list(outline["notes"]) + mounting_note(float(frame_angle)), start=1):
         doc.header.custom_vars.append(f"camfollower_{k}", note)
     doc.layers.add(SURFACE_LAYER, color=7)
     doc.layers.add(CUTTER_LAYER, color=1)
@@ -170,4 +203,107 @@ def write_dxf(
     _files.write_bytes(target, doc.encode(stream.getvalue()))
 
 
-__all__ = ["profile_points", "write_csv", "write_dxf", "SURFACE_LAYER", "CUTTER_LAYER", "REFERENCE_LAYER"]
+GROOVE_TOP_LAYER = "GROOVE_TOP"
+GROOVE_BOTTOM_LAYER = "GROOVE_BOTTOM"
+PITCH_LAYER = "PITCH_CURVE"
+ROLLERS = ("cylindrical", "tapered")
+
+
+def _check_groove(points, clearance, roller, unit):
+    points, _ = _check(points, None, unit)
+    if isinstance(clearance, bool) or not isinstance(clearance, numbers.Real) or not math.isfinite(clearance):
+        raise ValueError(f"clearance must be a finite number >= 0 (m), got {clearance!r}")
+    if roller not in ROLLERS:
+        raise ValueError(f"roller must be one of {', '.join(ROLLERS)}, got {roller!r}")
+    return points, float(clearance)
+
+
+def groove_points(
+    follower, program, *, points: int = 3600, clearance: float = 0.0, roller: str = "cylindrical"
+) -> dict:
+    """A barrel cam's groove (``BarrelRoller`` or ``BarrelArmRoller``) as numpy arrays, SI units:
+    ``theta`` (rad), ``radii`` (top, pitch, bottom; m), ``centre_angle``/``centre_z`` (the roller
+    centre at the pitch radius: position round the cam in rad, the roller's station being at
+    ``theta``, and height along the cam axis in m), ``lift_angle``/``lift_z`` and
+    ``back_angle``/``back_z`` (3 x points: the flank that lifts the roller and the opposite one, a
+    ``clearance`` (m) away), ``pressure_angle`` (3 x points, rad, lifting flank), and the 4-axis
+    machining path ``cutter_cross``, ``cutter_axial``, ``cutter_plunge`` (m) of a cutter shaped as
+    the roller (``roller``: "cylindrical" or the ideal "tapered"), larger by clearance / 2."""
+    points, clearance = _check_groove(points, clearance, roller, "m")
+    return _core.barrel_groove(follower, program, points, clearance, roller)
+
+
+def write_groove_csv(
+    path, follower, program, *, points: int = 3600, clearance: float = 0.0, roller: str = "cylindrical", unit="mm"
+) -> None:
+    """Write the groove as CSV: commented header (units, frame, radii, roller, machining axes), then per
+    cam angle ``theta_deg``, the roller centre, both flanks and the pressure angle at the top, pitch and
+    bottom radii (angles in deg, lengths in ``unit``) and the machining path."""
+    points, clearance = _check_groove(points, clearance, roller, unit)
+    _core.write_barrel_groove_csv(os.fspath(path), follower, program, points, clearance, roller, unit)
+
+
+def write_groove_dxf(
+    path, follower, program, *, points: int = 3600, clearance: float = 0.0, roller: str = "cylindrical", unit="mm"
+) -> None:
+    """Write the developed groove as a DXF drawing (R2010) in ``unit``: x = the position round the cam
+    as arc length on the cylinder's outer radius, y = the height along the cam axis. Layers
+    ``GROOVE_TOP`` (both flanks at the top radius, two open polylines over one turn), ``GROOVE_BOTTOM``
+    (the same at the groove's bottom, its angles drawn on the outer radius too) and ``PITCH_CURVE``
+    (the roller centre). Written atomically."""
+    points, clearance = _check_groove(points, clearance, roller, unit)
+    target = os.fspath(path)
+    _files.check_target(target)
+    g = _core.barrel_groove(follower, program, points, clearance, roller)
+    ezdxf = _ezdxf()
+    scale = 1.0 / _core.length_units()[unit]
+    outer = float(g["radii"][0])
+
+    def polyline(angle, z, layer):
+        xy = np.column_stack([scale * outer * np.asarray(angle), scale * np.asarray(z)])
+        xy = np.vstack([xy, xy[:1] + [scale * outer * 2 * math.pi, 0.0]])  # one turn: back to the start + 2 pi R
+        msp.add_lwpolyline(xy.tolist(), format="xy", dxfattribs={"layer": layer})
+
+    doc = ezdxf.new("R2010")
+    doc.header["$INSUNITS"] = _DXF_INSUNITS[unit]
+    doc.header["$MEASUREMENT"] = 0 if unit == "inch" else 1
+    notes = [
+        "camfollower barrel cam groove, developed on the outer radius",
+        f"x = position round the cam as arc length at radius {scale * outer:g} {unit}; y = height along the cam axis",
+        f"roller: {roller}; groove clearance {scale * clearance:g} {unit}",
+    ]
+    for k, note in enumerate(notes, start=1):
+        doc.header.custom_vars.append(f"camfollower_{k}", note)
+    for layer, color in ((GROOVE_TOP_LAYER, 7), (GROOVE_BOTTOM_LAYER, 5), (PITCH_LAYER, 3)):
+        doc.layers.add(layer, color=color)
+    msp = doc.modelspace()
+    for i, layer in ((0, GROOVE_TOP_LAYER), (2, GROOVE_BOTTOM_LAYER)):
+        polyline(g["lift_angle"][i], g["lift_z"][i], layer)
+        polyline(g["back_angle"][i], g["back_z"][i], layer)
+    polyline(g["centre_angle"], g["centre_z"], PITCH_LAYER)
+    stream = io.StringIO()
+    doc.write(stream)
+    _files.write_bytes(target, doc.encode(stream.getvalue()))
+
+
+def is_barrel(follower) -> bool:
+    """Does ``follower`` run in a barrel cam's groove (its cam has no disk outline)?"""
+    return isinstance(follower, (_core.BarrelRoller, _core.BarrelArmRoller))
+
+
+__all__ = [
+    "profile_points",
+    "write_csv",
+    "write_dxf",
+    "groove_points",
+    "write_groove_csv",
+    "write_groove_dxf",
+    "is_barrel",
+    "mounting_note",
+    "SURFACE_LAYER",
+    "CUTTER_LAYER",
+    "REFERENCE_LAYER",
+    "GROOVE_TOP_LAYER",
+    "GROOVE_BOTTOM_LAYER",
+    "PITCH_LAYER",
+]

@@ -134,6 +134,44 @@ def profile(follower, program, theta: float = 0.0, points: int = 1441, ax=None):
     return ax.figure
 
 
+def groove(follower, program, clearance: float = 0.0, roller: str = "cylindrical", points: int = 1441, axes=None):
+    """A barrel cam's groove, developed: both flanks at the top and bottom radii and the roller centre
+    (position round the cam in deg against height along the cam axis in mm), over the pressure angle
+    on the lifting flank at the top, pitch and bottom radii (deg), for a ``roller`` "cylindrical" or
+    "tapered" and a groove ``clearance`` (m)."""
+    from . import export
+
+    plt = _pyplot()
+    g = export.groove_points(follower, program, points=points, clearance=clearance, roller=roller)
+    if axes is None:
+        fig, axes = plt.subplots(2, 1, sharex=True, figsize=(9, 6.5), height_ratios=(3, 2))
+    ax = axes[0]
+    styles = ((0, "top", "-", "tab:blue"), (2, "bottom", "--", "tab:orange"))
+    for i, where, ls, color in styles:
+        r = 1e3 * g["radii"][i]
+        for flank in ("lift", "back"):
+            ax.plot(
+                np.degrees(g[f"{flank}_angle"][i]),
+                1e3 * g[f"{flank}_z"][i],
+                ls,
+                color=color,
+                lw=1.0,
+                label=f"{where} (r = {r:g} mm)" if flank == "lift" else None,
+            )
+    ax.plot(np.degrees(g["centre_angle"]), 1e3 * g["centre_z"], ":", color="0.3", lw=0.9, label="roller centre")
+    ax.set_ylabel("height along the cam axis (mm)"), ax.grid(alpha=0.3), ax.legend(loc="best", fontsize=8)
+    ax.set_title(f"{type(follower).__name__}: developed groove, {roller} roller, clearance {1e3 * clearance:g} mm")
+    for i, where, ls, color in (
+        (0, "top", "-", "tab:blue"),
+        (1, "pitch", "-.", "0.3"),
+        (2, "bottom", "--", "tab:orange"),
+    ):
+        axes[1].plot(np.degrees(g["theta"]), np.degrees(g["pressure_angle"][i]), ls, color=color, lw=1.0, label=where)
+    axes[1].set_ylabel("pressure angle (deg)"), axes[1].grid(alpha=0.3), axes[1].legend(loc="best", fontsize=8)
+    axes[1].set_xlabel("position round the cam / cam angle θ (deg)"), axes[1].set_xlim(0, 360)
+    return axes[0].figure
+
+
 def pressure_angle_and_curvature(follower, program, points: int = 3601, axes=None):
     """Pressure angle (deg) and surface radius of curvature (mm; concave < 0). Radii beyond ±10 r_b
     (near-straight flanks, where the radius passes through infinity between convex and concave) are
@@ -145,7 +183,9 @@ def pressure_angle_and_curvature(follower, program, points: int = 3601, axes=Non
         fig, axes = plt.subplots(2, 1, sharex=True, figsize=(8, 6))
     axes[0].plot(np.degrees(t), np.degrees(p["pressure_angle"]), lw=1.0)
     axes[0].set_ylabel("pressure angle (deg)")
-    limit = 10 * follower.base_radius
+    base = getattr(follower, "base_radius", None)
+    size, symbol = (base, "r_b") if base is not None else (follower.cylinder_radius, "R")  # a barrel's cylinder
+    limit = 10 * size
     rho = np.asarray(p["surface_radius"], dtype=float)
     shown = np.where(np.abs(rho) <= limit, rho, np.nan)  # a gap: no plateau that reads as a value
     axes[1].plot(np.degrees(t), 1e3 * shown, lw=1.0, label="surface radius")
@@ -157,7 +197,7 @@ def pressure_angle_and_curvature(follower, program, points: int = 3601, axes=Non
             color="0.3",
             lw=0.8,
             ls=":",
-            label=f"display limit ±10 r_b = ±{1e3 * limit:g} mm; beyond it: gap" if i == 0 else None,
+            label=f"display limit ±10 {symbol} = ±{1e3 * limit:g} mm; beyond it: gap" if i == 0 else None,
         )
     if beyond:
         axes[1].legend(loc="best", fontsize=7)
@@ -260,6 +300,7 @@ __all__ = [
     "per_revolution",
     "svaj",
     "profile",
+    "groove",
     "pressure_angle_and_curvature",
     "acceleration",
     "contact_force",

@@ -168,9 +168,13 @@ void bind_follower(py::module_& m) {
     const std::string name = class_name_of(F::type_name);
     py::class_<F> c(m, name.c_str(), F::description);
     bind_parameters(c, std::make_index_sequence<F::parameters.size()>{});
+    // Class attributes: its lift is a length (m) when translating, else the arm's rotation (rad).
+    c.attr("translating") = F::translating;
+    c.attr("type_name") = F::type_name;
     if constexpr (has_start_angle<F>::value)
         c.def_property_readonly("start_angle", &F::start_angle,
-                                "start angle phi0 (rad, ground frame) of the arm with the follower on the base circle");
+                                "start angle phi0 (rad, ground frame) of the arm at zero lift (a disk cam's: the "
+                                "roller on the base circle)");
     c.def(
          "contact",
          [](const F& f, const MotionProgram& program, double theta) {
@@ -577,6 +581,8 @@ void bind_mechanism(py::module_& m) {
                         HertzContact{return_stiffness.value_or(stiffness), return_exponent.value_or(exponent),
                                      return_damping_factor.value_or(damping_factor)};
                 b.add_conjugate_cams(c);
+                // A bell crank's angle from the lift arm to the return arm: what its drawing needs.
+                return is_translating(c.follower) ? py::object(py::none()) : py::object(py::float_(c.arm_angle()));
             },
             py::arg("name"), py::arg("program"), py::arg("follower"), py::arg("return_follower"), py::kw_only(),
             py::arg("follower_dof"), py::arg("stiffness"), py::arg("exponent") = 1.0, py::arg("damping_factor") = 0.0,
@@ -590,7 +596,8 @@ void bind_mechanism(py::module_& m) {
             "the cam centre (its frame turned by pi, its offset measured in that frame); an oscillating pair's\n"
             "arms share the pivot and lift in opposite senses. backlash (m, or rad for an arm): the follower's play\n"
             "between the cams (> 0) or the interference that preloads them (< 0). return_*: the return contact's\n"
-            "law where it differs.")
+            "law where it differs. Returns an oscillating pair's bell-crank angle (rad, counter-clockwise from the\n"
+            "lift arm to the return arm, both rollers on their cams), None for a translating pair.")
         .def(
             "add_shaft",
             [](MechanismBuilder& b, const std::string& name, double length, double outer_diameter,
@@ -650,8 +657,9 @@ void bind_mechanism(py::module_& m) {
             "A contact pair whose cam sits on a shaft at station `at` (m): the cam centre is the node's (u_y, u_z), "
             "its\n"
             "angle omega t + phase + the node's twist. Its contact frame has x along the global y and the follower's\n"
-            "axis along the global z. width (m) is checked against the other cams; cam_mass (kg) and cam_inertia\n"
-            "(kg m^2) are added to the node.")
+            "axis along the global z (a barrel cam's: x along the global y, its follower's axis along the shaft, so\n"
+            "the cam centre is the node's (u_y, u_x) and the shaft needs axial=True). width (m) is checked against\n"
+            "the other cams; cam_mass (kg) and cam_inertia (kg m^2) are added to the node.")
         .def("add_spring_chain", &MechanismBuilder::add_spring_chain, py::arg("name"), py::arg("a"),
              py::arg("b") = ground_name, py::kw_only(), py::arg("stiffness"), py::arg("mass"), py::arg("elements") = 6,
              py::arg("damping") = 0.0, py::arg("preload") = 0.0, py::arg("direction") = Eigen::Vector3d::Zero(),

@@ -395,7 +395,10 @@ Follower read_follower(const Section& s, const std::string& owner) {
     const std::vector<std::string> types = follower_type_names();
     const std::string type = s.choice("type", "", {types.begin(), types.end()});
     return located(s, [&]() -> Follower {
-        ContactLengths lengths{owner, written(s, "base_radius", s.quantity("base_radius", "m")), {}, {}, {}, {}, {}};
+        const bool barrel = type == BarrelRoller::type_name || type == BarrelArmRoller::type_name;
+        const char* size = barrel ? "cylinder_radius" : "base_radius";
+        ContactLengths lengths{owner, written(s, size, s.quantity(size, "m")), {}, {}, {}, {}, {}};
+        if (barrel) lengths.size_name = "the cylinder radius", lengths.barrel = true;
         return read_follower_among(s, type, lengths, static_cast<const Follower*>(nullptr));
     });
 }
@@ -592,7 +595,7 @@ void read_parts(const Section& root, const CaseConfig& c, const Dimensions& dims
         const std::string owner = "contact '" + detail::printable(p.name) + "'";
         p.follower = read_follower(*follower, owner);
         check_lift_dimension(s, p.follower, dims.at(program), program);
-        const double base_radius = std::visit([](const auto& f) { return f.base_radius(); }, p.follower);
+        const double base_radius = cam_radius(p.follower);
         check_program_lengths(lengths.at(program), base_radius, is_translating(p.follower), owner);
         p.law = read_law(s);
         p.phase = s.quantity("phase", "rad", 0.0);

@@ -56,7 +56,7 @@ void refuse_above(const Length& L, const char* what, double limit, const std::st
 }
 
 std::string ten_base_radii(const ContactLengths& c) {
-    return "10 x the base radius " + number(c.base_radius.value) + " m of " + c.owner;
+    return std::string("10 x ") + c.size_name + " " + number(c.base_radius.value) + " m of " + c.owner;
 }
 
 }  // namespace
@@ -66,7 +66,7 @@ std::optional<Length>* ContactLengths::slot(std::string_view name) {
     if (name == "offset") return &offset;
     if (name == "face_offset") return &face_offset;
     if (name == "arm_length") return &arm_length;
-    if (name == "pivot") return &pivot;
+    if (name == "pivot") return barrel ? nullptr : &pivot;
     return nullptr;
 }
 
@@ -80,18 +80,18 @@ void check_follower_lengths(const ContactLengths& c, bool offset) {
     const std::string of = " of " + c.owner;
     if (!usable(rb.value)) return;  // the follower's own check names it
     // The base radius first: when it is the one written without its unit, the others look too small.
-    refuse_above(rb, "the base radius", 1.0, "1 m (a cam that large is written with its unit)");
+    refuse_above(rb, c.size_name, 1.0, "1 m (a cam that large is written with its unit)");
     if (c.roller_radius && usable(c.roller_radius->value))
-        refuse_above(rb, "the base radius", 100.0 * c.roller_radius->value,
+        refuse_above(rb, c.size_name, 100.0 * c.roller_radius->value,
                      "100 x the roller radius " + number(c.roller_radius->value) + " m" + of);
     if (c.arm_length && usable(c.arm_length->value))
-        refuse_above(rb, "the base radius", 10.0 * c.arm_length->value,
+        refuse_above(rb, c.size_name, 10.0 * c.arm_length->value,
                      "10 x the arm length " + number(c.arm_length->value) + " m" + of);
     if (c.pivot && usable(c.pivot->value))
         refuse_above(rb, "the base radius", 10.0 * c.pivot->value,
                      "10 x the pivot's distance " + number(c.pivot->value) + " m from the cam centre" + of);
     const std::string ten = ten_base_radii(c);
-    const std::string hundred = "100 x the base radius " + number(rb.value) + " m" + of;
+    const std::string hundred = std::string("100 x ") + c.size_name + " " + number(rb.value) + " m" + of;
     if (c.roller_radius) refuse_above(*c.roller_radius, "the roller radius", 10.0 * rb.value, ten);
     if (c.offset && offset) refuse_above(*c.offset, "the offset", 10.0 * rb.value, ten);
     if (c.face_offset) refuse_above(*c.face_offset, "the face offset", 10.0 * rb.value, ten);

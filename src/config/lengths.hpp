@@ -25,8 +25,10 @@ struct Length {
 // The lengths of one contact. `owner` names it in messages ("contact 'cam'", "the paper preset's cam").
 struct ContactLengths {
     std::string owner;
-    Length base_radius;
+    Length base_radius;  // a barrel cam's: its cylinder radius
     std::optional<Length> roller_radius, offset, face_offset, arm_length, pivot;
+    const char* size_name = "the base radius";  // "the cylinder radius" for a barrel cam
+    bool barrel = false;  // a barrel cam's pivot is placed from the follower's station, not the cam centre
 
     // The slot of the follower parameter `name` (its config key), or nullptr for a length these rules
     // do not know (taken as written) and for base_radius, which is always present.

@@ -395,6 +395,16 @@ TEST_CASE(
         CHECK(line.rfind(std::string(F::type_name) + ": base_radius = " + std::to_string(int(rb * 1000)), 0) == 0);
         seen.insert(F::type_name);
     });
+    // The barrel cams' followers (their geometry is checked in barrel.test.cpp).
+    const Follower carriage = BarrelRoller(0.06, 0.016, 0.01),
+                   arm = BarrelArmRoller(0.06, 0.016, 0.01, Vec(-0.1, 0), 0.12);
+    CHECK(is_translating(carriage));
+    CHECK_FALSE(is_translating(arm));
+    for (const Follower& f : {carriage, arm}) {
+        const std::string type = follower_type_name(f);
+        CHECK(describe_follower(f, LengthUnit::mm).rfind(type + ": cylinder_radius = 6", 0) == 0);
+        seen.insert(type);
+    }
     const std::vector<std::string> all = follower_type_names();
     CHECK(std::set<std::string>(all.begin(), all.end()) == seen);  // distinct, and each one tried above
     CHECK(all.size() == std::variant_size_v<Follower>);

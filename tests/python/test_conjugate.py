@@ -51,12 +51,12 @@ def surface_distance(follower, program, shaft_to_ground, point, guess):
     return r.fun
 
 
-def test_the_translating_return_cam_touches_a_roller_carried_with_the_lift_roller():
+def test_the_translating_return_cam_touches_a_roller_carried_with_the_lift_roller(tmp_path):
     lift = cf.TranslatingRoller(0.040, 0.010, 0.005)
     back = cf.TranslatingRoller(0.050, 0.012, -0.005)  # on the lift roller's axis: offset -e in its turned frame
     b = cf.MechanismBuilder()
     b.add_dof("f", 0.5)
-    b.add_conjugate_cams("cams", PROGRAM, lift, back, follower_dof="f", stiffness=1e9)
+    assert b.add_conjugate_cams("cams", PROGRAM, lift, back, follower_dof="f", stiffness=1e9) is None  # no crank
     ret = b.contacts[1]
     assert ret["name"] == "cams.return" and ret["frame_angle"] == pytest.approx(math.pi)
     s0 = math.sqrt(0.050**2 - 0.005**2)
@@ -74,6 +74,18 @@ def test_the_translating_return_cam_touches_a_roller_carried_with_the_lift_rolle
         worst = max(worst, abs(gap))
     print(f"translating conjugate: |roller-to-surface distance - r| <= {worst:.2e} m")
     assert worst < 1e-10
+    # Its drawing states its mounting: the file's zero-angle point turned by the stated angle touches the
+    # return roller written out above (at theta = 0).
+    path = tmp_path / "return.csv"
+    cf.export.write_csv(path, back, ret["program"], points=360, unit="m", frame_angle=ret["frame_angle"])
+    lines = path.read_text().splitlines()
+    (note,) = [x for x in lines if x.startswith("# mounting:")]
+    angle = math.radians(float(note.split("turned by ")[1].split(" deg")[0]))
+    assert angle == pytest.approx(math.pi, abs=1e-12)
+    first = np.array([float(v) for v in lines[[x.startswith("#") for x in lines].index(False) + 1].split(",")[1:3]])
+    roller0 = np.array([0.005, s0 + PROGRAM.evaluate(0.0)["h"]]) - np.array([0.0, distance])
+    (back_at_zero,) = [rotation(angle) @ first]
+    assert np.linalg.norm(back_at_zero - roller0) == pytest.approx(0.012, abs=1e-12)
 
 
 def test_the_bell_crank_return_arm_touches_its_cam_at_a_fixed_angle_to_the_lift_arm():
@@ -83,13 +95,14 @@ def test_the_bell_crank_return_arm_touches_its_cam_at_a_fixed_angle_to_the_lift_
     back = cf.OscillatingRoller(0.045, 0.010, pivot, 0.085, "clockwise")
     b = cf.MechanismBuilder()
     b.add_dof("arm", 1e-3)
-    b.add_conjugate_cams("bell", program, lift, back, follower_dof="arm", stiffness=1e8)
+    crank_angle = b.add_conjugate_cams("bell", program, lift, back, follower_dof="arm", stiffness=1e8)
     ret = b.contacts[1]
     assert ret["frame_angle"] == 0.0 and ret["follower_ratio"] == -1.0
     # The return arm's angle at rest, from its own cam: the roller centre (reference point) at theta = 0.
     p0 = back.profile(ret["program"], 0.0)
     c0 = np.array([p0["reference_x"], p0["reference_y"]]) - np.asarray(pivot)  # cam frame = ground at 0
     crank = math.atan2(c0[1], c0[0]) - lift.start_angle  # fixed on the bell crank
+    assert crank_angle == pytest.approx(crank, abs=1e-12)  # what add_conjugate_cams tells the designer
     worst = 0.0
     for theta in np.radians(np.arange(0.0, 360.0, 7.5)):
         arm = lift.start_angle + program.evaluate(theta)["h"] + crank  # the lift arm's angle, then the crank's

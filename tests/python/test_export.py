@@ -203,7 +203,7 @@ def test_bad_input_names_the_parameter(tmp_path, kwargs, message):
 def test_bad_follower_and_core_checks():
     with pytest.raises(
         ValueError,
-        match=r"follower must be one of TranslatingRoller, TranslatingFlat, OscillatingRoller, OscillatingFlat; got <class 'str'>",
+        match=r"follower must be one of TranslatingRoller, TranslatingFlat, OscillatingRoller, OscillatingFlat, BarrelRoller, BarrelArmRoller; got <class 'str'>",
     ):
         export.profile_points("roller", PAPER, points=10)
     with pytest.raises(ValueError, match=r"points must be an integer in \[3, 10000000\]"):

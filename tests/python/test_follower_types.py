@@ -13,7 +13,7 @@ import camfollower as cf
 import numpy as np
 import pytest
 from camfollower.config import config_from_dict
-from camfollower.export import write_csv
+from camfollower.export import is_barrel, write_csv, write_groove_csv
 
 # Every parameter given, in SI (the Python API), and the same values as a config writes them.
 GIVEN = {
@@ -23,6 +23,15 @@ GIVEN = {
         base_radius=0.04, roller_radius=0.01, pivot=(0.1, 0.05), arm_length=0.08, turn="clockwise"
     ),
     "oscillating_flat": dict(base_radius=0.04, pivot=(0.12, 0.0), face_offset=0.004, turn="clockwise"),
+    "barrel_roller": dict(cylinder_radius=0.06, groove_depth=0.016, roller_radius=0.01),
+    "barrel_arm_roller": dict(
+        cylinder_radius=0.06,
+        groove_depth=0.016,
+        roller_radius=0.01,
+        pivot=(-0.1, 0.02),
+        arm_length=0.12,
+        turn="counter_clockwise",
+    ),
 }
 IN_CONFIG = {
     "translating_roller": dict(base_radius="40 mm", roller_radius="12 mm", offset="5 mm"),
@@ -31,6 +40,15 @@ IN_CONFIG = {
         base_radius="40 mm", roller_radius="10 mm", pivot=["100 mm", "50 mm"], arm_length="80 mm", turn="clockwise"
     ),
     "oscillating_flat": dict(base_radius="40 mm", pivot=["120 mm", "0 mm"], face_offset="4 mm", turn="clockwise"),
+    "barrel_roller": dict(cylinder_radius="60 mm", groove_depth="16 mm", roller_radius="10 mm"),
+    "barrel_arm_roller": dict(
+        cylinder_radius="60 mm",
+        groove_depth="16 mm",
+        roller_radius="10 mm",
+        pivot=["-100 mm", "20 mm"],
+        arm_length="120 mm",
+        turn="counter_clockwise",
+    ),
 }
 # The optional parameters and their documented defaults (docs/config.md, the docstrings).
 DEFAULTS = {
@@ -38,6 +56,8 @@ DEFAULTS = {
     "translating_flat": dict(face_angle=0.0, offset=0.0),
     "oscillating_roller": dict(turn="counter_clockwise"),
     "oscillating_flat": dict(face_offset=0.0, turn="counter_clockwise"),
+    "barrel_roller": dict(),
+    "barrel_arm_roller": dict(turn="counter_clockwise"),
 }
 TYPES = sorted(GIVEN)
 
@@ -61,7 +81,7 @@ def same(a, b):
 
 
 def config(follower, type_name):
-    translating = type_name.startswith("translating")
+    translating = class_of(type_name).translating
     lift = "5 mm" if translating else "5 deg"
     mass, stiffness, preload = ("0.2 kg", "20 N/mm", "30 N") if translating else ("2e-4 kg m^2", 20.0, 3.0)
     return {
@@ -145,15 +165,19 @@ def test_another_types_key_and_a_misspelt_key_are_refused_at_the_key(type_name):
     with pytest.raises(ValueError, match=rf"contact\[0\]\.follower\.{foreign}: is not used in this configuration"):
         config_from_dict(config(follower, type_name))
     follower = {"type": type_name, **IN_CONFIG[type_name], "base_raduis": "40 mm"}
-    with pytest.raises(ValueError, match=r"follower\.base_raduis: unknown key; known here: type, base_radius"):
+    with pytest.raises(ValueError, match=r"follower\.base_raduis: unknown key; known here: type, base_radius, ") as e:
         config_from_dict(config(follower, type_name))
+    assert all(name in str(e.value) for name in GIVEN[type_name])  # every type's keys are listed
 
 
 @pytest.mark.parametrize("type_name", TYPES)
 def test_the_exports_header_names_every_parameter_in_order_with_its_unit(type_name, tmp_path):
     case = config_from_dict(config({"type": type_name, **IN_CONFIG[type_name]}, type_name))
     follower = case.builder.contacts[0]["follower"]
-    write_csv(tmp_path / "cam.csv", follower, case.programs["p"], points=360)
+    # A barrel cam's file is its groove's.
+    (write_groove_csv if is_barrel(follower) else write_csv)(
+        tmp_path / "cam.csv", follower, case.programs["p"], points=360
+    )
     lines = (tmp_path / "cam.csv").read_text().splitlines()
     (line,) = [x for x in lines if x.startswith("#") and f"{type_name}: " in x]
     words = dict(part.split(" = ") for part in line.split(f"{type_name}: ", 1)[1].split(", ") if " = " in part)

@@ -56,6 +56,10 @@ struct ConjugateCams {
         const std::string who = "conjugate cams '" + name + "'";
         detail::require_name(name, "conjugate cams");
         const bool translating = is_translating(follower);
+        if (is_barrel(follower) || is_barrel(return_follower))
+            detail::fail(who,
+                         ": conjugate cams are disk cams; a barrel cam is form-closed by its groove (give the "
+                         "contact a groove instead)");
         if (translating != is_translating(return_follower))
             detail::fail(who, ": the lift and return followers must both be translating or both oscillating (",
                          follower_type_name(follower), ", ", follower_type_name(return_follower), ")");

@@ -35,6 +35,7 @@
 #include "camfollower/contact/paper_backlash.hpp"
 #include "camfollower/core/ground.hpp"
 #include "camfollower/error.hpp"
+#include "camfollower/follower/barrel_roller.hpp"
 #include "camfollower/follower/oscillating_flat.hpp"
 #include "camfollower/follower/oscillating_roller.hpp"
 #include "camfollower/follower/parameters.hpp"
@@ -49,7 +50,8 @@ namespace camfollower {
 // Every follower type, the one list: a new type joins here. The config reader and the Python
 // bindings take every alternative from its parameter description (follower/parameters.hpp); Python
 // re-exports the class in python/camfollower/__init__.py.
-using Follower = std::variant<TranslatingRoller, TranslatingFlat, OscillatingRoller, OscillatingFlat>;
+using Follower =
+    std::variant<TranslatingRoller, TranslatingFlat, OscillatingRoller, OscillatingFlat, BarrelRoller, BarrelArmRoller>;
 
 namespace detail {
 template <class... F>
@@ -79,6 +81,21 @@ bool is_translating(const F&) {
 }
 inline bool is_translating(const Follower& f) {
     return std::visit([](const auto& x) { return std::decay_t<decltype(x)>::translating; }, f);
+}
+
+// Barrel cams' followers (follower/barrel_roller.hpp): their profile is a developed groove.
+inline bool is_barrel(const Follower& f) {
+    return std::visit([](const auto& x) { return is_barrel_follower<std::decay_t<decltype(x)>>::value; }, f);
+}
+
+// The cam's size: a disk cam's base radius, a barrel cam's cylinder radius (m; size hints).
+inline double cam_radius(const Follower& f) {
+    return std::visit(
+        [](const auto& x) {
+            if constexpr (is_barrel_follower<std::decay_t<decltype(x)>>::value) return x.cylinder_radius();
+            else return x.base_radius();
+        },
+        f);
 }
 
 struct ContactPairSpec {
@@ -181,6 +198,9 @@ public:
             spec_.follower);
         const CamEccentricity& ecc = spec_.eccentricity;
         ecc.validate(who);
+        if (ecc.any() && is_barrel(spec_.follower))
+            detail::fail(who, ": eccentricity is modelled for disk cams; a barrel cam's (",
+                         follower_type_name(spec_.follower), ") is not");
         if (twist_ >= 0 && ecc.paper_force() && ecc.any())
             detail::fail(who, ": the paper's eccentricity force (", eccentricity_formulation_name(ecc.formulation),
                          ") is not defined on a twisting camshaft; use 'exact'");
@@ -365,15 +385,15 @@ private:
         std::visit(
             [&](const auto& f) {
                 using F = std::decay_t<decltype(f)>;
-                if constexpr (std::is_same_v<F, TranslatingRoller> || std::is_same_v<F, OscillatingRoller>) {
+                if constexpr (std::is_same_v<F, TranslatingRoller> || std::is_same_v<F, OscillatingRoller> ||
+                              is_barrel_follower<F>::value) {
                     spec_.groove->validate(who, f.roller_radius());
                     const auto curvature = [&](double theta) {
                         return f.pitch_curvature(spec_.program.evaluate(theta));
                     };
                     check_outer_flank(spec_.program, curvature, f.roller_radius() + spec_.groove->clearance, who);
                 } else {
-                    detail::fail(who, ": a groove holds a roller; ", F::type_name,
-                                 " has none (use TranslatingRoller or OscillatingRoller)");
+                    detail::fail(who, ": a groove holds a roller; ", F::type_name, " has none (use a roller follower)");
                 }
             },
             spec_.follower);

@@ -62,6 +62,10 @@ AngleExtremum min_concave_radius(const MotionProgram& program, const F& follower
 template <class F>
 CamOutline cam_outline(const F& follower, const MotionProgram& program, std::size_t points = 3600,
                        std::optional<double> cutter_radius = std::nullopt, LengthUnit unit = LengthUnit::mm) {
+    if constexpr (is_barrel_follower<F>::value)
+        detail::fail(F::type_name,
+                     " runs in a barrel cam's groove, which has no disk outline: export its groove "
+                     "(barrel_groove, geometry/barrel_groove.hpp)");
     detail::require_point_count(points, 3, "points");
     if (cutter_radius) detail::require_non_negative(*cutter_radius, "cutter_radius", "(m)");
     length_unit_spec(unit);  // validates the enumerator
@@ -146,13 +150,16 @@ std::vector<std::string> cam_export_notes(const F& follower, const MotionProgram
     return notes;
 }
 
-// The whole CSV text: "# " notes, a column header, one row per sample (17 significant digits).
+// The whole CSV text: "# " notes (and `extra_notes`, e.g. where a conjugate return cam is mounted),
+// a column header, one row per sample (17 significant digits).
 template <class F>
-std::string cam_outline_csv(const F& follower, const MotionProgram& program, const CamOutline& outline) {
+std::string cam_outline_csv(const F& follower, const MotionProgram& program, const CamOutline& outline,
+                            const std::vector<std::string>& extra_notes = {}) {
     const char* u = length_unit_name(outline.unit);
     std::ostringstream out;
     out.precision(17);
     for (const std::string& line : cam_export_notes(follower, program, outline)) out << "# " << line << '\n';
+    for (const std::string& line : extra_notes) out << "# " << line << '\n';
     out << "theta_rad,surface_x_" << u << ",surface_y_" << u;
     if (outline.cutter_radius) out << ",cutter_x_" << u << ",cutter_y_" << u;
     out << '\n';
@@ -167,9 +174,10 @@ std::string cam_outline_csv(const F& follower, const MotionProgram& program, con
 // Samples the outline and writes it as CSV to `path`, atomically (detail/atomic_file.hpp).
 template <class F>
 void write_cam_csv(const std::string& path, const F& follower, const MotionProgram& program, std::size_t points = 3600,
-                   std::optional<double> cutter_radius = std::nullopt, LengthUnit unit = LengthUnit::mm) {
+                   std::optional<double> cutter_radius = std::nullopt, LengthUnit unit = LengthUnit::mm,
+                   const std::vector<std::string>& extra_notes = {}) {
     const CamOutline outline = cam_outline(follower, program, points, cutter_radius, unit);
-    detail::write_file_atomically(path, cam_outline_csv(follower, program, outline));
+    detail::write_file_atomically(path, cam_outline_csv(follower, program, outline, extra_notes));
 }
 
 }  // namespace camfollower

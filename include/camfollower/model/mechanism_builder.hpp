@@ -148,8 +148,9 @@ struct MechanismBuilder {
     }
 
     // A cam mounted at station x of a shaft: the contact's cam centre and twist become the node's u_y,
-    // u_z and theta_x; the cam's mass (kg) and inertia (kg m^2) are added there; `width` (m) is its
-    // axial extent, checked against the other cams on the shaft.
+    // u_z and theta_x (a barrel cam's, its follower on the +z side: u_y across the station and the
+    // axial u_x, which the shaft must model); the cam's mass (kg) and inertia (kg m^2) are added there; `width` (m) is
+    // its axial extent, checked against the other cams on the shaft.
     void mount_cam(ContactPairSpec contact, const std::string& shaft, double x, double width = 0.0, double mass = 0.0,
                    double inertia = 0.0) {
         const ShaftEntry& s = structure.shaft(shaft);
@@ -167,11 +168,19 @@ struct MechanismBuilder {
             if (o.shaft == shaft && (o.node == node || std::abs(o.x - x) < 0.5 * (o.width + width)))
                 detail::fail("cams '", o.name, "' (x = ", o.x, " m, width ", o.width, " m) and '", contact.name,
                              "' (x = ", x, " m, width ", width, " m) overlap on shaft '", shaft, "'");
+        const bool barrel = is_barrel(contact.follower);
+        if (barrel && !s.spec.axial)
+            detail::fail("barrel cam '", contact.name, "' on shaft '", shaft,
+                         "': its follower's load is along the shaft, so the shaft needs its axial DOFs (axial = true)");
         contact.cam_x = structure.shaft_dof_at(shaft, x, 1);
-        contact.cam_y = structure.shaft_dof_at(shaft, x, 2);
+        contact.cam_y = structure.shaft_dof_at(shaft, x, barrel ? 0 : 2);
         contact.cam_twist = structure.shaft_dof_at(shaft, x, 3);
         add_contact(contact);
-        if (mass > 0.0) add_mass(contact.cam_x, mass), add_mass(contact.cam_y, mass);
+        if (mass > 0.0) {
+            add_mass(structure.shaft_dof_at(shaft, x, 1), mass);
+            add_mass(structure.shaft_dof_at(shaft, x, 2), mass);
+            if (barrel) add_mass(structure.shaft_dof_at(shaft, x, 0), mass);
+        }
         if (inertia > 0.0) add_mass(contact.cam_twist, inertia);
         cams_.push_back({contact.name, shaft, x, node, width});
     }
