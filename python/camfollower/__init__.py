@@ -16,7 +16,7 @@ import numpy as _numpy  # noqa: F401  (imported here, not lazily inside the firs
 from . import _api_errors, _core
 
 _api_errors.install(_core)  # argument mismatches: short TypeErrors naming the call, not pybind11's dumps
-from . import export, motion, presets
+from . import export, motion, presets, synthesis
 from ._core import (  # noqa: E402
     ArmTurn,
     BarrelArmRoller,
@@ -94,5 +94,6 @@ __all__ = [
     "simulate",
     "settings_and_options",
     "simulate_many",
+    "synthesis",
 ]
 __version__ = _core.__version__  # stated once, in pyproject.toml
