@@ -2,8 +2,7 @@
 # SPDX-License-Identifier: BSD-3-Clause
 # Install what this machine lacks, then build and install the Python package into .venv.
 # Used by scripts/study.sh (`setup.sh study`: what the study needs), scripts/test.sh and
-# scripts/bench.sh (`setup.sh test`: everything; `setup.sh system`: its Debian packages only). Safe to
-# run again: it skips what is done.
+# scripts/bench.sh (`setup.sh test`: everything). Safe to run again: it skips what is done.
 #   Debian packages: compilers, CMake, Ninja, Eigen 3.4, SuiteSparse, toml++, CLI11, Catch2 v2, Google Benchmark,
 #   ccache (compiles are cached in ~/.cache/ccache, keyed on paths relative to the clone: a second clone
 #   or a rebuild after a small change compiles only what changed).
@@ -28,9 +27,6 @@ if [ ${#missing[@]} -gt 0 ]; then
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}" >/dev/null
 fi
-
-# `setup.sh system`: the Debian packages only (scripts/test.sh starts the C++ build after them).
-[ "$mode" = system ] && exit 0
 
 # ccache: paths relative to the clone, so another clone of the same sources hits the same entries.
 export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=1

@@ -6,13 +6,7 @@
 # then the Python tests on the installed package (the config fuzzer drives the sanitized program).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-# The Debian packages first (both builds need them); then the Python side (.venv, its packages from
-# PyPI, the package's build) runs beside the sanitized C++ build: the downloads and each build's
-# single-unit tail overlap the other's compiles (about 2 min of a cold run on 2 cores).
-bash scripts/setup.sh system
-bash scripts/setup.sh test &
-python_side=$!
-trap 'kill "$python_side" 2>/dev/null || true' EXIT
+bash scripts/setup.sh test
 # ccache (installed by setup.sh) keyed on paths relative to the clone: a rebuild, or another clone of
 # the same sources on this machine, compiles only what changed.
 export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=1
@@ -22,7 +16,6 @@ cmake -S . -B build-sanitize -G Ninja -DCAMFOLLOWER_BUILD_TESTS=ON -DCAMFOLLOWER
       -DCMAKE_CXX_COMPILER_LAUNCHER="$(command -v ccache || true)" \
       -DCAMFOLLOWER_SANITIZE=address,undefined -DCAMFOLLOWER_WERROR=ON >/dev/null
 cmake --build build-sanitize
-wait "$python_side"  # its failure fails the run (set -e)
 # Both cores: the tests are independent (each writes in its own temporary folder).
 ctest --test-dir build-sanitize --output-on-failure -j 2
 .venv/bin/python -m pytest tests/python -n 2

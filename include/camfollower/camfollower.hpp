@@ -10,6 +10,7 @@
 #include "camfollower/error.hpp"
 #include "camfollower/follower/contact_geometry.hpp"
 #include "camfollower/follower/profile.hpp"
+#include "camfollower/geometry/barrel_groove.hpp"
 #include "camfollower/geometry/export.hpp"
 #include "camfollower/model/mechanism.hpp"
 #include "camfollower/model/mechanism_modes.hpp"
