@@ -16,7 +16,7 @@ import numpy as _numpy  # noqa: F401  (imported here, not lazily inside the firs
 from . import _api_errors, _core
 
 _api_errors.install(_core)  # argument mismatches: short TypeErrors naming the call, not pybind11's dumps
-from . import export, motion, presets, synthesis
+from . import ecam, export, motion, presets, synthesis
 from ._core import (  # noqa: E402
     ArmTurn,
     BarrelArmRoller,
@@ -86,6 +86,7 @@ __all__ = [
     "TranslatingFlat",
     "TranslatingRoller",
     "config_from_dict",
+    "ecam",
     "export",
     "load_config",
     "motion",

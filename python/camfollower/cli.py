@@ -143,6 +143,14 @@ def check_arguments(args: argparse.Namespace) -> None:
             lo, hi = _speeds(args.jump, "--jump")
             if not lo < hi:
                 raise ValueError(f"--jump: LO {lo:g} must be below HI {hi:g} rpm")
+    if args.command == "synthesize":
+        _speeds(args.rpm or [], "--rpm")
+        if args.rpm and args.band is not None:
+            raise ValueError("give --rpm (the speeds, design first) or --band (around the config's speed), not both")
+        if args.band is not None and not (math.isfinite(args.band) and 0.0 <= args.band < 1.0):
+            raise ValueError(f"--band: {args.band:g} is not a fraction of the design speed in [0, 1)")
+        if args.workers is not None:
+            _integer(args.workers, "--workers", 1, 64)
     if args.command in ("sweep", "montecarlo"):
         if args.workers is not None:
             _integer(args.workers, "--workers", 1, 1 << 20)
@@ -746,6 +754,110 @@ def _add_executor_options(p) -> None:
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
 
 
+def synthesize(config: str, out: str, *, rpm=None, band=None, workers=None) -> dict:
+    """Redesign the lift of the config's contact for its flexible mechanism (camfollower.synthesis,
+    the config's [synthesis] table; ``rpm`` (design speed first) or ``band`` override its speeds):
+    program.toml (the new program as a config table), ecam_table.csv (an equidistant master/slave
+    table), verification.csv (the config's own lift and the new one simulated afresh at every speed),
+    before_after.png, summary.json last."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from . import ecam, synthesis
+    from .config import program_toml
+    from .studies import synthesis_settings
+
+    case = _load(config)
+    m = case.mechanism
+    settings = synthesis_settings(
+        case.data.get("synthesis"), path=case.path, contacts=m.contact_names, dofs=list(m.dof_names)
+    )
+    if rpm:
+        settings.pop("band", None)
+        settings["speeds_rpm"] = list(rpm)
+    elif band is not None:
+        settings.pop("speeds_rpm", None)
+        settings["band"] = band
+    start = settings.pop("start", "program")
+    contact = settings["contact"] or m.contact_names[0]
+    own = next(c for c in m.builder().contacts if c["name"] == contact)
+    if start != "program":
+        settings["start"] = synthesis.with_laws(own["program"], start)
+    folder = _folder(config, out)
+    result = synthesis.synthesize(m, workers=workers or 2, **settings)
+    speeds = list(result.speeds_rpm)
+    before = synthesis.verify(m, own["program"], speeds, contact=contact, output=result.output)
+    after = synthesis.verify(m, result.program, speeds, contact=contact, output=result.output)
+    rotary = not getattr(own["follower"], "translating", True)
+    written = []
+    header = (
+        f"# The lift camfollower synthesize designed for {case.path.name if case.path else 'the config'}'s contact "
+        f"{contact!r}.\n# To use it: paste this table into the config and set that contact's program = \"synthesized\".\n"
+    )
+    _write(
+        config, folder / "program.toml", (header + program_toml(result.program, "synthesized", rotary=rotary)).encode()
+    )
+    written.append("program.toml")
+    ecam.write_table_csv(folder / "ecam_table.csv", result.program, rotary=rotary, slave_unit="deg" if rotary else "mm")
+    written.append("ecam_table.csv")
+    rows = [{"lift": "config", **r} for r in before] + [{"lift": "synthesized", **r} for r in after]
+    columns = [
+        "lift",
+        "rpm",
+        "residual",
+        "residual_rms",
+        "max_abs_acceleration",
+        "rigid_max_abs_acceleration",
+        "min_force_N",
+        "contact_lost",
+        "accuracy",
+        "steps_per_revolution",
+    ]
+    _write(config, folder / "verification.csv", _csv(rows, columns))
+    written.append("verification.csv")
+    _save(config, _before_after(m, own["program"], result, before, after), folder / "before_after.png")
+    written.append("before_after.png")
+    summary = {
+        "config": str(case.path),
+        "synthesis": result.summary(),
+        "verification": {"config": before, "synthesized": after},
+        "files": written + ["summary.json"],
+    }
+    _write(config, folder / "summary.json", _files.json_text(summary).encode())
+    return summary
+
+
+def _before_after(system, program, result, before, after):
+    """Cam acceleration and the output's residual vibration against speed, the config's lift and the
+    synthesized one."""
+    import matplotlib.pyplot as plt
+
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(12, 4.5))
+    theta = np.linspace(0.0, 2.0 * math.pi, 2001)
+    omega = result.speeds_rpm[0] * math.pi / 30.0
+    for label, p, style in (("config's lift", program, "--"), ("synthesized", result.program, "-")):
+        ax.plot(np.degrees(theta), np.asarray(p.evaluate(theta)["d2h"]) * omega**2, style, label=label)
+    ax.set_xlabel("cam angle (deg)")
+    ax.set_ylabel(f"rigid follower acceleration at {result.speeds_rpm[0]:g} rpm (m/s^2 or rad/s^2)")
+    ax.set_xlim(0, 360)
+    ax.set_xticks(range(0, 361, 45))
+    ax.grid(True, alpha=0.3)
+    ax.legend()
+    ax.set_title("cam acceleration")
+    order = np.argsort([r["rpm"] for r in before])
+    for label, rows, style in (("config's lift", before, "--o"), ("synthesized", after, "-o")):
+        bx.semilogy(
+            [rows[i]["rpm"] for i in order], [max(rows[i]["residual"], 1e-16) for i in order], style, label=label
+        )
+    bx.set_xlabel("camshaft speed (rpm)")
+    bx.set_ylabel(f"residual vibration of {result.output} in the dwells (peak-to-peak, m or rad)")
+    bx.grid(True, which="both", alpha=0.3)
+    bx.legend()
+    bx.set_title(f"{result.objective} ({result.measure}, {result.robust} over {len(result.speeds_rpm)} speeds)")
+    fig.tight_layout()
+    return fig
+
+
 class _Parser(argparse.ArgumentParser):
     """argparse with the command's one-line errors: a command line that cannot be read is a usage
     error (exit status 2), as in the C++ program."""
@@ -849,6 +961,16 @@ def _main(argv=None) -> int:
     )
     _add_executor_options(mc)
     mc.add_argument("-o", "--out", default="out", help="output folder (default: ./out)")
+    sy = sub.add_parser(
+        "synthesize",
+        help="redesign the lift for the flexible mechanism from the config's [synthesis] table: new program, "
+        "verification, figures",
+    )
+    sy.add_argument("config", help="config file (optional [synthesis] table, docs/synthesis.md)")
+    sy.add_argument("--rpm", type=float, nargs="+", help="speeds to design for, the design speed first (rpm)")
+    sy.add_argument("--band", type=float, help="design over +/- this fraction of the config's speed (e.g. 0.2)")
+    sy.add_argument("--workers", type=int, help="threads for the finite differences (default 2)")
+    sy.add_argument("-o", "--out", default="out", help="output folder (default: ./out)")
     args = parser.parse_args(argv)
     try:
         check_arguments(args)
@@ -880,6 +1002,8 @@ def _main(argv=None) -> int:
                 workers=args.workers,
                 progress=not args.no_progress,
             )
+        elif args.command == "synthesize":
+            result = synthesize(args.config, args.out, rpm=args.rpm, band=args.band, workers=args.workers)
         elif args.command == "montecarlo":
             result = montecarlo(
                 args.config,
@@ -918,6 +1042,21 @@ def _main(argv=None) -> int:
                 lost_on = w["end_rpm"] is None or not math.isfinite(w["end_rpm"])
                 end = "the range's end" if lost_on else f"{w['end_rpm']:.1f} rpm"
                 print(f"  contact lost from {w['start_rpm']:.1f} rpm to {end} (leaves at {w['angle_deg']:.1f} deg)")
+        print(f"{len(result['files'])} files -> {args.out}")
+        return 0
+    if args.command == "synthesize":
+        r = result["synthesis"]
+        print(
+            f"{r['objective']} ({r['measure']}) of {r['output']}: {'converged' if r['converged'] else 'NOT converged'} "
+            f"in {r['iterations']} iterations, {r['evaluations']} periodic steady states, {r['wall_time']:.1f} s "
+            f"({r['message']})"
+        )
+        for b, a in zip(result["verification"]["config"], result["verification"]["synthesized"]):
+            print(
+                f"  {_text.g(a['rpm'], 6)} rpm: residual vibration {b['residual']:.3g} -> {a['residual']:.3g}, "
+                f"max |a| {b['max_abs_acceleration']:.4g} -> {a['max_abs_acceleration']:.4g}, min contact force "
+                f"{b['min_force_N']:.1f} -> {a['min_force_N']:.1f} N"
+            )
         print(f"{len(result['files'])} files -> {args.out}")
         return 0
     if args.command == "montecarlo":

@@ -25,6 +25,7 @@ from __future__ import annotations
 import math
 import numbers
 import os
+import re
 import stat
 import warnings as _warnings
 from dataclasses import dataclass, field
@@ -193,4 +194,51 @@ def config_from_dict(data: Dict[str, Any], base_dir: os.PathLike | str = ".") ->
     return _case(raw, data, None)
 
 
-__all__ = ["Config", "ForceClosureWarning", "config_from_dict", "force_closure", "load_config"]
+_SINE_CONSTANT_COSINE = re.compile(r"sine_constant_cosine\(b=([^,]+), c=([^,]+), d=([^)]+)\)")
+
+
+def program_toml(program, name: str, *, rotary: bool = False) -> str:
+    """``program`` as a config's ``[program.<name>]`` table (docs/config.md), numbers in SI (rad, and m
+    or rad for an arm's lift: ``rotary``) written to round-trip exactly: loading it gives the same
+    program. Catalogue laws by name, spline and table segments by their tables; a polynomial segment
+    (its conditions are not kept) or a program that does not start at 0 is refused."""
+    if not isinstance(program, _core.MotionProgram):
+        raise TypeError(f"program must be a MotionProgram, got {type(program).__name__}")
+    if not re.fullmatch(r"[A-Za-z_][A-Za-z0-9_-]*", name or ""):
+        raise ValueError(f"name must be a bare TOML key (letters, digits, _ and -), got {name!r}")
+    h_unit = "rad" if rotary else "m"
+    segments = list(program.segments)
+    first = segments[0]
+    if first.law.is_custom and first.law.definition.get("periodic"):
+        d = first.law.definition
+        return (
+            f"[program.{name}]\ntheta_unit = \"rad\"\nh_unit = \"{h_unit}\"\ndegree = {d['degree']}\n"
+            f"smoothing = {d['smoothing']!r}\ntheta = {_floats(d['theta'])}\nh = {_floats(d['h'])}\n"
+        )
+    if abs(first.theta_start) > 1e-12:
+        raise ValueError(f"program: starts at {first.theta_start!r} rad; a config's program starts at 0")
+    rows = []
+    for i, s in enumerate(segments):
+        law = s.law
+        if law.is_custom:
+            d = law.definition
+            if "theta" not in d:
+                raise ValueError(f"program: segment {i} is a polynomial ({law.name}); write its conditions by hand")
+            rows.append(
+                f'  {{ law = "table", theta_unit = "rad", h_unit = "{h_unit}", degree = {d["degree"]}, '
+                f'smoothing = {d["smoothing"]!r}, theta = {_floats(d["theta"])}, h = {_floats(d["h"])}, '
+                f'start_derivatives = {_floats(d["start_derivatives"])}, end_derivatives = {_floats(d["end_derivatives"])} }},'
+            )
+            continue
+        scc = _SINE_CONSTANT_COSINE.fullmatch(law.name)
+        extra = f", b = {float(scc[1])!r}, c = {float(scc[2])!r}, d = {float(scc[3])!r}" if scc else ""
+        kind = "sine_constant_cosine" if scc else law.name
+        rows.append(f'  {{ law = "{kind}", end = {s.theta_end!r}, h = {s.h_end!r}{extra} }},')
+    return f"[program.{name}]\nsegments = [\n" + "\n".join(rows) + "\n]\n"
+
+
+def _floats(values) -> str:
+    return "[" + ", ".join(repr(float(v)) for v in values) + "]"
+
+
+__all__ = ["Config", "ForceClosureWarning", "config_from_dict", "force_closure", "load_config", "program_toml"]

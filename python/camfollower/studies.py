@@ -19,6 +19,12 @@
     std = 0.05
     relative = true
 
+    [synthesis]                       # camfollower synthesize (docs/synthesis.md); every key optional
+    output = "slide"                  # the DOF whose motion is designed (default: the follower's)
+    objective = "residual"            # residual | follower_error | acceleration
+    band = 0.2                        # +/-20 % of the config's speed (or rpm = [design, ...])
+    max_acceleration = 30.0           # m/s^2 (rad/s^2 for an arm), rigid follower at the design speed
+
 Unknown keys and bad values are refused, naming the file, the line and the key (the line from the
 library's TOML parser, the one the file was read with); given the case's ``build`` (a
 :class:`camfollower.tolerance.ConfigCase`) and ``contacts``, so are a tolerance on a value the config
@@ -313,4 +319,93 @@ def montecarlo_settings(
     return out
 
 
-__all__ = ["montecarlo_settings", "sweep_settings"]
+#: The [synthesis] table's keys beyond contact (docs/synthesis.md): name -> (kind, low, high).
+_SYNTHESIS_NUMBERS = {
+    "band": (float, 0.0, 0.99),
+    "band_speeds": (int, 2, 21),
+    "nodes": (int, 3, 40),
+    "continuity": (int, 2, 6),
+    "max_acceleration": (float, 0.0, math.inf),
+    "max_jerk": (float, 0.0, math.inf),
+    "max_pressure_angle_deg": (float, 0.0, 90.0),
+    "min_radius": (float, 0.0, math.inf),
+    "min_force": (float, -math.inf, math.inf),
+    "max_output_acceleration": (float, 0.0, math.inf),
+    "steps_per_revolution": (int, 64, 1 << 22),
+    "max_iterations": (int, 1, 100),
+    "max_evaluations": (int, 2, 100000),
+    "tolerance": (float, 1e-8, 0.5),
+}
+_SYNTHESIS_CHOICES = {
+    "objective": ("residual", "follower_error", "acceleration"),
+    "measure": ("rms", "peak"),
+    "robust": ("worst", "average"),
+    "start": ("program", "cycloidal", "modified_sine", "modified_trapezoid", "polynomial_4567"),
+}
+
+
+def synthesis_settings(table: Optional[Dict[str, Any]], *, path=None, contacts=None, dofs=None) -> Dict[str, Any]:
+    """The keyword arguments of ``camfollower.synthesis.synthesize`` from a [synthesis] table (absent:
+    the defaults), with ``start`` as a catalogue law's name or "program"; ``contacts`` and ``dofs``: the
+    mechanism's, to check ``contact`` and ``output`` against."""
+    table = {} if table is None else table
+    if not isinstance(table, dict):
+        raise ValueError(f"{_where(path, 'synthesis')}: must be a table, got {_a(table)}")
+    _unknown(
+        table,
+        ("contact", "output", "rpm", "segments", "accuracy", *_SYNTHESIS_NUMBERS, *_SYNTHESIS_CHOICES),
+        path,
+        "synthesis",
+    )
+    out: Dict[str, Any] = {"contact": _contact(table, "synthesis.contact", path, contacts)}
+    output = table.get("output")
+    if output is not None and (not isinstance(output, str) or (dofs is not None and output not in dofs)):
+        shown = _shown(output) if isinstance(output, str) else _a(output)
+        raise ValueError(
+            f"{_where(path, 'synthesis.output')}: must name a DOF of the mechanism, got {shown}"
+            + (f"; its DOFs: {', '.join(_shown(d) for d in list(dofs)[:20])}" if dofs is not None else "")
+        )
+    out["output"] = output
+    for key, choices in _SYNTHESIS_CHOICES.items():
+        if key in table:
+            v = table[key]
+            if not isinstance(v, str) or v not in choices:
+                got = _shown(v) if isinstance(v, str) else _a(v)
+                raise ValueError(f"{_where(path, 'synthesis.' + key)}: must be one of {', '.join(choices)}, got {got}")
+            out[key] = v
+    for key, (kind, lo, hi) in _SYNTHESIS_NUMBERS.items():
+        if key not in table:
+            continue
+        v = table[key]
+        ok_type = isinstance(v, int) if kind is int else isinstance(v, (int, float))
+        if isinstance(v, bool) or not ok_type or not (math.isfinite(v) or kind is int) or not lo <= v <= hi:
+            what = "an integer" if kind is int else "a number"
+            raise ValueError(f"{_where(path, 'synthesis.' + key)}: must be {what} in [{lo:g}, {hi:g}], got {_shown(v)}")
+        if key in ("max_acceleration", "max_jerk", "min_radius", "max_output_acceleration") and v == 0:
+            raise ValueError(f"{_where(path, 'synthesis.' + key)}: must be > 0, got 0")
+        out[key] = kind(v)
+    if "max_pressure_angle_deg" in out:
+        out["max_pressure_angle"] = math.radians(out.pop("max_pressure_angle_deg"))
+    if "band_speeds" in out:
+        out["band_speeds_count"] = out.pop("band_speeds")
+    if "rpm" in table:
+        if "band" in table:
+            raise ValueError(f"{_where(path, 'synthesis.rpm')}: give rpm (design speed first) or band, not both")
+        speeds = table["rpm"]
+        if not isinstance(speeds, list) or not speeds:
+            raise ValueError(f"{_where(path, 'synthesis.rpm')}: must be a non-empty array of speeds (rpm)")
+        out["speeds_rpm"] = [_speed(r, f"synthesis.rpm[{i}]", path) for i, r in enumerate(speeds)]
+    if "segments" in table:
+        seg = table["segments"]
+        if not isinstance(seg, list) or not seg or not all(isinstance(i, int) and not isinstance(i, bool) for i in seg):
+            raise ValueError(
+                f"{_where(path, 'synthesis.segments')}: must be a non-empty array of segment indices (integers from 0)"
+            )
+        out["segments"] = seg
+    accuracy = _accuracy(table, path, "synthesis")
+    if accuracy is not None:
+        out["accuracy"] = accuracy
+    return out
+
+
+__all__ = ["montecarlo_settings", "sweep_settings", "synthesis_settings"]

@@ -1134,13 +1134,14 @@ CaseConfig build_case(const toml::table& table, const std::string& origin, const
         c.output = read_output(*s);
         check_recording(*s, c.solver, c.output, 60.0 / rpm);
     }
-    // [sweep] and [montecarlo] describe studies run by the Python package (python -m camfollower sweep |
-    // montecarlo), which reads and checks them; they do not change the case.
+    // [sweep], [montecarlo] and [synthesis] describe studies run by the Python package (camfollower
+    // sweep | montecarlo | synthesize), which reads and checks them; they do not change the case.
     (void)root.table("sweep");
     (void)root.table("montecarlo");
-    root.finish({"camshaft",  "program", "preset",       "dof",     "spring",     "damper", "load",  "contact",
-                 "clearance", "guide",   "damping",      "gravity", "solver",     "output", "shaft", "bearing",
-                 "drive",     "motor",   "spring_chain", "sweep",   "montecarlo", "linkage"});
+    (void)root.table("synthesis");
+    root.finish({"camshaft",  "program", "preset",       "dof",     "spring",     "damper",  "load",     "contact",
+                 "clearance", "guide",   "damping",      "gravity", "solver",     "output",  "shaft",    "bearing",
+                 "drive",     "motor",   "spring_chain", "sweep",   "montecarlo", "linkage", "synthesis"});
     // The description must build (DOF references, contact geometry): fail now, located at the table
     // of the element the message names, else at the file (a fault of the whole structure).
     try {
