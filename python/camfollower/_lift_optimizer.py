@@ -29,8 +29,8 @@ from ._synthesis_dynamics import Dynamics, with_program
 _RPM = math.pi / 30.0
 #: Finite-difference step of the station lifts (fraction of the segment's lift).
 FD_STEP = 1e-4
-#: Constraint violation (relative to its limit) still counted as feasible.
-FEASIBLE = 1e-6
+#: Constraint violation (relative to its limit) still counted as feasible: a hundredth of a per cent.
+FEASIBLE = 1e-4
 #: Trust region on the station lifts (fractions of the segment's lift).
 START_RADIUS, MAX_RADIUS, MIN_RADIUS = 0.05, 1.0, 1e-7
 #: The least convex radius of curvature of the cam surface when none is asked (m).
@@ -69,7 +69,7 @@ class Optimizer:
         self.space, self.dyn, self.follower, self.limits = space, dynamics, follower, limits
         self.robust, self.workers, self.budget = robust, workers, budget
         self.omega = dynamics.speeds[0] * _RPM  # the design speed comes first
-        self.grid = space.grid()
+        self.grid = space.grid(600)
         self.roller = float(getattr(follower, "roller_radius", 0.0))
         # No undercut: the surface's convex radius of curvature stays above min_radius (default
         # DEFAULT_MIN_RADIUS: a cusp or a roller that no longer fits is a limit of every cam).
@@ -187,30 +187,45 @@ class Optimizer:
         return jac_values, self._dynamic_jacobians(jac_force, jac_acceleration)
 
     # -- the model step ----------------------------------------------------------------------------
-    def _subproblem(self, point: _Point, jac, radius: float, scale: float):
-        """SLSQP on the Gauss-Newton model inside the trust region: (step, model objective, status)."""
+    def _subproblem(
+        self, point: _Point, jac, radius: float, scale: float, weighted: bool = False, relax: Optional[float] = None
+    ):
+        """SLSQP on the Gauss-Newton model inside the trust region, from a feasible point: (step, model
+        objective, status). ``weighted``: the worst case of rms measures as their average weighted by
+        the current ones (no quadratic constraints: the fallback when SLSQP fails on the epigraph);
+        ``relax``: every limit relaxed by this (the least violation a restoring step can reach)."""
         jac_values, jac_dynamic = jac
         n, speeds = len(point.p), len(point.samples)
         cur = max(point.objective, 1e-300)  # model normalized to 1 at the current point
+        norm = scale * cur
         r = [s.values for s in point.samples]
-        cons = []
-        for g, m in point.kinematics.values():
-            cons.append({"type": "ineq", "fun": lambda z, g=g, m=m: g + m @ z[:n], "jac": lambda z, m=m: _pad(m, z)})
-        for name, g in self._dynamic_groups(point.samples).items():
-            m = jac_dynamic[name]
-            cons.append({"type": "ineq", "fun": lambda z, g=g, m=m: g + m @ z[:n], "jac": lambda z, m=m: _pad(m, z)})
         rms = self.dyn.measure == "rms"
+        # The unknown is u = step / sigma, sigma the step that moves the objective by its current size
+        # (capped by the trust radius): near the optimum that step is 1e-8 of the lift, and SLSQP fails
+        # on a model whose curvature is 1e15 in the raw step.
         if rms:
-            # mean square per speed: c_i + 2 b_i.s + s.Q_i.s, over scale * cur
-            norm = scale * cur
+            influence = max(float(np.max(np.sum(J**2, axis=0))) / len(ri) for J, ri in zip(jac_values, r))
+            sigma = math.sqrt(norm / influence) if influence > 0 else radius
+        else:
+            influence = max(float(np.max(np.abs(J))) for J in jac_values)
+            sigma = norm / influence if influence > 0 else radius
+        sigma = min(sigma, radius)
+        jac_values = [J * sigma for J in jac_values]
+        cons = []
+        linear = [(g, m * sigma) for g, m in point.kinematics.values()]
+        linear += [(g, jac_dynamic[name] * sigma) for name, g in self._dynamic_groups(point.samples).items()]
+        if rms:
+            # mean square per speed: c_i + 2 b_i.u + u.Q_i.u, over scale * cur
             quad = [
                 (J.T @ J / len(ri) / norm, J.T @ ri / len(ri) / norm, ri @ ri / len(ri) / norm)
                 for J, ri in zip(jac_values, r)
             ]
-            if self.robust == "average":
-                Q = sum(q for q, _, _ in quad) / speeds
-                b = sum(bb for _, bb, _ in quad) / speeds
-                c = sum(cc for _, _, cc in quad) / speeds
+            if self.robust == "average" or weighted:
+                w = np.array([cc for _, _, cc in quad]) if weighted else np.ones(speeds)
+                w = w / w.sum()
+                Q = sum(wi * q for wi, (q, _, _) in zip(w, quad))
+                b = sum(wi * bb for wi, (_, bb, _) in zip(w, quad))
+                c = sum(wi * cc for wi, (_, _, cc) in zip(w, quad))
                 fun = lambda z: c + 2 * b @ z + z @ Q @ z  # noqa: E731
                 jac_fun = lambda z: 2 * b + 2 * Q @ z  # noqa: E731
                 extra = 0
@@ -226,7 +241,6 @@ class Optimizer:
                         }
                     )
         else:
-            norm = scale * cur
             extra = 1 if self.robust == "worst" else speeds
             for i, (J, ri) in enumerate(zip(jac_values, r)):
                 col = -1 if extra == 1 else n + i
@@ -243,10 +257,14 @@ class Optimizer:
                 )
             fun = lambda z: float(np.mean(z[n:]))  # noqa: E731
             jac_fun = lambda z: np.concatenate([np.zeros(n), np.full(extra, 1.0 / extra)])  # noqa: E731
+        # A limit violated within FEASIBLE is only kept from getting worse: the step 0 stays feasible.
+        for g, m in linear:
+            g = g - np.minimum(g, 0.0) if relax is None else g + relax
+            cons.append({"type": "ineq", "fun": lambda z, g=g, m=m: g + m @ z[:n], "jac": lambda z, m=m: _pad(m, z)})
         z0 = np.zeros(n + extra)
         if extra:
             z0[n:] = 1.0  # the current point's normalized measure
-        bounds = [(-radius, radius)] * n + [(None, None)] * extra
+        bounds = [(-radius / sigma, radius / sigma)] * n + [(None, None)] * extra
         res = _scipy_optimize().minimize(
             fun,
             z0,
@@ -254,12 +272,43 @@ class Optimizer:
             method="SLSQP",
             bounds=bounds,
             constraints=cons,
-            options={"maxiter": 300, "ftol": 1e-12},
+            options={"maxiter": 1000, "ftol": 1e-12},
         )
-        return res.x[:n], float(fun(res.x)) * cur, res
+        u = np.clip(res.x[:n], -radius / sigma, radius / sigma)
+        if rms:
+            each = [cc + 2 * bb @ u + u @ q @ u for q, bb, cc in quad]
+            model = max(each) if self.robust == "worst" else float(np.mean(each))
+        else:
+            model = float(fun(res.x))
+        return u * sigma, model * cur, res
+
+    def _restore(self, point: _Point, jac, radius: float, scale: float):
+        """From an infeasible point, the step within the trust region that minimizes the largest
+        linearized violation (a linear program, HiGHS): (step, model objective, status)."""
+        linear = [(g, m) for g, m in point.kinematics.values()]
+        linear += [(g, jac[1][name]) for name, g in self._dynamic_groups(point.samples).items()]
+        n = len(point.p)
+        G = np.vstack([m for _, m in linear])
+        g = np.concatenate([v for v, _ in linear])
+        # minimize t subject to g + G s + t >= 0, |s| <= radius, t >= 0
+        res = _scipy_optimize().linprog(
+            np.concatenate([np.zeros(n), [1.0]]),
+            A_ub=np.hstack([-G, -np.ones((len(g), 1))]),
+            b_ub=g,
+            bounds=[(-radius, radius)] * n + [(0.0, None)],
+            method="highs",
+        )
+        if res.status != 0:
+            return np.zeros(n), point.objective, _Failed(res.message)
+        # Then the best objective among the steps that reach (about) that violation.
+        least = float(res.x[-1]) * (1.0 + 1e-6) + 1e-12
+        step, model, fit = self._subproblem(point, jac, radius, scale, relax=least)
+        if fit.status in (0, 9):
+            return step, model, fit
+        return res.x[:n], point.objective, _Failed("", 0)
 
     # -- the loop ----------------------------------------------------------------------------------
-    def run(self, p0: np.ndarray, max_iterations: int, tolerance: float) -> Dict[str, Any]:
+    def run(self, p0: np.ndarray, max_iterations: int, tolerance: float, target: float) -> Dict[str, Any]:
         t0 = time.perf_counter()
         samples = self._run_all([(p0, i, None, True) for i in range(len(self.dyn.speeds))])
         scale = self._combine(self._measures(samples))
@@ -276,7 +325,20 @@ class Optimizer:
             if self.dyn.evaluations + len(self.dyn.speeds) > self.budget:
                 message = f"stopped at the evaluation budget ({self.budget} periodic steady states)"
                 break
-            step, model, res = self._subproblem(point, jac, radius, scale)
+            restoring = point.violation > FEASIBLE
+            if restoring:  # feasibility first: the step that most reduces the worst violation
+                step, model, res = self._restore(point, jac, radius, scale)
+            else:
+                step, model, res = self._subproblem(point, jac, radius, scale)
+                if res.status not in (0, 9) and self.robust == "worst" and self.dyn.measure == "rms":
+                    step, model, res = self._subproblem(point, jac, radius, scale, weighted=True)
+            if res.status not in (0, 9):  # 9: the iteration limit, its last iterate is still a fair step
+                radius /= 4.0
+                self._log(iteration, point, radius, False, math.nan, f"model step failed: {res.message}")
+                if radius < MIN_RADIUS:
+                    message = f"the trust region collapsed: the model step failed ({res.message})"
+                    break
+                continue
             candidate_p = point.p + step
             try:
                 samples = self._run_all([(candidate_p, i, s.orbit, False) for i, s in enumerate(point.samples)])
@@ -288,7 +350,7 @@ class Optimizer:
                     break
                 continue
             cand = self._point(candidate_p, samples, scale)
-            if point.violation > FEASIBLE:
+            if restoring:
                 accept = cand.violation < point.violation
             else:
                 accept = cand.violation <= FEASIBLE and cand.objective < point.objective
@@ -296,19 +358,32 @@ class Optimizer:
             actual = point.objective - cand.objective
             ratio = actual / predicted if predicted > 0 else 0.0
             self._log(iteration, cand, radius, accept, ratio)
+            if not accept and not restoring and predicted <= tolerance * point.objective:
+                converged = True  # the model expects less than the tolerance from any step it can take
+                message = f"converged: the model expects less than {tolerance:g} of the objective from a step"
+                break
             if not accept:
                 radius /= 4.0
                 if radius < MIN_RADIUS:
                     message = "the trust region collapsed: no step of the model improves the simulated objective"
                     break
                 continue
-            small = point.violation <= FEASIBLE and actual <= tolerance * point.objective
+            small = not restoring and actual <= tolerance * point.objective
             point = cand
-            if ratio > 0.75 and np.max(np.abs(step)) > 0.8 * radius:
+            if restoring:
+                pass  # a restoring step is judged by the violation, not by the model's objective
+            elif ratio > 0.75 and np.max(np.abs(step)) > 0.8 * radius:
                 radius = min(2.0 * radius, MAX_RADIUS)
             elif ratio < 0.25:
                 radius /= 2.0
-            if small or (point.violation <= FEASIBLE and predicted <= 0.1 * tolerance * point.objective):
+            reached = target**2 if self.dyn.measure == "rms" else target  # rms objectives are mean squares
+            if point.violation <= FEASIBLE and point.objective <= reached:
+                converged = True
+                message = f"converged: the objective is below target = {target:g} of the start's"
+                break
+            if small or (
+                not restoring and point.violation <= FEASIBLE and predicted <= 0.1 * tolerance * point.objective
+            ):
                 converged = True
                 message = f"converged: the last step improved the objective by less than {tolerance:g} of it"
                 break
@@ -349,7 +424,7 @@ class Optimizer:
 
 
 def _scipy_optimize():
-    """scipy.optimize, imported when a synthesis runs (an optional dependency: the 'synthesis' extra)."""
+    """scipy.optimize (SLSQP, linprog), imported when a synthesis runs (the 'synthesis' extra)."""
     try:
         from scipy import optimize
     except ImportError:
@@ -357,6 +432,14 @@ def _scipy_optimize():
             "camfollower.synthesis.synthesize needs scipy (SLSQP): pip install 'camfollower[synthesis]'"
         ) from None
     return optimize
+
+
+@dataclass
+class _Failed:
+    """An optimizer outcome in scipy's terms (message, status: 0 success)."""
+
+    message: str
+    status: int = 2
 
 
 def _pad(m, z):

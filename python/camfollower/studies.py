@@ -335,6 +335,7 @@ _SYNTHESIS_NUMBERS = {
     "max_iterations": (int, 1, 100),
     "max_evaluations": (int, 2, 100000),
     "tolerance": (float, 1e-8, 0.5),
+    "target": (float, 0.0, 0.99),
 }
 _SYNTHESIS_CHOICES = {
     "objective": ("residual", "follower_error", "acceleration"),

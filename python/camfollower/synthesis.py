@@ -319,6 +319,7 @@ def synthesize(
     max_iterations: int = 12,
     max_evaluations: int = 600,
     tolerance: float = 1e-3,
+    target: float = 1e-6,
     workers: int = 2,
 ) -> SynthesisResult:
     """Redesign the rises and returns of ``contact``'s program (default: the first contact) so that
@@ -350,7 +351,8 @@ def synthesize(
     current orbit), SLSQP on the model under the linearized limits, the candidate simulated and
     accepted only if it improves. The step is fixed at ``steps_per_revolution`` (default: the one
     the studies' accuracy search picks for the start lift at the fastest speed, ``accuracy``).
-    Stops when a step improves the objective by less than ``tolerance`` of it (``converged``), or at
+    Stops when a step improves the objective by less than ``tolerance`` of it or the objective is
+    below ``target`` times the start's (``converged``; rms objectives compare mean squares), or at
     ``max_iterations`` / ``max_evaluations`` steady states (not converged: ``message`` says why and
     the best feasible program found is returned).
     """
@@ -369,6 +371,8 @@ def synthesize(
             raise ValueError(f"{name} must be an integer in [{low}, {high}], got {value!r}")
     if isinstance(tolerance, bool) or not isinstance(tolerance, numbers.Real) or not 1e-8 <= tolerance <= 0.5:
         raise ValueError(f"tolerance must be a relative improvement in [1e-08, 0.5], got {tolerance!r}")
+    if isinstance(target, bool) or not isinstance(target, numbers.Real) or not 0.0 <= target < 1.0:
+        raise ValueError(f"target must be a fraction of the start's objective in [0, 1), got {target!r}")
     c, _ = check_objective(system, contact, output, objective, measure)
     follower = next(x["follower"] for x in system.builder().contacts if x["name"] == c["name"])
     space = LiftSpace(c["program"], segments, nodes, degree)
@@ -396,7 +400,7 @@ def synthesize(
         )["steps_per_revolution"]
     dynamics = Dynamics(system, c["name"], output, objective, measure, speeds, steps_per_revolution)
     optimizer = Optimizer(space, dynamics, follower, limits, robust, int(workers), int(max_evaluations))
-    out = optimizer.run(p0, int(max_iterations), float(tolerance))
+    out = optimizer.run(p0, int(max_iterations), float(tolerance), float(target))
     best, first = out["best"], out["start"]
     program, start_program = space.program(best.p), space.program(first.p)
     measure_of = dynamics.measure_of
