@@ -47,6 +47,7 @@ class Limits:
     min_radius: Optional[float] = None  # m, the cam surface's least convex radius of curvature
     min_force: Optional[float] = None  # N, the contact force at every speed of the band
     max_output_acceleration: Optional[float] = None  # the output's peak |acceleration| at the design speed
+    max_stress: Optional[float] = None  # Pa, the Hertz pressure at every sample of every speed
 
     def named(self) -> Dict[str, float]:
         return {k: v for k, v in self.__dict__.items() if v is not None}
@@ -145,15 +146,19 @@ class Optimizer:
             # Every sample, not the peak: each is smooth in the lift, the peak jumps between samples.
             a = samples[0].acceleration / self.limits.max_output_acceleration
             groups["max_output_acceleration"] = np.concatenate([1.0 - a, 1.0 + a])
+        if self.limits.max_stress is not None:
+            groups["max_stress"] = np.concatenate([1.0 - s.stress / self.limits.max_stress for s in samples])
         return groups
 
-    def _dynamic_jacobians(self, jac_force, jac_acceleration) -> Dict[str, np.ndarray]:
+    def _dynamic_jacobians(self, jac_force, jac_acceleration, jac_stress) -> Dict[str, np.ndarray]:
         out = {}
         if self.limits.min_force is not None:
             out["min_force"] = jac_force / max(abs(self.limits.min_force), 1.0)
         if self.limits.max_output_acceleration is not None:
             m = jac_acceleration / self.limits.max_output_acceleration
             out["max_output_acceleration"] = np.vstack([-m, m])
+        if self.limits.max_stress is not None:
+            out["max_stress"] = -np.vstack(jac_stress) / self.limits.max_stress
         return out
 
     def _point(self, p, samples, scale) -> _Point:
@@ -178,13 +183,17 @@ class Optimizer:
         jac_values = [np.empty((len(s.values), len(point.p))) for s in point.samples]
         jac_force = np.empty((n, len(point.p)))
         jac_acceleration = np.empty((len(point.samples[0].acceleration), len(point.p)))
+        stressed = self.limits.max_stress is not None
+        jac_stress = [np.empty((len(s.stress), len(point.p))) for s in point.samples] if stressed else []
         for k, m in enumerate(moved):
             j, i = divmod(k, n)
             jac_values[i][:, j] = (m.values - point.samples[i].values) / FD_STEP
             jac_force[i, j] = (m.min_force - point.samples[i].min_force) / FD_STEP
             if i == 0:
                 jac_acceleration[:, j] = (m.acceleration - point.samples[0].acceleration) / FD_STEP
-        return jac_values, self._dynamic_jacobians(jac_force, jac_acceleration)
+            if stressed:
+                jac_stress[i][:, j] = (m.stress - point.samples[i].stress) / FD_STEP
+        return jac_values, self._dynamic_jacobians(jac_force, jac_acceleration, jac_stress)
 
     # -- the model step ----------------------------------------------------------------------------
     def _subproblem(
@@ -310,7 +319,12 @@ class Optimizer:
     # -- the loop ----------------------------------------------------------------------------------
     def run(self, p0: np.ndarray, max_iterations: int, tolerance: float, target: float) -> Dict[str, Any]:
         t0 = time.perf_counter()
-        samples = self._run_all([(p0, i, None, True) for i in range(len(self.dyn.speeds))])
+        samples = []
+        for i, rpm in enumerate(self.dyn.speeds):
+            try:
+                samples.append(self._run_all([(p0, i, None, True)])[0])
+            except RuntimeError as e:
+                raise ValueError(not_periodic(rpm, e)) from None
         scale = self._combine(self._measures(samples))
         if not scale > 0.0:
             raise ValueError(
@@ -434,6 +448,15 @@ def _scipy_optimize():
     return optimize
 
 
+def not_periodic(rpm: float, error: Exception) -> str:
+    """The message for a start lift whose steady state at ``rpm`` is not periodic."""
+    return (
+        f"speeds_rpm: at {rpm:g} rpm the start lift's response is not periodic: the follower may leave the cam "
+        f"there (is the jump speed inside the band?); narrow the band, stiffen the return spring or start from "
+        f"a gentler lift. {error}"
+    )
+
+
 @dataclass
 class _Failed:
     """An optimizer outcome in scipy's terms (message, status: 0 success)."""
@@ -457,4 +480,4 @@ def _last_grad(z):
     return g
 
 
-__all__ = ["Limits", "Optimizer", "with_program"]
+__all__ = ["Limits", "Optimizer", "not_periodic", "with_program"]

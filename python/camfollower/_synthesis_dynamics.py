@@ -54,9 +54,10 @@ class Sample:
     values: np.ndarray  # the objective's samples
     min_force: float  # N (nan for a grooved contact)
     peak_acceleration: float  # the output's largest |acceleration| over the revolution
-    acceleration: np.ndarray  # the output's acceleration, every ACCELERATION_STRIDE-th sample
+    acceleration: np.ndarray  # the output's acceleration, every ACCELERATION_SAMPLES-th of a revolution
     orbit: PeriodicOrbit
     revolutions: float
+    stress: Optional[np.ndarray] = None  # Hertz pressure (Pa) at the same samples, with a line contact
 
 
 def check_objective(system, contact: Optional[str], output: Optional[str], objective: str, measure: str):
@@ -82,10 +83,20 @@ class Dynamics:
     """Evaluates a candidate program at each speed of the band."""
 
     def __init__(
-        self, system, contact: Optional[str], output: Optional[str], objective: str, measure: str, speeds, steps
+        self,
+        system,
+        contact: Optional[str],
+        output: Optional[str],
+        objective: str,
+        measure: str,
+        speeds,
+        steps,
+        line_contact=None,
     ):
         self.contact, self.output = check_objective(system, contact, output, objective, measure)
         self.system = system
+        self.line_contact = line_contact
+        self.follower = next(c["follower"] for c in system.builder().contacts if c["name"] == self.contact["name"])
         self.objective, self.measure = objective, measure
         self.speeds = [float(s) for s in speeds]
         self.steps = int(steps)
@@ -134,7 +145,14 @@ class Dynamics:
             self.revolutions += orbit.revolutions + 1.0
         peak = float(np.max(np.abs(acceleration)))
         stride = max(1, len(acceleration) // ACCELERATION_SAMPLES)
-        return Sample(values, force, peak, acceleration[::stride], orbit, orbit.revolutions + 1.0)
+        stress = None
+        if self.line_contact is not None:
+            # The Hertz pressure of the contact force at the cam angle where it acts, without contact: 0.
+            name = self.contact["name"]
+            forces = np.maximum(np.asarray(record[f"{name}.force"])[1:][::stride], 0.0)
+            cam = np.mod(np.asarray(record[f"{name}.cam_angle"])[1:][::stride], 2.0 * math.pi)
+            stress = np.asarray(self.line_contact.profile_stress(self.follower, program, forces, cam)["max_pressure"])
+        return Sample(values, force, peak, acceleration[::stride], orbit, orbit.revolutions + 1.0, stress)
 
     def measure_of(self, values: np.ndarray) -> float:
         """The objective's measure of one speed's samples (rms or peak |.|)."""

@@ -331,6 +331,8 @@ _SYNTHESIS_NUMBERS = {
     "min_radius": (float, 0.0, math.inf),
     "min_force": (float, -math.inf, math.inf),
     "max_output_acceleration": (float, 0.0, math.inf),
+    "max_stress": (float, 0.0, math.inf),
+    "roller_width": (float, 0.0, 1.0),
     "steps_per_revolution": (int, 64, 1 << 22),
     "max_iterations": (int, 1, 100),
     "max_evaluations": (int, 2, 100000),
@@ -382,9 +384,18 @@ def synthesis_settings(table: Optional[Dict[str, Any]], *, path=None, contacts=N
         if isinstance(v, bool) or not ok_type or not (math.isfinite(v) or kind is int) or not lo <= v <= hi:
             what = "an integer" if kind is int else "a number"
             raise ValueError(f"{_where(path, 'synthesis.' + key)}: must be {what} in [{lo:g}, {hi:g}], got {_shown(v)}")
-        if key in ("max_acceleration", "max_jerk", "min_radius", "max_output_acceleration") and v == 0:
+        if key in ("max_acceleration", "max_jerk", "min_radius", "max_output_acceleration", "max_stress") and v == 0:
             raise ValueError(f"{_where(path, 'synthesis.' + key)}: must be > 0, got 0")
         out[key] = kind(v)
+    if ("max_stress" in out) != ("roller_width" in out):
+        raise ValueError(
+            f"{_where(path, 'synthesis.max_stress')}: max_stress (Pa) and roller_width (m) go together: the Hertz "
+            "pressure needs the roller's width (steel on steel)"
+        )
+    if "roller_width" in out:
+        if out["roller_width"] == 0:
+            raise ValueError(f"{_where(path, 'synthesis.roller_width')}: must be > 0 (m), got 0")
+        out["line_contact"] = _core.LineContact(out.pop("roller_width"))
     if "max_pressure_angle_deg" in out:
         out["max_pressure_angle"] = math.radians(out.pop("max_pressure_angle_deg"))
     if "band_speeds" in out:

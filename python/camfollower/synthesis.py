@@ -33,7 +33,7 @@ import numpy as np
 
 from . import _core
 from ._core import MotionProgram
-from ._lift_optimizer import Limits, Optimizer
+from ._lift_optimizer import Limits, Optimizer, not_periodic
 from ._lift_space import LiftSpace, degree_for
 from ._synthesis_dynamics import Dynamics, check_objective, with_program
 from .response import _dwells, _quasi_static, contact_of, steady_response
@@ -271,7 +271,9 @@ def _check_reachable(space: LiftSpace, follower, limits: Limits, omega: float) -
                 )
 
 
-def _limits(max_acceleration, max_jerk, max_pressure_angle, min_radius, min_force, max_output_acceleration) -> Limits:
+def _limits(
+    max_acceleration, max_jerk, max_pressure_angle, min_radius, min_force, max_output_acceleration, max_stress
+) -> Limits:
     def check(value, name, unit, low=0.0, high=math.inf):
         if value is None:
             return None
@@ -290,6 +292,7 @@ def _limits(max_acceleration, max_jerk, max_pressure_angle, min_radius, min_forc
         min_radius=check(min_radius, "min_radius", "m"),
         min_force=None if min_force is None else float(min_force),
         max_output_acceleration=check(max_output_acceleration, "max_output_acceleration", "m/s^2 (rad/s^2 for an arm)"),
+        max_stress=check(max_stress, "max_stress", "Pa"),
     )
 
 
@@ -314,6 +317,8 @@ def synthesize(
     min_radius: Optional[float] = None,
     min_force: Optional[float] = None,
     max_output_acceleration: Optional[float] = None,
+    max_stress: Optional[float] = None,
+    line_contact: Optional[_core.LineContact] = None,
     accuracy: float = 1e-4,
     steps_per_revolution: Optional[int] = None,
     max_iterations: int = 12,
@@ -343,7 +348,9 @@ def synthesize(
     cam surface's least convex radius of curvature ``min_radius`` (m) over the redesigned segments,
     the contact force's least value ``min_force`` (N) at every speed (no jump), the output's peak
     |acceleration| in the flexible response at the design speed ``max_output_acceleration`` (m/s^2,
-    rad/s^2: the rigid peak plus what the mechanism's vibration adds). A limit no lift can
+    rad/s^2: the rigid peak plus what the mechanism's vibration adds), the Hertz pressure ``max_stress``
+    (Pa) of the contact force at every sample of every speed, for the roller ``line_contact`` (a
+    LineContact: width, materials). A limit no lift can
     meet is refused before any simulation, naming it.
 
     **Method and cost.** Trust-region Gauss-Newton: a finite-difference Jacobian of the objective's
@@ -378,7 +385,16 @@ def synthesize(
     space = LiftSpace(c["program"], segments, nodes, degree)
     design = float(system.camshaft_speed_rpm)
     speeds = band_speeds(design, band, band_speeds_count) if speeds_rpm is None else _speed_list(speeds_rpm)
-    limits = _limits(max_acceleration, max_jerk, max_pressure_angle, min_radius, min_force, max_output_acceleration)
+    limits = _limits(
+        max_acceleration, max_jerk, max_pressure_angle, min_radius, min_force, max_output_acceleration, max_stress
+    )
+    if (limits.max_stress is None) != (line_contact is None):
+        raise ValueError(
+            "max_stress and line_contact go together: the Hertz pressure needs the roller's width and materials "
+            "(a camfollower.LineContact)"
+        )
+    if line_contact is not None and not isinstance(line_contact, _core.LineContact):
+        raise ValueError(f"line_contact must be a camfollower.LineContact, got {type(line_contact).__name__}")
     if limits.min_force is not None and c["grooved"]:
         raise ValueError(f"min_force: contact {c['name']!r} is grooved (form-closed): it has no contact margin to keep")
     omega = speeds[0] * _RPM
@@ -395,10 +411,13 @@ def synthesize(
         ) from None
     if steps_per_revolution is None:
         fastest = first.with_camshaft_speed_rpm(max(speeds))
-        steps_per_revolution = steady_response(
-            fastest, contact=c["name"], accuracy=accuracy, multipliers=False, harmonics=1
-        )["steps_per_revolution"]
-    dynamics = Dynamics(system, c["name"], output, objective, measure, speeds, steps_per_revolution)
+        try:
+            steps_per_revolution = steady_response(
+                fastest, contact=c["name"], accuracy=accuracy, multipliers=False, harmonics=1
+            )["steps_per_revolution"]
+        except RuntimeError as e:
+            raise ValueError(not_periodic(max(speeds), e)) from None
+    dynamics = Dynamics(system, c["name"], output, objective, measure, speeds, steps_per_revolution, line_contact)
     optimizer = Optimizer(space, dynamics, follower, limits, robust, int(workers), int(max_evaluations))
     out = optimizer.run(p0, int(max_iterations), float(tolerance), float(target))
     best, first = out["best"], out["start"]
@@ -410,13 +429,19 @@ def synthesize(
     limit_rows = {
         k: {"limit": v, "start": start_kin.get(k, math.nan), "final": final_kin.get(k, math.nan)}
         for k, v in named.items()
-        if k not in ("min_force", "max_output_acceleration")
+        if k not in ("min_force", "max_output_acceleration", "max_stress")
     }
     if limits.min_force is not None:
         limit_rows["min_force"] = {
             "limit": limits.min_force,
             "start": min(s.min_force for s in first.samples),
             "final": min(s.min_force for s in best.samples),
+        }
+    if limits.max_stress is not None:
+        limit_rows["max_stress"] = {
+            "limit": limits.max_stress,
+            "start": max(float(np.max(s.stress)) for s in first.samples),
+            "final": max(float(np.max(s.stress)) for s in best.samples),
         }
     if limits.max_output_acceleration is not None:
         limit_rows["max_output_acceleration"] = {

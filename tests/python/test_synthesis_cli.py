@@ -103,6 +103,10 @@ def test_synthesize_writes_a_program_that_loads_back_to_the_same_residuals(tmp_p
             r"synthesis\.max_pressure_angle_deg: must be a number in \[0, 90\]",
         ),
         ("[synthesis]\nmax_acceleration = 1.0\nnodes = 6\ncontinuity = 4\n", r"max_acceleration: no lift can move"),
+        (
+            "[synthesis]\nmax_stress = 2e8\n",
+            r"synthesis\.max_stress: max_stress \(Pa\) and roller_width \(m\) go together",
+        ),
     ],
 )
 def test_bad_synthesis_tables_are_named(tmp_path, capsys, table, message):
