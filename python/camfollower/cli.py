@@ -9,10 +9,13 @@ front door for every verb, each working on a config file (docs/config.md).
 - ``run CONFIG [-o FILE]``: simulate the case, every recorded channel as CSV;
 - ``export CONFIG -o FILE [--contact NAME] [--unit mm] [--cutter-radius R] [--points N] [--roller R]``:
   the cam surface (and cutter-centre path) for manufacturing, CSV, or DXF when FILE ends in ``.dxf``
-  (a barrel cam: its groove walls and 4-axis machining path);
+  (a barrel cam: its groove walls and 4-axis machining path); ``--ecam table|segments|twincat``: the
+  lift program for a servo drive instead (camfollower.ecam);
 - ``figures``, ``camshaft``, ``sweep``, ``montecarlo CONFIG [-o DIR]``: the recorded channels, figures
   and ``summary.json`` of a run, a camshaft at several speeds, a speed sweep with the jump speed, a
   Monte-Carlo tolerance study;
+- ``synthesize CONFIG [-o DIR] [--rpm ...] [--band F]``: a lift designed for the flexible mechanism
+  (camfollower.synthesis, the config's [synthesis] table);
 - ``study [--out DIR] ...``: the paper's study (healthy / eccentricity / clearance) on its default case.
 
 ``-o`` names what the verb writes: the file for the verbs that write one (``run``, ``export``), the
@@ -511,10 +514,13 @@ def export(
     cutter_radius: float = 0.0,
     points: int = 3600,
     roller: str = "cylindrical",
+    ecam=None,
 ) -> dict:
     """Write the cam of `contact` (default: the first) in `config` for manufacturing: CSV, or DXF when
     `output` ends in ``.dxf``; `cutter_radius` in `unit` (0: no cutter path). A barrel cam's groove
-    instead, for a `roller` "cylindrical" or "tapered" (its cutter is shaped as the roller)."""
+    instead, for a `roller` "cylindrical" or "tapered" (its cutter is shaped as the roller). With
+    `ecam` ("table", "segments" or "twincat") the contact's lift program for a servo drive instead
+    (camfollower.ecam; the slave in `unit`, deg for an arm)."""
     from . import _core
     from . import export as ex
 
@@ -532,6 +538,8 @@ def export(
     cutter = cutter_radius * units[unit] if cutter_radius else None
     dxf = output.lower().endswith(".dxf")
     _files.check_target(output, protect=[config])
+    if ecam is not None:
+        return _export_ecam(output, name, c, ecam, unit, cutter, points)
     if ex.is_barrel(c["follower"]):
         # A barrel cam: its groove, cut by a cutter shaped as the roller (the contact's groove sets the width).
         if cutter:
@@ -561,6 +569,28 @@ def export(
         f"in {unit} -> {output}"
     )
     return {"contact": name, "points": points, "unit": unit, "file": output, "format": "dxf" if dxf else "csv"}
+
+
+def _export_ecam(output, name, contact, kind, unit, cutter, points) -> dict:
+    """The contact's lift program as an electronic cam file (export --ecam)."""
+    from . import ecam
+
+    if cutter:
+        raise ValueError("--cutter-radius: an electronic cam table holds the lift, not the cam's outline; leave it out")
+    rotary = not getattr(contact["follower"], "translating", True)
+    slave = "deg" if rotary else unit
+    if not rotary and unit not in ecam.LENGTH_UNITS:
+        raise ValueError(f"--unit: an electronic cam table's slave unit is one of {', '.join(ecam.LENGTH_UNITS)}, got {unit!r}")
+    program = contact["program"]
+    if kind == "table":
+        ecam.write_table_csv(output, program, points=points, slave_unit=slave, rotary=rotary)
+    elif kind == "segments":
+        ecam.write_segment_list(output, program, slave_unit=slave, rotary=rotary)
+    else:
+        ecam.write_twincat_cnc_table(output, program, points=points, rotary=rotary)
+    what = {"table": f"{points} master positions", "segments": "the segment list", "twincat": f"{points} lines"}
+    print(f"contact '{name}': the lift program as an electronic cam ({kind}: {what[kind]}) -> {output}")
+    return {"contact": name, "file": output, "format": f"ecam-{kind}"}
 
 
 def _csv(rows, columns) -> bytes:
@@ -926,6 +956,12 @@ def _main(argv=None) -> int:
         default="cylindrical",
         help="a barrel cam's roller: cylindrical or the ideal tapered one (its groove walls; default cylindrical)",
     )
+    e.add_argument(
+        "--ecam",
+        choices=("table", "segments", "twincat"),
+        help="the lift program for a servo drive instead (docs/ecam.md): an equidistant master/slave table, "
+        "a VDI 2143-style segment list, or a TwinCAT CNC cam table",
+    )
     sub.add_parser(
         "study",
         help="the paper's study (healthy / eccentricity / clearance) -> ./out; "
@@ -988,7 +1024,16 @@ def _main(argv=None) -> int:
             run(args.config, args.output)
             return 0
         if args.command == "export":
-            export(args.config, args.output, args.contact, args.unit, args.cutter_radius, args.points, args.roller)
+            export(
+                args.config,
+                args.output,
+                args.contact,
+                args.unit,
+                args.cutter_radius,
+                args.points,
+                args.roller,
+                args.ecam,
+            )
             return 0
         if args.command == "camshaft":
             study = camshaft(args.config, args.out, args.rpm, args.engine_rpm, args.revolutions)

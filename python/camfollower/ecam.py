@@ -426,21 +426,18 @@ def write_table_csv(
     return _files.write_text(path, "\n".join(lines) + "\n")
 
 
-def read_table_csv(path) -> dict:
-    """Read a table written by :func:`write_table_csv`: the arrays (``master``, ``slave``,
-    ``slave_velocity``, ``slave_acceleration``, and ``time``, ``slave_velocity_time``,
-    ``slave_acceleration_time`` when the file has them), the header facts (``points``,
-    ``master_period``, ``master_unit``, ``slave_unit``, ``rotary``, ``closed``, ``speed_rpm``),
-    ``columns``, ``header`` (the comment lines) and in SI units ``theta`` (rad) and ``h`` (m, or rad
-    for a rotary slave). Raises ValueError naming the file and what is wrong with it."""
+def _read_units(path, reader: str, fmt: str, what: str):
+    """The parts of a camfollower file every reader needs: (header lines, body lines, header facts, the
+    message prefix, master unit, master period, slave unit, rotary, slave unit in SI per unit), the
+    format line and the units checked."""
     name, text = _read_text(path)
     lines = text.splitlines()
     header = [ln for ln in lines if ln.startswith("#")]
     body = [ln for ln in lines if ln.strip() and not ln.startswith("#")]
-    where = f"read_table_csv: {name!r}"
+    where = f"{reader}: {name!r}"
     facts = _header_facts(header)
-    if facts.get("format", "").split()[:1] != [TABLE_FORMAT]:
-        raise ValueError(f"{where} is not a camfollower electronic cam table (no '# format: {TABLE_FORMAT}' line)")
+    if facts.get("format", "").split()[:1] != [fmt]:
+        raise ValueError(f"{where} is not a camfollower {what} (no '# format: {fmt}' line)")
     mu = _first_word(facts, "master_unit", where)
     period = _first_number(facts, "master_period", where)
     su = _first_word(facts, "slave_unit", where)
@@ -450,6 +447,19 @@ def read_table_csv(path) -> dict:
         factor = _check_slave_unit(su, rotary)
     except ValueError as e:
         raise ValueError(f"{where}: {e}") from None
+    return header, body, facts, where, mu, period, su, rotary, factor
+
+
+def read_table_csv(path) -> dict:
+    """Read a table written by :func:`write_table_csv`: the arrays (``master``, ``slave``,
+    ``slave_velocity``, ``slave_acceleration``, and ``time``, ``slave_velocity_time``,
+    ``slave_acceleration_time`` when the file has them), the header facts (``points``,
+    ``master_period``, ``master_unit``, ``slave_unit``, ``rotary``, ``closed``, ``speed_rpm``),
+    ``columns``, ``header`` (the comment lines) and in SI units ``theta`` (rad) and ``h`` (m, or rad
+    for a rotary slave). Raises ValueError naming the file and what is wrong with it."""
+    header, body, facts, where, mu, period, su, rotary, factor = _read_units(
+        path, "read_table_csv", TABLE_FORMAT, "electronic cam table"
+    )
     points = _first_number(facts, "points", where)
     if points != int(points) or not MIN_POINTS <= points <= MAX_POINTS:
         raise ValueError(f"{where}: points must be an integer in [{MIN_POINTS}, {MAX_POINTS}], got {points:g}")
@@ -663,23 +673,9 @@ def read_segment_list(path) -> MotionProgram:
     units (the same program; angles and lifts to within the unit conversion's last bit). The boundary
     velocity and acceleration columns are for reference and not read. Raises ValueError naming the
     file, the row and what is wrong."""
-    name, text = _read_text(path)
-    lines = text.splitlines()
-    header = [ln for ln in lines if ln.startswith("#")]
-    body = [ln for ln in lines if ln.strip() and not ln.startswith("#")]
-    where = f"read_segment_list: {name!r}"
-    facts = _header_facts(header)
-    if facts.get("format", "").split()[:1] != [SEGMENT_FORMAT]:
-        raise ValueError(f"{where} is not a camfollower segment list (no '# format: {SEGMENT_FORMAT}' line)")
-    mu = _first_word(facts, "master_unit", where)
-    period = _first_number(facts, "master_period", where)
-    su = _first_word(facts, "slave_unit", where)
-    rotary = _first_word(facts, "slave_kind", where) == "rotary"
-    try:
-        period = _check_master(mu, period)
-        factor = _check_slave_unit(su, rotary)
-    except ValueError as e:
-        raise ValueError(f"{where}: {e}") from None
+    header, body, facts, where, mu, period, su, rotary, factor = _read_units(
+        path, "read_segment_list", SEGMENT_FORMAT, "segment list"
+    )
     columns = _segment_columns(mu, su)
     if not body or body[0].split(",") != columns:
         got = body[0] if body else "nothing"

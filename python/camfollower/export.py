@@ -116,6 +116,25 @@ def _ezdxf():
     return ezdxf
 
 
+def _new_drawing(unit: str, notes, layers):
+    """An R2010 drawing in ``unit`` ($INSUNITS, $MEASUREMENT) with the ``notes`` as custom header
+    properties camfollower_1, ... and the ``layers`` ((name, colour), ...): (document, model space)."""
+    doc = _ezdxf().new("R2010")
+    doc.header["$INSUNITS"] = _DXF_INSUNITS[unit]
+    doc.header["$MEASUREMENT"] = 0 if unit == "inch" else 1
+    for k, note in enumerate(notes, start=1):
+        doc.header.custom_vars.append(f"camfollower_{k}", note)
+    for name, color in layers:
+        doc.layers.add(name, color=color)
+    return doc, doc.modelspace()
+
+
+def _save_drawing(doc, target: str) -> None:
+    stream = io.StringIO()
+    doc.write(stream)
+    _files.write_bytes(target, doc.encode(stream.getvalue()))
+
+
 def write_dxf(
     path,
     follower,
@@ -140,17 +159,11 @@ def write_dxf(
     target = os.fspath(path)
     _files.check_target(target)  # before the drawing is built
     outline = _core.cam_outline(follower, program, points, cutter_radius, unit)
-    ezdxf = _ezdxf()
-
-    doc = ezdxf.new("R2010")
-    doc.header["$INSUNITS"] = _DXF_INSUNITS[unit]
-    doc.header["$MEASUREMENT"] = 0 if unit == "inch" else 1
-    for k, note in enumerate(list(outline["notes"]) + mounting_note(float(frame_angle)), start=1):
-        doc.header.custom_vars.append(f"camfollower_{k}", note)
-    doc.layers.add(SURFACE_LAYER, color=7)
-    doc.layers.add(CUTTER_LAYER, color=1)
-    doc.layers.add(REFERENCE_LAYER, color=3)
-    msp = doc.modelspace()
+    doc, msp = _new_drawing(
+        unit,
+        list(outline["notes"]) + mounting_note(float(frame_angle)),
+        ((SURFACE_LAYER, 7), (CUTTER_LAYER, 1), (REFERENCE_LAYER, 3)),
+    )
 
     sx, sy = outline["surface_x"], outline["surface_y"]
     msp.add_lwpolyline(np.column_stack([sx, sy]).tolist(), format="xy", close=True, dxfattribs={"layer": SURFACE_LAYER})
@@ -197,10 +210,7 @@ def write_dxf(
     )
     mid = 0.5 * (a0 + a1)
     msp.add_text("CCW", height=text, dxfattribs=ref).set_placement((0.6 * r * math.cos(mid), 0.6 * r * math.sin(mid)))
-
-    stream = io.StringIO()
-    doc.write(stream)
-    _files.write_bytes(target, doc.encode(stream.getvalue()))
+    _save_drawing(doc, target)
 
 
 GROOVE_TOP_LAYER = "GROOVE_TOP"
@@ -255,7 +265,6 @@ def write_groove_dxf(
     target = os.fspath(path)
     _files.check_target(target)
     g = _core.barrel_groove(follower, program, points, clearance, roller)
-    ezdxf = _ezdxf()
     scale = 1.0 / _core.length_units()[unit]
     outer = float(g["radii"][0])
 
@@ -264,26 +273,17 @@ def write_groove_dxf(
         xy = np.vstack([xy, xy[:1] + [scale * outer * 2 * math.pi, 0.0]])  # one turn: back to the start + 2 pi R
         msp.add_lwpolyline(xy.tolist(), format="xy", dxfattribs={"layer": layer})
 
-    doc = ezdxf.new("R2010")
-    doc.header["$INSUNITS"] = _DXF_INSUNITS[unit]
-    doc.header["$MEASUREMENT"] = 0 if unit == "inch" else 1
     notes = [
         "camfollower barrel cam groove, developed on the outer radius",
         f"x = position round the cam as arc length at radius {scale * outer:g} {unit}; y = height along the cam axis",
         f"roller: {roller}; groove clearance {scale * clearance:g} {unit}",
     ]
-    for k, note in enumerate(notes, start=1):
-        doc.header.custom_vars.append(f"camfollower_{k}", note)
-    for layer, color in ((GROOVE_TOP_LAYER, 7), (GROOVE_BOTTOM_LAYER, 5), (PITCH_LAYER, 3)):
-        doc.layers.add(layer, color=color)
-    msp = doc.modelspace()
+    doc, msp = _new_drawing(unit, notes, ((GROOVE_TOP_LAYER, 7), (GROOVE_BOTTOM_LAYER, 5), (PITCH_LAYER, 3)))
     for i, layer in ((0, GROOVE_TOP_LAYER), (2, GROOVE_BOTTOM_LAYER)):
         polyline(g["lift_angle"][i], g["lift_z"][i], layer)
         polyline(g["back_angle"][i], g["back_z"][i], layer)
     polyline(g["centre_angle"], g["centre_z"], PITCH_LAYER)
-    stream = io.StringIO()
-    doc.write(stream)
-    _files.write_bytes(target, doc.encode(stream.getvalue()))
+    _save_drawing(doc, target)
 
 
 def is_barrel(follower) -> bool:

@@ -5,6 +5,7 @@ with their measured accuracy, the documented controller layout, and the refusals
 
 import math
 import os
+from pathlib import Path
 
 import camfollower as cf
 import numpy as np
@@ -416,3 +417,45 @@ def test_bad_program_and_controller_arguments_are_refused(tmp_path):
     with pytest.raises(ValueError, match="is not a regular file"):
         ecam.write_table_csv(tmp_path, prog)  # a directory: the atomic writer refuses it
     assert not list(tmp_path.iterdir())
+
+
+# -- the command line: camfollower export --ecam ---------------------------------------------------------
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+
+
+@pytest.mark.parametrize("kind", ["table", "segments", "twincat"])
+def test_export_writes_the_configs_lift_program_for_a_servo_drive(tmp_path, capsys, kind):
+    from camfollower import cli
+
+    config = EXAMPLES / "indexing_cam.toml"
+    out = tmp_path / f"index.{kind}"
+    assert cli.main(["export", str(config), "-o", str(out), "--ecam", kind, "--points", "720"]) == 0
+    assert f"({kind}:" in capsys.readouterr().out
+    program = cf.load_config(config).mechanism.builder().contacts[0]["program"]
+    theta = np.linspace(0.0, 2 * np.pi, 1001)[:-1]
+    want = np.asarray(program.evaluate(theta)["h"])
+    if kind == "segments":
+        again = ecam.read_segment_list(out)
+        tolerance = 1e-12 * 0.015
+    elif kind == "table":
+        again = ecam.program_from_table_csv(out)
+        tolerance = 1e-6 * 0.015
+    else:
+        again = ecam.program_from_twincat_cnc_table(out)
+        tolerance = 1e-6 * 0.015
+    assert np.max(np.abs(np.asarray(again.evaluate(theta)["h"]) - want)) < tolerance
+
+
+def test_export_of_an_arm_writes_degrees_and_refuses_a_cutter(tmp_path, capsys):
+    from camfollower import cli
+
+    config = EXAMPLES / "swing_arm.toml"
+    out = tmp_path / "arm.csv"
+    assert cli.main(["export", str(config), "-o", str(out), "--ecam", "table"]) == 0
+    table = ecam.read_table_csv(out)
+    assert table["slave_unit"] == "deg" and table["rotary"]
+    program = cf.load_config(config).mechanism.builder().contacts[0]["program"]
+    assert np.max(np.abs(table["h"] - np.asarray(program.evaluate(table["theta"] % (2 * np.pi))["h"]))) < 1e-12
+    capsys.readouterr()
+    assert cli.main(["export", str(config), "-o", str(out), "--ecam", "table", "--cutter-radius", "5"]) == 1
+    assert "--cutter-radius: an electronic cam table holds the lift" in capsys.readouterr().err
