@@ -580,7 +580,9 @@ def _export_ecam(output, name, contact, kind, unit, cutter, points) -> dict:
     rotary = not getattr(contact["follower"], "translating", True)
     slave = "deg" if rotary else unit
     if not rotary and unit not in ecam.LENGTH_UNITS:
-        raise ValueError(f"--unit: an electronic cam table's slave unit is one of {', '.join(ecam.LENGTH_UNITS)}, got {unit!r}")
+        raise ValueError(
+            f"--unit: an electronic cam table's slave unit is one of {', '.join(ecam.LENGTH_UNITS)}, got {unit!r}"
+        )
     program = contact["program"]
     if kind == "table":
         ecam.write_table_csv(output, program, points=points, slave_unit=slave, rotary=rotary)
@@ -815,7 +817,7 @@ def synthesize(config: str, out: str, *, rpm=None, band=None, workers=None) -> d
         settings["start"] = synthesis.with_laws(own["program"], start)
     folder = _folder(config, out)
     result = synthesis.synthesize(m, workers=workers or 2, **settings)
-    speeds = list(result.speeds_rpm)
+    speeds = sorted(result.speeds_rpm)  # the design speed first in the result; in order here
     before = synthesis.verify(m, own["program"], speeds, contact=contact, output=result.output)
     after = synthesis.verify(m, result.program, speeds, contact=contact, output=result.output)
     rotary = not getattr(own["follower"], "translating", True)
@@ -845,7 +847,10 @@ def synthesize(config: str, out: str, *, rpm=None, band=None, workers=None) -> d
     ]
     _write(config, folder / "verification.csv", _csv(rows, columns))
     written.append("verification.csv")
-    _save(config, _before_after(m, own["program"], result, before, after), folder / "before_after.png")
+    output_dof = next(d for d in m.builder().dofs if d["name"] == result.output)
+    turns = not np.any(np.asarray(output_dof["direction"]))  # a rotational DOF has no direction
+    figure = _before_after(own["program"], result, before, after, rotary, "rad" if turns else "m")
+    _save(config, figure, folder / "before_after.png")
     written.append("before_after.png")
     summary = {
         "config": str(case.path),
@@ -857,7 +862,7 @@ def synthesize(config: str, out: str, *, rpm=None, band=None, workers=None) -> d
     return summary
 
 
-def _before_after(system, program, result, before, after):
+def _before_after(program, result, before, after, rotary: bool, output_unit: str):
     """Cam acceleration and the output's residual vibration against speed, the config's lift and the
     synthesized one."""
     import matplotlib.pyplot as plt
@@ -868,7 +873,7 @@ def _before_after(system, program, result, before, after):
     for label, p, style in (("config's lift", program, "--"), ("synthesized", result.program, "-")):
         ax.plot(np.degrees(theta), np.asarray(p.evaluate(theta)["d2h"]) * omega**2, style, label=label)
     ax.set_xlabel("cam angle (deg)")
-    ax.set_ylabel(f"rigid follower acceleration at {result.speeds_rpm[0]:g} rpm (m/s^2 or rad/s^2)")
+    ax.set_ylabel(f"rigid follower acceleration at {result.speeds_rpm[0]:g} rpm ({'rad' if rotary else 'm'}/s$^2$)")
     ax.set_xlim(0, 360)
     ax.set_xticks(range(0, 361, 45))
     ax.grid(True, alpha=0.3)
@@ -880,10 +885,12 @@ def _before_after(system, program, result, before, after):
             [rows[i]["rpm"] for i in order], [max(rows[i]["residual"], 1e-16) for i in order], style, label=label
         )
     bx.set_xlabel("camshaft speed (rpm)")
-    bx.set_ylabel(f"residual vibration of {result.output} in the dwells (peak-to-peak, m or rad)")
+    bx.set_ylabel(f"residual vibration of {result.output}, peak-to-peak ({output_unit})")
     bx.grid(True, which="both", alpha=0.3)
     bx.legend()
-    bx.set_title(f"{result.objective} ({result.measure}, {result.robust} over {len(result.speeds_rpm)} speeds)")
+    n = len(result.speeds_rpm)
+    where = f"{result.robust} over {n} speeds" if n > 1 else f"at {result.speeds_rpm[0]:g} rpm"
+    bx.set_title(f"objective: {result.objective.replace('_', ' ')} ({result.measure}, {where})")
     fig.tight_layout()
     return fig
 
