@@ -325,3 +325,16 @@ def test_a_band_through_the_jump_speed_is_named():
     system = one_mass(catalogue_program(), rpm=2000.0)
     with pytest.raises(ValueError, match=r"speeds_rpm: at 2000 rpm the start lift's response is not periodic"):
         synthesis.synthesize(system, nodes=6, continuity=4)
+
+
+def test_the_result_does_not_depend_on_the_threads_or_the_step_of_its_check():
+    system = one_mass(catalogue_program())
+    one = synthesis.synthesize(system, nodes=6, continuity=4, workers=1)
+    two = synthesis.synthesize(system, nodes=6, continuity=4, workers=2)
+    theta = np.linspace(0, 2 * math.pi, 2001)
+    assert np.array_equal(one.program.evaluate(theta)["h"], two.program.evaluate(theta)["h"])
+    assert one.evaluations == two.evaluations
+    # Verified at two accuracies (different steps), the residual is the same to far below itself.
+    coarse, fine = (synthesis.verify(system, one.program, [RPM], accuracy=a)[0] for a in (1e-3, 1e-5))
+    catalogue = independent_residual(catalogue_program(), RPM)[0]
+    assert coarse["residual"] == pytest.approx(fine["residual"], abs=1e-6 * catalogue)
