@@ -37,6 +37,7 @@
 #include "camfollower/structure/shaft_assembly.hpp"
 #include "camfollower/structure/shaft_spec.hpp"
 #include "camfollower/structure/timoshenko_beam.hpp"
+#include "camfollower/synthesis/lift_samples.hpp"
 #include "camfollower/units.hpp"
 
 // Linked with camfollower::precompiled: the library's mechanisms and simulate() for them come compiled.

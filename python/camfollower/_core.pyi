@@ -1457,6 +1457,12 @@ class Mechanism:
         the quasi-static equilibrium at camshaft angle theta (rad), contacts linearized: every mode, as
         lowest_modes(theta) (the one modal analysis).
         """
+    def quasi_static_path(self, dof: str, theta: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], angles: typing.SupportsInt | typing.SupportsIndex = 720) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        The DOF's static equilibrium at the shaft angles theta (rad, in [0, 2 pi]): solved at `angles`
+        equally spaced angles (default every 0.5 deg) and interpolated periodically, or with angles = 0 at
+        every theta (synthesis/lift_samples.hpp). RuntimeError where the mechanism has no static equilibrium.
+        """
     def static_equilibrium(self, theta: typing.SupportsFloat | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         """
         Quasi-static equilibrium at camshaft angle theta (rad).
@@ -1616,6 +1622,10 @@ def _case_from_dict(data: dict, origin: str, base_dir: str) -> dict:
     ...
 def _force_closure(builder: MechanismBuilder, rpm: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> dict:
     ...
+def _lift_samples(system: Mechanism, contact: str, output: str, objective: str, theta: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], q: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], acceleration: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], force: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], dwells_of: MotionProgram | None = None) -> dict:
+    """
+    Internal: camfollower.synthesis reduces a recorded revolution with this (synthesis/lift_samples.hpp).
+    """
 def _parse_toml(text: bytes, origin: str) -> dict:
     ...
 def _read_config(text: bytes, origin: str, base_dir: str) -> tuple:

@@ -72,6 +72,7 @@ class Optimizer:
         self.omega = dynamics.speeds[0] * _RPM  # the design speed comes first
         self.grid = space.grid(600)
         self.roller = float(getattr(follower, "roller_radius", 0.0))
+        self.flat = not hasattr(follower, "roller_radius")
         # No undercut: the surface's convex radius of curvature stays above min_radius (default
         # DEFAULT_MIN_RADIUS: a cusp or a roller that no longer fits is a limit of every cam).
         self.min_radius = DEFAULT_MIN_RADIUS if limits.min_radius is None else limits.min_radius
@@ -122,18 +123,23 @@ class Optimizer:
         if lim.max_pressure_angle is not None:
             v, m = base["alpha"] / lim.max_pressure_angle, mats["alpha"] / lim.max_pressure_angle
             groups["max_pressure_angle"] = (np.concatenate([1 - v, 1 + v]), np.vstack([-m, m]))
-        reach = self.roller + self.min_radius
-        groups["min_radius"] = (1 - base["kappa"] * reach, -mats["kappa"] * reach)
+        if self.flat:  # a flat face: the surface's radius itself, smooth in the lift, must stay above
+            groups["min_radius"] = (base["radius"] / self.min_radius - 1.0, mats["radius"] / self.min_radius)
+        else:  # a roller: its centre's path may turn concave, never tighter than the roller convex
+            reach = self.roller + self.min_radius
+            groups["min_radius"] = (1 - base["kappa"] * reach, -mats["kappa"] * reach)
         return groups
 
     def _geometry(self, p) -> Dict[str, np.ndarray]:
-        """Pressure angle and the signed curvature of the roller centre's path (the surface's, for a
-        flat face): smooth in the lift, where the surface's radius jumps through infinity."""
+        """Pressure angle, the surface's radius of curvature (a flat face's: R_b + h + h'', smooth) and
+        the signed curvature of a roller centre's path (smooth where the surface's radius jumps through
+        infinity)."""
         prof = self.follower.profile(self.space.program(p), self.grid)
-        pitch = np.asarray(prof["surface_radius"], dtype=float) + self.roller
+        radius = np.asarray(prof["surface_radius"], dtype=float)
+        pitch = radius + self.roller
         with np.errstate(divide="ignore"):
             kappa = np.where(pitch == 0.0, np.inf, 1.0 / pitch)
-        return {"alpha": np.asarray(prof["pressure_angle"], dtype=float), "kappa": kappa}
+        return {"alpha": np.asarray(prof["pressure_angle"], dtype=float), "kappa": kappa, "radius": radius}
 
     def _dynamic_groups(self, samples) -> Dict[str, np.ndarray]:
         """The limits on the simulated response, g >= 0 (scaled): the contact force at every speed, the

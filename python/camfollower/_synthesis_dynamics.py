@@ -17,8 +17,9 @@ from typing import Optional
 
 import numpy as np
 
+from . import _core
 from .periodic import PeriodicOrbit, periodic_steady_state
-from .response import _dwells, _quasi_static, contact_of, study_scheme
+from .response import _dwells, contact_of, study_scheme
 
 #: What the objective measures on the output DOF (docs/synthesis.md).
 OBJECTIVES = {
@@ -107,15 +108,6 @@ class Dynamics:
         self.revolutions = 0.0
         self._count = threading.Lock()  # runs come from several threads
 
-    def _mask(self, theta: np.ndarray) -> np.ndarray:
-        if self.objective != "residual":
-            return np.ones(theta.shape, dtype=bool)
-        cam = np.mod(theta + self.contact["phase"], 2.0 * math.pi)
-        mask = np.zeros(theta.shape, dtype=bool)
-        for seg in _dwells(self.contact["program"]):
-            mask |= (cam >= seg.theta_start) & (cam < seg.theta_end)
-        return mask
-
     def run(self, program, index: int, guess: Optional[PeriodicOrbit] = None, multipliers: bool = False) -> Sample:
         """The steady state at speed ``index`` with ``program``; RuntimeError if it is not periodic."""
         speed = self.speeds[index]
@@ -130,25 +122,29 @@ class Dynamics:
             tolerance=SHOOTING_TOLERANCE,
         )
         record = orbit.record(system, decimation=self.decimation)
-        theta = np.asarray(record["theta"])[1:]
-        mask = self._mask(np.mod(theta, 2.0 * math.pi))
-        dof = self.output
+        name, dof = self.contact["name"], self.output
         acceleration = np.asarray(record[f"a.{dof}"])[1:]
-        if self.objective == "acceleration":
-            values = acceleration[mask]
-        else:
-            values = np.asarray(record[f"q.{dof}"])[1:][mask] - _quasi_static(system, dof, theta[mask])
-        grooved = self.contact["grooved"]
-        force = np.nan if grooved else float(np.min(np.asarray(record[f"{self.contact['name']}.force"])[1:]))
+        # The reduction is the library's (synthesis/lift_samples.hpp), in the reference program's dwells.
+        reduced = _core._lift_samples(
+            system,
+            name,
+            dof,
+            self.objective,
+            np.asarray(record["theta"])[1:],
+            np.asarray(record[f"q.{dof}"])[1:],
+            acceleration,
+            np.asarray(record[f"{name}.force"])[1:],
+            self.contact["program"],
+        )
+        values, force = np.asarray(reduced["values"]), float(reduced["min_force"])
         with self._count:
             self.evaluations += 1
             self.revolutions += orbit.revolutions + 1.0
-        peak = float(np.max(np.abs(acceleration)))
+        peak = float(reduced["peak_acceleration"])
         stride = max(1, len(acceleration) // ACCELERATION_SAMPLES)
         stress = None
         if self.line_contact is not None:
             # The Hertz pressure of the contact force at the cam angle where it acts, without contact: 0.
-            name = self.contact["name"]
             forces = np.maximum(np.asarray(record[f"{name}.force"])[1:][::stride], 0.0)
             cam = np.mod(np.asarray(record[f"{name}.cam_angle"])[1:][::stride], 2.0 * math.pi)
             stress = np.asarray(self.line_contact.profile_stress(self.follower, program, forces, cam)["max_pressure"])

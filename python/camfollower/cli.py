@@ -837,6 +837,7 @@ def synthesize(config: str, out: str, *, rpm=None, band=None, workers=None) -> d
         "lift",
         "rpm",
         "residual",
+        "residual_error",
         "residual_rms",
         "max_abs_acceleration",
         "rigid_max_abs_acceleration",

@@ -84,27 +84,20 @@ def contact_of(system, contact: Optional[str]) -> Dict[str, Any]:
     raise ValueError(f"contact {name!r} not found in the mechanism's description")  # pragma: no cover
 
 
-# Cam angles per revolution at which the quasi-static path is solved (interpolated in between).
-_QUASI_STATIC_ANGLES = 720
-
-
 def _quasi_static(system, dof: str, theta: np.ndarray) -> np.ndarray:
     """The DOF's quasi-static position at the shaft angles `theta`: the mechanism's static equilibrium
     (springs, preloads, loads against the cam as it is: eccentricity and profile errors included) on a
-    0.5 deg grid, interpolated periodically. A dwell's residual vibration is measured from it, so a
-    defect's own motion of the follower (an eccentric cam lifts it once per revolution) is not counted
-    as vibration."""
+    0.5 deg grid, interpolated periodically (Mechanism.quasi_static_path, as the lift synthesis's). A
+    dwell's residual vibration is measured from it, so a defect's own motion of the follower (an
+    eccentric cam lifts it once per revolution) is not counted as vibration."""
     names = list(system.dof_names)
     if dof not in names:
         return np.zeros_like(theta)
-    i = names.index(dof)
-    grid = np.linspace(0.0, 2 * math.pi, _QUASI_STATIC_ANGLES + 1)
     try:
-        path = np.array([system.static_equilibrium(float(t))[i] for t in grid[:-1]])
+        return np.asarray(system.quasi_static_path(dof, np.asarray(theta, dtype=float)))
     except (RuntimeError, ValueError) as e:  # no static equilibrium somewhere (a follower not held on)
         warnings.warn(f"dwell residual of {dof!r} measured as the raw peak-to-peak: {e}", RuntimeWarning, stacklevel=3)
         return np.zeros_like(theta)
-    return np.interp(theta, grid, np.append(path, path[0]))
 
 
 def _dwells(program):

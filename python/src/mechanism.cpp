@@ -19,6 +19,7 @@
 #include "camfollower/model/mechanism_modes.hpp"
 #include "camfollower/model/presets/paper.hpp"
 #include "camfollower/model/presets/valve_train.hpp"
+#include "camfollower/synthesis/lift_samples.hpp"
 #include "run.hpp"
 
 namespace camfollower::python {
@@ -829,6 +830,20 @@ void bind_mechanism(py::module_& m) {
                 return a.visit([&](const auto& x) { return Eigen::VectorXd(x.static_equilibrium(theta)); });
             },
             py::arg("theta"), "Quasi-static equilibrium at camshaft angle theta (rad).")
+        .def(
+            "quasi_static_path",
+            [](const AnyMechanism& a, const std::string& dof, const std::vector<double>& theta, int angles) {
+                return a.visit([&](const auto& x) {
+                    const int i = x.dof_index(dof);
+                    py::gil_scoped_release release;
+                    const std::vector<double> path = synthesis::quasi_static_path(x, i, theta, angles);
+                    return Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(path.data(), Eigen::Index(path.size())));
+                });
+            },
+            py::arg("dof"), py::arg("theta"), py::arg("angles") = synthesis::quasi_static_angles,
+            "The DOF's static equilibrium at the shaft angles theta (rad, in [0, 2 pi]): solved at `angles`\n"
+            "equally spaced angles (default every 0.5 deg) and interpolated periodically, or with angles = 0 at\n"
+            "every theta (synthesis/lift_samples.hpp). RuntimeError where the mechanism has no static equilibrium.")
         .def("modal_analysis", &modal, py::arg("theta") = 0.0,
              "Undamped natural frequencies (Hz, ascending), mass-normalized mode shapes and the tangent stiffness at\n"
              "the quasi-static equilibrium at camshaft angle theta (rad), contacts linearized: every mode, as\n"
@@ -931,6 +946,38 @@ void bind_mechanism(py::module_& m) {
     bind_shoot<AnyMechanism>(m, [](const AnyMechanism& a, auto&&... args) {
         return a.visit([&](const auto& mech) { return shoot_system(mech, args...); });
     });
+
+    m.def(
+        "_lift_samples",
+        [](const AnyMechanism& a, const std::string& contact, const std::string& output, const std::string& objective,
+           const std::vector<double>& theta, const std::vector<double>& q, const std::vector<double>& acceleration,
+           const std::vector<double>& force, const std::optional<MotionProgram>& dwells_of) {
+            const synthesis::LiftObjective kind = synthesis::lift_objective(objective);
+            const auto windows = dwells_of ? std::optional(synthesis::dwell_windows(*dwells_of)) : std::nullopt;
+            return a.visit([&](const auto& x) {
+                std::size_t index = x.contacts().size();
+                for (std::size_t c = 0; c < x.contacts().size(); ++c)
+                    if (x.contacts()[c].spec().name == contact) index = c;
+                if (index == x.contacts().size()) detail::fail("contact: the mechanism has no contact '", contact, "'");
+                const int dof = x.dof_index(output);
+                synthesis::LiftSamples r;
+                {
+                    py::gil_scoped_release release;
+                    r = synthesis::lift_samples(x, index, dof, kind, theta, q, acceleration, force, windows);
+                }
+                py::dict d;
+                d["theta"] = r.theta;
+                d["values"] = r.values;
+                d["min_force"] = r.min_force;
+                d["peak_acceleration"] = r.peak_acceleration;
+                d["dwell_peak_to_peak"] = r.dwells.peak_to_peak;
+                d["dwell_rms"] = r.dwells.rms;
+                return d;
+            });
+        },
+        py::arg("system"), py::arg("contact"), py::arg("output"), py::arg("objective"), py::arg("theta"), py::arg("q"),
+        py::arg("acceleration"), py::arg("force"), py::arg("dwells_of") = py::none(),
+        "Internal: camfollower.synthesis reduces a recorded revolution with this (synthesis/lift_samples.hpp).");
 
     m.def(
         "_run_many",

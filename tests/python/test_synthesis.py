@@ -212,8 +212,10 @@ def test_the_synthesized_lift_quiets_the_dwells_in_an_independent_model():
     assert check["residual"] == pytest.approx(after, rel=0.02, abs=floor)
     assert check["residual_rms"] == pytest.approx(after_rms, rel=0.02, abs=floor)
     assert r.objective_final[0] == pytest.approx(after_rms, rel=0.02, abs=floor)
-    # The optimizer's figure and the fresh run (the library at its own step) agree far more closely.
-    assert r.objective_final[0] == pytest.approx(check["residual_rms"], rel=0.05, abs=1e-8 * catalogue)
+    # The optimizer's figure (at its fixed step) and the fresh run (at twice the step the accuracy search
+    # settles on) agree to the residual's stated accuracy: the change between those steps.
+    assert check["residual_error"] < 1e-6 * catalogue
+    assert r.objective_final[0] == pytest.approx(check["residual_rms"], abs=check["residual_error"] + 1e-8 * catalogue)
     # The end conditions hold: the redesigned segments meet the dwells C4 (degree 5) at the same lifts.
     r.program.require_continuity(3)
     for s, t in zip(r.program.segments, catalogue_program().segments):

@@ -84,7 +84,7 @@ def test_synthesize_writes_a_program_that_loads_back_to_the_same_residuals(tmp_p
     theta = np.asarray(table["theta"])
     assert np.max(np.abs(np.asarray(table["h"]) - np.asarray(program.evaluate(theta % (2 * math.pi))["h"]))) < 1e-9
     rows = (out / "verification.csv").read_text().splitlines()
-    assert rows[0].startswith("lift,rpm,residual") and len(rows) == 3
+    assert rows[0].startswith("lift,rpm,residual,residual_error") and len(rows) == 3
 
 
 @pytest.mark.parametrize(
