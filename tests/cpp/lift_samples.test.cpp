@@ -100,8 +100,9 @@ TEST_CASE("lift samples: the objective keeps the dwells' samples, the limits see
     REQUIRE(r.values.size() == expected);
     for (std::size_t i = 0; i < r.values.size(); ++i)
         CHECK(r.values[i] == Approx(1e-6 * std::sin(7 * r.theta[i])).margin(1e-12));
-    CHECK(r.min_force == Approx(50.0));
-    CHECK(r.peak_acceleration == Approx(1.0));
+    // The samples nearest the extremes are half a degree off them: cos t at pi, cos 3t at multiples of pi / 3.
+    CHECK(r.min_force == Approx(100.0 - 50.0 * std::cos(0.5 * pi / 180)).epsilon(1e-12));
+    CHECK(r.peak_acceleration == Approx(std::cos(1.5 * pi / 180)).epsilon(1e-12));
     CHECK(r.dwells.peak_to_peak == Approx(2e-6).epsilon(0.01));  // sin 7t spans a full period in a 40 deg dwell
     const LiftSamples acc = lift_samples(m, 0, 0, LiftObjective::acceleration, theta, q, a, force);
     REQUIRE(acc.values.size() == theta.size());
