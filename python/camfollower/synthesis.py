@@ -92,14 +92,7 @@ def polydyne(
     k = _positive(stiffness, "stiffness", "N/m, or N m/rad for an arm")
     ks = _positive(return_stiffness, "return_stiffness", "N/m, or N m/rad", allow_zero=True)
     c = _positive(damping, "damping", "N s/m, or N m s/rad", allow_zero=True)
-    if isinstance(speed_rpm, bool) or not isinstance(speed_rpm, numbers.Real) or not math.isfinite(speed_rpm):
-        raise ValueError(f"speed_rpm must be a finite number (rpm), got {speed_rpm!r}")
-    omega = float(speed_rpm) * _RPM
-    if not _core.MIN_CAMSHAFT_SPEED <= omega <= _core.MAX_CAMSHAFT_SPEED:
-        raise ValueError(
-            f"speed_rpm must be in [{_core.MIN_CAMSHAFT_SPEED / _RPM:g}, {_core.MAX_CAMSHAFT_SPEED / _RPM:g}] rpm, "
-            f"got {speed_rpm!r}"
-        )
+    omega = _speed(speed_rpm, "speed_rpm") * _RPM
     if isinstance(points, bool) or not isinstance(points, numbers.Integral) or not 360 <= points <= _core.MAX_POINTS:
         raise ValueError(f"points must be an integer in [360, {_core.MAX_POINTS}], got {points!r}")
     try:
