@@ -131,3 +131,16 @@ def test_bad_synthesize_options_are_usage_errors(tmp_path, capsys, argv, message
     config = write(tmp_path, CONFIG)
     assert cli.main(["synthesize", str(config), "-o", str(tmp_path / "out"), *argv]) == 2
     assert message in capsys.readouterr().err
+
+
+def test_the_indexing_examples_synthesis_table_reads_as_documented():
+    from pathlib import Path
+
+    from camfollower.studies import synthesis_settings
+
+    case = cf.load_config(Path(__file__).resolve().parents[2] / "examples" / "indexing_cam.toml")
+    m = case.mechanism
+    st = synthesis_settings(case.data["synthesis"], path=case.path, contacts=m.contact_names, dofs=list(m.dof_names))
+    assert st["output"] == "slide" and st["band"] == 0.2 and st["nodes"] == 16
+    assert st["start"] == "polynomial_4567"
+    assert (st["max_acceleration"], st["max_output_acceleration"]) == (27.9, 30.0)
