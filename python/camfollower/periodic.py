@@ -229,6 +229,11 @@ def _settings_of(scheme: Dict[str, Any]) -> SolverSettings:
     return SolverSettings(**{k: v for k, v in kw.items() if v is not None})
 
 
+#: Largest displacement (m, or rad) a state may hold: beyond it a run has diverged (the core's bound
+#: on an initial state).
+_DIVERGED = 1000.0
+
+
 def _transient(
     system, scheme: Dict[str, Any], failed: PeriodicOrbit, tolerance: float, max_revolutions: int
 ) -> PeriodicOrbit:
@@ -244,6 +249,14 @@ def _transient(
     )
     settle = r.settle or {}
     q, v = np.array(r.q[-1]), np.array(r.v[-1])
+    if not (np.all(np.isfinite(q)) and np.all(np.isfinite(v)) and np.max(np.abs(q), initial=0.0) <= _DIVERGED):
+        # A state no mechanism reaches (the core refuses it as a start): the scheme diverged at this
+        # step, typically impacts after a contact loss integrated with a step far too coarse for them.
+        raise RuntimeError(
+            f"the transient route diverged at time_step = {_settings_of(scheme).time_step:.6g} s: after "
+            f"{settle.get('revolutions', 0):g} revolutions max |q| = {np.max(np.abs(q)):.3g} (m or rad); the step "
+            "is too coarse for this response (contact loss with impacts): use a finer step or an accuracy"
+        )
     return PeriodicOrbit(
         q=q,
         v=v,

@@ -210,6 +210,10 @@ def steady_response(
     scheme = study_scheme(system, start if target is not None else start // 2)
 
     def orbit_at(steps: int, seed: Optional[PeriodicOrbit], with_multipliers: bool) -> PeriodicOrbit:
+        if seed is not None and not seed.converged and seed is not guess:
+            # A coarser orbit that never settled (contact loss, or a transient that diverged at the
+            # coarse step) is no start for a finer one: start from rest, as without a seed.
+            seed = guess
         o = periodic_steady_state(
             system,
             time_step=period / steps,

@@ -193,3 +193,25 @@ def test_first_loss_of_examples_against_an_independent_scan(example, speed_range
             first = rpm
             break
     assert first is not None and first - 1.0 - 1e-3 * first <= j.rpm <= first + 1e-3 * first
+
+
+def test_a_transient_that_diverges_is_an_error_not_a_state():
+    """A follower thrown off its cam (a 15 mm rise squeezed into 40 deg at 750 rpm) and integrated at
+    512 steps per revolution: the impacts blow the coarse transient up (|q| ~ 1e12 m). That must be a
+    RuntimeError naming the step, not an orbit a finer run would start from (which then failed with
+    "initial q must be in [-1000, 1000]")."""
+    from camfollower.config import config_from_dict, load_config
+
+    data = load_config(Path(__file__).resolve().parents[2] / "examples" / "translating_roller.toml").data
+    rise = data["program"]["feed"]["segments"][1]
+    rise["h"], rise["end"] = "15 mm", "80 deg"
+    data["program"]["feed"]["segments"][2]["h"] = "15 mm"
+    data["camshaft"]["speed"] = 750.0
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        m = config_from_dict(data, "examples").mechanism
+    with pytest.raises(RuntimeError, match=r"diverged at time_step = 0\.00015625 s.*too coarse"):
+        steady_response(m, steps_per_revolution=1024, multipliers=False, fallback="transient")
+    # Finer, it is a contact-loss orbit like any other (not periodic: the transient route's answer).
+    row = steady_response(m, steps_per_revolution=4096, multipliers=False, fallback="transient")
+    assert row["contact_lost"] and row["min_force_N"] == 0.0
