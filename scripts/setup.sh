@@ -8,8 +8,9 @@
 #   or a rebuild after a small change compiles only what changed).
 #   PyPI (into .venv): numpy, matplotlib, pybind11, scikit-build-core; for tests also scipy, pytest (with
 #   pytest-xdist: the tests run on both cores), sympy, ezdxf,
-#   hypothesis, the studies' extras (pandas, pyarrow, tqdm, dask[distributed]), Sphinx with MyST (the docs site)
-#   and ruff (with Debian's clang-format: the style test).
+#   hypothesis, the studies' extras (pandas, pyarrow, tqdm, dask[distributed]), Sphinx with MyST (the docs site),
+#   ruff (with Debian's clang-format: the style test), and the design page's Dash with Selenium (driving
+#   Debian's chromium and chromium-driver in its browser test).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 mode=${1:-test}
@@ -17,6 +18,7 @@ mode=${1:-test}
 apt_packages=(build-essential cmake ninja-build libeigen3-dev libsuitesparse-dev libspectra-dev libtomlplusplus-dev libcli11-dev catch2 libbenchmark-dev
               ccache python3 python3-dev python3-venv)
 [ "$mode" = study ] || apt_packages+=(clang-format)  # the style test (tests/python/test_style.py)
+[ "$mode" = study ] || apt_packages+=(chromium chromium-driver)  # the design page's browser test
 missing=()
 for p in "${apt_packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -49,6 +51,7 @@ need "numpy, matplotlib, pybind11, scikit_build_core" numpy matplotlib "pybind11
 [ "$mode" = study ] || need "pandas, pyarrow, tqdm, distributed" pandas pyarrow tqdm "dask[distributed]"
 [ "$mode" = study ] || need "sphinx, myst_parser" sphinx myst-parser
 [ "$mode" = study ] || need "ruff" "ruff==0.17.6"  # the version .pre-commit-config.yaml pins
+[ "$mode" = study ] || need "dash, selenium" dash selenium  # the design page and its browser test
 
 # Rebuild the package only when its sources changed.
 stamp=$(cat pyproject.toml CMakeLists.txt cmake/* $(find include python src -type f \( -name '*.hpp' -o -name '*.cpp' -o -name '*.py' -o -name '*.txt' -o -name '*.pyi' \) | sort) | sha256sum | cut -c1-16)

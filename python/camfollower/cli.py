@@ -16,6 +16,8 @@ front door for every verb, each working on a config file (docs/config.md).
   Monte-Carlo tolerance study;
 - ``synthesize CONFIG [-o DIR] [--rpm ...] [--band F]``: a lift designed for the flexible mechanism
   (camfollower.synthesis, the config's [synthesis] table);
+- ``design [CONFIG] [--port N] [--no-browser]``: the design page on 127.0.0.1 (camfollower.design): edit
+  the cam and mechanism in the browser, the flexible response redrawn at each edit;
 - ``study [--out DIR] ...``: the paper's study (healthy / eccentricity / clearance) on its default case.
 
 ``-o`` names what the verb writes: the file for the verbs that write one (``run``, ``export``), the
@@ -146,6 +148,8 @@ def check_arguments(args: argparse.Namespace) -> None:
             lo, hi = _speeds(args.jump, "--jump")
             if not lo < hi:
                 raise ValueError(f"--jump: LO {lo:g} must be below HI {hi:g} rpm")
+    if args.command == "design":
+        _integer(args.port, "--port", 0, 65535)
     if args.command == "synthesize":
         _speeds(args.rpm or [], "--rpm")
         if args.rpm and args.band is not None:
@@ -1015,6 +1019,13 @@ def _main(argv=None) -> int:
     sy.add_argument("--band", type=float, help="design over +/- this fraction of the config's speed (e.g. 0.2)")
     sy.add_argument("--workers", type=int, help="threads for the finite differences (default 2)")
     sy.add_argument("-o", "--out", default="out", help="output folder (default: ./out)")
+    dz = sub.add_parser(
+        "design",
+        help="the design page: edit the cam and mechanism in the browser, with the flexible response live",
+    )
+    dz.add_argument("config", nargs="?", help="config file to start from (default: the paper's mechanism)")
+    dz.add_argument("--port", type=int, default=0, help="port on 127.0.0.1 (default: a free one)")
+    dz.add_argument("--no-browser", action="store_true", help="print the address, do not open a browser")
     args = parser.parse_args(argv)
     try:
         check_arguments(args)
@@ -1022,6 +1033,11 @@ def _main(argv=None) -> int:
         print(f"camfollower: error: {_message(e)}", file=sys.stderr)
         return 2
     try:
+        if args.command == "design":
+            from .design import serve
+
+            serve(args.config, port=args.port, open_browser=not args.no_browser)
+            return 0
         if args.command == "kinematics":
             kinematics(args.config, args.rpm)
             return 0

@@ -98,10 +98,14 @@ def test_page_edits_and_draws_the_librarys_numbers(folder, browser):
         assert lift.max() == pytest.approx(15.0, abs=1e-9)
         omega = 750 * math.pi / 30
         velocity, _ = _trace(browser, "fig-svaj", "velocity")
-        np.testing.assert_allclose(velocity, omega * np.asarray(c["program"].evaluate(theta)["dh"]), rtol=1e-12, atol=1e-12)
+        np.testing.assert_allclose(
+            velocity, omega * np.asarray(c["program"].evaluate(theta)["dh"]), rtol=1e-12, atol=1e-12
+        )
         # The pressure angle against the follower's own profile (an independent call of the library).
         alpha, _ = _trace(browser, "fig-geometry", "pressure angle")
-        np.testing.assert_allclose(alpha, np.degrees(c["follower"].profile(c["program"], theta)["pressure_angle"]), atol=1e-9)
+        np.testing.assert_allclose(
+            alpha, np.degrees(c["follower"].profile(c["program"], theta)["pressure_angle"]), atol=1e-9
+        )
 
         # The response once refined, against a fresh steady state of the same design at that accuracy.
         _wait_background(browser)
@@ -111,13 +115,19 @@ def test_page_edits_and_draws_the_librarys_numbers(folder, browser):
         peak = np.max(np.abs(fresh["force"]))
         assert np.max(np.abs(drawn_force - fresh["force"])) < 1e-6 * peak
         rigid, _ = _trace(browser, "fig-response", "rigid ω²h″")
-        np.testing.assert_allclose(rigid, omega**2 * np.asarray(c["program"].evaluate(np.radians(force_x))["d2h"]), rtol=1e-12, atol=1e-9)
+        np.testing.assert_allclose(
+            rigid, omega**2 * np.asarray(c["program"].evaluate(np.radians(force_x))["d2h"]), rtol=1e-12, atol=1e-9
+        )
         margin = T.figure_data(browser, "fig-margin")[0]
         assert len(margin["x"]) == 11 and min(margin["x"]) == pytest.approx(375.0)
 
         # 3. An undercut: a 30 mm roller on the 40 mm base circle with the rise squeezed into 40 deg.
         T.edit(browser, "program.feed.segments[1].end", "80 deg")
-        broken = D.set_value(D.set_value(expected, "program.feed.segments[1].end", "80 deg"), "contact[0].follower.roller_radius", "30 mm")
+        broken = D.set_value(
+            D.set_value(expected, "program.feed.segments[1].end", "80 deg"),
+            "contact[0].follower.roller_radius",
+            "30 mm",
+        )
         box = T.element(browser, T.field_id("contact[0].follower.roller_radius"))
         from selenium.webdriver.common.keys import Keys
 
@@ -149,9 +159,15 @@ def test_page_edits_and_draws_the_librarys_numbers(folder, browser):
         # Reload it in the page: the fields show the saved values.
         T.element(browser, "open").click()
         T.wait(lambda: "opened" in T.element(browser, "file-message").text, 30, "the reload")
-        T.wait(lambda: T.element(browser, T.field_id("camshaft.speed")).get_attribute("value") == "750", 30, "the reloaded speed")
         T.wait(
-            lambda: T.element(browser, T.field_id("contact[0].follower.roller_radius")).get_attribute("value") == "10 mm",
+            lambda: T.element(browser, T.field_id("camshaft.speed")).get_attribute("value") == "750",
+            30,
+            "the reloaded speed",
+        )
+        T.wait(
+            lambda: (
+                T.element(browser, T.field_id("contact[0].follower.roller_radius")).get_attribute("value") == "10 mm"
+            ),
             30,
             "the reloaded roller",
         )
@@ -278,7 +294,9 @@ def test_two_tabs_edit_two_designs(folder):
         def tab(name, lift):
             state = copy.deepcopy(page.initial)
             values = dict(state["shown"], **{"program.feed.segments[1].h": lift})
-            out = page.edit(state, values, {"type": "field", "path": "program.feed.segments[1].h"}, "cam", 0.0, name, ids)
+            out = page.edit(
+                state, values, {"type": "field", "path": "program.feed.segments[1].h"}, "cam", 0.0, name, ids
+            )
             results[name] = out
 
         threads = [threading.Thread(target=tab, args=(n, h)) for n, h in (("a", "11 mm"), ("b", "13 mm"))]

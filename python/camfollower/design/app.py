@@ -18,13 +18,16 @@ import math
 import secrets
 import time
 import uuid
+import warnings
 from pathlib import Path
 from typing import Any, Dict, List, Optional
 
+from .. import _core, _files
+from ..config import load_config
 from . import document as doc_
 from . import figures as figs
 from . import files as files_
-from . import views
+from . import toml_text, views
 from .jobs import Jobs
 
 #: Margin curve: speeds between these fractions of the design speed, unless the config's [sweep] says.
@@ -117,10 +120,6 @@ class DesignApp:
         if config is None:
             data, base, source, digest = copy.deepcopy(doc_.DEFAULT_DESIGN), self.root, None, None
         else:
-            from ..config import load_config
-
-            import warnings
-
             path = Path(config).resolve()
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")  # force closure: shown on the page
@@ -223,7 +222,9 @@ class DesignApp:
                                         html.Div(
                                             [
                                                 html.Label("config file"),
-                                                dcc.Input(id="config-name", type="text", value="design.toml", debounce=False),
+                                                dcc.Input(
+                                                    id="config-name", type="text", value="design.toml", debounce=False
+                                                ),
                                                 html.Button("Save", id="save", n_clicks=0),
                                                 html.Button("Open", id="open", n_clicks=0),
                                             ],
@@ -492,7 +493,7 @@ class DesignApp:
                 errors[where] = k["check"]
         t_kin = time.perf_counter()
         status = []
-        warnings = list(case.warnings)
+        closure = list(case.warnings)
         memo = self.jobs.tab(tab).memo
         quick = None
         response_figure = no
@@ -515,7 +516,13 @@ class DesignApp:
         structure = [f.path for f in doc_.fields(state["data"], case, state["contact"])]
         if structure != state["paths"] or changed == "contact":
             new = self._state(
-                state["data"], state["base_dir"], state["source"], state["digest"], state["contacts"], state["contact"], case
+                state["data"],
+                state["base_dir"],
+                state["source"],
+                state["digest"],
+                state["contacts"],
+                state["contact"],
+                case,
             )
             new["computed"] = state["computed"]
             state = new
@@ -539,7 +546,7 @@ class DesignApp:
             status.append("flexible response computed in the background (a heavy model)")
         if k["check"]:
             status.append(f"the cam cannot be followed: {k['check']}")
-        status += [f"warning: {w}" for w in warnings]
+        status += [f"warning: {w}" for w in closure]
         return (
             state,
             [errors.get(p, "") for p in ids],
@@ -595,8 +602,6 @@ class DesignApp:
             return step
 
         def first_loss(results):
-            import warnings
-
             from ..speed import jump_speed
 
             try:
@@ -685,10 +690,10 @@ class DesignApp:
             suffix = ".csv" if trigger == "export-csv" else ".dxf"
             path = files_.inside(self.root, f"{name}{suffix}", "export")
             if ex.is_barrel(c["follower"]):
-                raise ValueError("export: a barrel cam's groove is exported by `camfollower export` (its roller and clearance)")
+                raise ValueError(
+                    "export: a barrel cam's groove is exported by `camfollower export` (its roller and clearance)"
+                )
             writer = ex.write_csv if suffix == ".csv" else ex.write_dxf
-            from .. import _files
-
             _files.check_target(str(path), protect=protect)
             writer(str(path), c["follower"], c["program"], points=3600, unit="mm", frame_angle=c["frame_angle"])
             return f"cam surface of contact '{c['name']}' (3600 points, mm) -> {path}"
@@ -698,9 +703,6 @@ class DesignApp:
             folder = files_.inside(self.root, f"{name}_figures", "export")
             folder.mkdir(exist_ok=True)
             config = files_.inside(self.root, f"{name}_figures/design.toml", "export")
-            from . import toml_text
-            from .. import _files
-
             _files.write_text(
                 config, toml_text.dumps(files_.rebase(state["data"], Path(state["base_dir"]), folder)), protect=protect
             )
@@ -724,14 +726,19 @@ class DesignApp:
             if not name:
                 return "this contact's program is the preset's own: it cannot be replaced here", dash.no_update
             rotary = not doc_._translating(state["data"], state["contact"])
-            table = __import__("camfollower")._core._parse_toml(program_toml(program, name, rotary=rotary).encode(), "<synthesis>")
+            table = _core._parse_toml(program_toml(program, name, rotary=rotary).encode(), "<synthesis>")
             data = copy.deepcopy(state["data"])
             data["program"][name] = table["program"][name]
             case = doc_.build(data, state["base_dir"])
-            new = self._state(data, state["base_dir"], state["source"], state["digest"], state["contacts"], state["contact"], case)
+            new = self._state(
+                data, state["base_dir"], state["source"], state["digest"], state["contacts"], state["contact"], case
+            )
             dash.set_props("doc", {"data": new})
             dash.set_props("form", {"children": self._form(new, case)})
-            return f"program '{name}' replaced by the synthesized lift (its segments are now spline tables)", dash.no_update
+            return (
+                f"program '{name}' replaced by the synthesized lift (its segments are now spline tables)",
+                dash.no_update,
+            )
         try:
             case = self._case(state)
         except ValueError as e:
@@ -743,7 +750,9 @@ class DesignApp:
             from ..studies import synthesis_settings
 
             m = case.mechanism
-            settings = synthesis_settings(state["data"].get("synthesis"), contacts=m.contact_names, dofs=list(m.dof_names))
+            settings = synthesis_settings(
+                state["data"].get("synthesis"), contacts=m.contact_names, dofs=list(m.dof_names)
+            )
             start = settings.pop("start", "program")
             settings["contact"] = contact
             own = views.contact_of(case, contact)
@@ -757,7 +766,7 @@ class DesignApp:
             from ..config import program_toml
 
             rotary = not doc_._translating(data, contact)
-            data["program"][name] = __import__("camfollower")._core._parse_toml(
+            data["program"][name] = _core._parse_toml(
                 program_toml(result.program, name, rotary=rotary).encode(), "<synthesis>"
             )["program"][name]
             after_case = doc_.build(data, state["base_dir"])

@@ -388,7 +388,13 @@ def _part_fields(data: Dict[str, Any], contact: str) -> List[Field]:
             out.append(Field(f"spring[{j}].{k}", f"spring '{n}' {k}", shown(s.get(k, 0.0)), "Mechanism", unit=unit))
     for j, s in enumerate(data.get("damper", []) or []):
         out.append(
-            Field(f"damper[{j}].damping", f"damper '{s.get('name', j)}'", shown(s.get("damping")), "Mechanism", unit="N s/m")
+            Field(
+                f"damper[{j}].damping",
+                f"damper '{s.get('name', j)}'",
+                shown(s.get("damping")),
+                "Mechanism",
+                unit="N s/m",
+            )
         )
     return out
 

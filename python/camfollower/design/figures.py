@@ -293,7 +293,9 @@ def response(r: Dict[str, Any], rpm: float, cursor_deg: float = 0.0, label: str 
     return {"data": data, "layout": layout}
 
 
-def margin(rows: Sequence[Dict[str, Any]], speeds: Sequence[float], jump: Optional[Dict[str, Any]] = None) -> Dict[str, Any]:
+def margin(
+    rows: Sequence[Dict[str, Any]], speeds: Sequence[float], jump: Optional[Dict[str, Any]] = None
+) -> Dict[str, Any]:
     """Minimum contact force of the steady state against camshaft speed (computed so far), contact loss
     marked, and the first contact loss found by the jump-speed search."""
     done = [r for r in rows if "min_force_N" in r]
@@ -323,7 +325,9 @@ def margin(rows: Sequence[Dict[str, Any]], speeds: Sequence[float], jump: Option
             "marker": {"color": RED, "size": 10, "symbol": "x"},
         },
     ]
-    shapes = [{"type": "line", "xref": "paper", "x0": 0, "x1": 1, "y0": 0, "y1": 0, "line": {"color": RED, "dash": "dash"}}]
+    shapes = [
+        {"type": "line", "xref": "paper", "x0": 0, "x1": 1, "y0": 0, "y1": 0, "line": {"color": RED, "dash": "dash"}}
+    ]
     if jump and jump.get("rpm") is not None:
         shapes.append(
             {

@@ -50,7 +50,11 @@ def rebase(data: Dict[str, Any], old_dir: Path, new_dir: Path) -> Dict[str, Any]
     def visit(node: Any) -> None:
         if isinstance(node, dict):
             f = node.get("file")
-            if isinstance(f, str) and not os.path.isabs(f) and ("theta_unit" in node or "law" in node or "h_unit" in node):
+            if (
+                isinstance(f, str)
+                and not os.path.isabs(f)
+                and ("theta_unit" in node or "law" in node or "h_unit" in node)
+            ):
                 node["file"] = os.path.relpath((old_dir / f).resolve(), new_dir.resolve())
             for v in node.values():
                 visit(v)

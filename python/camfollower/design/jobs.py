@@ -70,6 +70,11 @@ class Jobs:
             thread.start()
         return generation
 
+    def idle(self) -> bool:
+        """No step is running (a cancelled one included)."""
+        with self._lock:
+            return not any(t.is_alive() for t in self._threads)
+
     def stop(self, timeout: float = 60.0) -> None:
         """End every tab's work and wait for the running steps (the server is stopping: a thread
         still inside the library when the interpreter exits would abort it)."""

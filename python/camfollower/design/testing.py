@@ -50,7 +50,13 @@ def chromium(width: int = 1600, height: int = 2300):
 
     options = Options()
     options.binary_location = _first(CHROMIUM, "chromium")
-    for arg in ("--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage", f"--window-size={width},{height}"):
+    for arg in (
+        "--headless=new",
+        "--no-sandbox",
+        "--disable-gpu",
+        "--disable-dev-shm-usage",
+        f"--window-size={width},{height}",
+    ):
         options.add_argument(arg)
     return webdriver.Chrome(service=Service(_first(CHROMEDRIVER, "chromedriver")), options=options)
 

@@ -36,7 +36,9 @@ def contact_of(case: Config, name: Optional[str]) -> Dict[str, Any]:
     for c in contacts:
         if name is None or c["name"] == name:
             return c
-    raise ValueError(f"contact: no contact named {name!r}; the mechanism's contacts are {[c['name'] for c in contacts]}")
+    raise ValueError(
+        f"contact: no contact named {name!r}; the mechanism's contacts are {[c['name'] for c in contacts]}"
+    )
 
 
 def lift_scale(follower) -> tuple:
