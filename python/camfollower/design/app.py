@@ -33,8 +33,9 @@ from .jobs import Jobs
 #: Margin curve: speeds between these fractions of the design speed, unless the config's [sweep] says.
 MARGIN_RANGE = (0.5, 1.5)
 MARGIN_SPEEDS = 11
-#: A quick response that took longer than this (s) moves to the background for that tab's next edits.
-QUICK_BUDGET = 0.15
+#: A model whose quick response takes longer than this (s) gets its response in the background only,
+#: so that each edit still redraws its kinematics at once (a large camshaft, a valve train).
+QUICK_BUDGET = 0.5
 COOKIE = "camfollower_design_{port}"
 
 _CURSOR_JS = """
@@ -71,7 +72,11 @@ function(angle) {
                 x = [f.surface_x[i] - h * tx / l, f.surface_x[i] + h * tx / l];
                 y = [f.surface_y[i] - h * ty / l, f.surface_y[i] + h * ty / l];
             }
-            window.Plotly.restyle(gd, {x: [x, [f.surface_x[i], 0]], y: [y, [f.surface_y[i], 0]]}, [2, 3]);
+            const a = gd.data.findIndex(t => t.name === "follower at cursor");
+            const b = gd.data.findIndex(t => t.name === "contact point, cam centre");
+            if (a >= 0 && b >= 0) {
+                window.Plotly.restyle(gd, {x: [x, [f.surface_x[i], 0]], y: [y, [f.surface_y[i], 0]]}, [a, b]);
+            }
         }
     }
     return "" + angle;
@@ -499,7 +504,7 @@ class DesignApp:
         response_figure = no
         if memo.get("quick_seconds", 0.0) <= QUICK_BUDGET and not k["check"]:
             try:
-                quick = views.response(case, state["contact"], guess=_guess(memo, case))
+                quick = views.response(case, state["contact"], guess=_guess(memo, case), stop_at_loss=True)
                 memo["orbit"], memo["dofs"] = quick.pop("orbit"), len(case.mechanism.dof_names)
                 response_figure = figs.response(quick, k["rpm"], cursor, label=", quick: refining ...")
             except (ValueError, RuntimeError) as e:
@@ -550,9 +555,7 @@ class DesignApp:
         return (
             state,
             [errors.get(p, "") for p in ids],
-            fig_svaj,
-            fig_profile,
-            fig_geometry,
+            *_changed(memo, {"svaj": fig_svaj, "profile": fig_profile, "geometry": fig_geometry}),
             response_figure,
             " · ".join(status),
             k["check"] is not None,
@@ -585,6 +588,8 @@ class DesignApp:
             r = views.response(case, contact, accuracy=views.REFINED_ACCURACY, guess=_guess(memo, case))
             memo["orbit"], memo["dofs"] = r.pop("orbit"), len(case.mechanism.dof_names)
             results["response"] = r
+            # What a quick steady state would cost this model (decides the next edit's route).
+            memo["quick_seconds"] = r["seconds"] * views.QUICK_STEPS / r["summary"]["steps_per_revolution"]
             results["margin_speeds"] = speeds
             results["margin_rows"] = []
             return f"response refined to {r['summary']['accuracy']:.1e} of peak; margin curve ..."
@@ -785,6 +790,17 @@ class DesignApp:
 
         self.jobs.start(tab, [run], status="synthesizing (tens of seconds on the paper's mechanism) ...")
         return "synthesizing ... (Cancel stops it after its current run)", False
+
+
+def _changed(memo, figures: Dict[str, Any]) -> List[Any]:
+    """The figures that differ from what this tab shows, the others as no_update: a speed changes
+    neither the profile nor the pressure angle, and the browser need not draw them again."""
+    out = []
+    for name, figure in figures.items():
+        key = hash(_json(figure))
+        out.append(_dash().no_update if memo.get(f"shown_{name}") == key else figure)
+        memo[f"shown_{name}"] = key
+    return out
 
 
 def _guess(memo, case):

@@ -18,10 +18,25 @@ BLUE, ORANGE, GREY, RED, GREEN = "#1f77b4", "#ff7f0e", "#555555", "#d62728", "#2
 _FONT = {"family": "DejaVu Sans, Arial, sans-serif", "size": 12}
 
 
+#: Significant digits of the numbers drawn: a tenth of a pixel on any screen, and half the JSON of full
+#: precision (what each redraw sends and the browser parses).
+DIGITS = 7
+
+
 def _list(x) -> List[Optional[float]]:
-    """A JSON array: NaN as null (a gap in the line)."""
+    """A JSON array to DIGITS significant digits of its largest value; NaN as null (a gap)."""
     a = np.asarray(x, dtype=float)
-    return [None if not math.isfinite(v) else float(v) for v in a.tolist()]
+    finite = np.isfinite(a)
+    peak = float(np.max(np.abs(a[finite]))) if finite.any() else 0.0
+    if peak > 0.0:
+        a = np.round(a, DIGITS - 1 - int(math.floor(math.log10(peak))))
+    return [v if f else None for v, f in zip(a.tolist(), finite.tolist())]
+
+
+def _grid(x) -> Dict[str, float]:
+    """An evenly spaced x as Plotly's x0 and dx (no array to send)."""
+    a = np.asarray(x, dtype=float)
+    return {"x0": float(a[0]), "dx": float(a[1] - a[0])}
 
 
 def _axis(title: str, **extra) -> Dict[str, Any]:
@@ -54,34 +69,37 @@ def _stacked(rows: int, titles: Sequence[str], height: int, cursor_deg: float) -
     h = (1.0 - gap * (rows - 1)) / rows
     layout: Dict[str, Any] = {
         "height": height,
-        "margin": {"l": 75, "r": 20, "t": 30, "b": 95},
+        "margin": {"l": 75, "r": 30, "t": 30, "b": 110},
         "font": _FONT,
         "showlegend": True,
-        "legend": {"orientation": "h", "y": -0.1, "yanchor": "top", "x": 0},
+        # Below the cam-angle axis title: 60 px under the plot area, whatever the figure's height.
+        "legend": {"orientation": "h", "y": -60.0 / (height - 30 - 110), "yanchor": "top", "x": 0},
+        "modebar": {"orientation": "v"},
         "plot_bgcolor": "white",
-        "hovermode": "x",
+        "hovermode": "closest",
     }
     axes = []
     for i in range(rows):
         n = "" if i == 0 else str(i + 1)
         top = 1.0 - i * (h + gap)
         layout[f"yaxis{n}"] = _axis(titles[i], domain=[top - h, top], anchor=f"x{n}")
+        # The same fixed range on every subplot rather than linked axes ("matches"): a third cheaper to
+        # draw again, and the cursor links them.
         layout[f"xaxis{n}"] = _angle_axis("cam angle θ (deg)" if i == rows - 1 else "")
-        layout[f"xaxis{n}"].update(anchor=f"y{n}", matches="x" if i else None, showticklabels=i == rows - 1)
-        if not i:
-            layout["xaxis"].pop("matches")
+        layout[f"xaxis{n}"].update(anchor=f"y{n}", showticklabels=i == rows - 1)
         axes.append(f"x{n}")
     layout["shapes"] = _cursor_shapes(axes, cursor_deg)
     layout["meta"] = {"cursor_axes": axes}
     return layout
 
 
-def _line(x, y, name: str, axis: int = 1, **style) -> Dict[str, Any]:
+def _line(x, y, name: str, axis: int = 1, even: bool = False, **style) -> Dict[str, Any]:
+    """A line; ``even``: x is evenly spaced, sent as x0 and dx."""
     n = "" if axis == 1 else str(axis)
     return {
         "type": "scatter",
         "mode": "lines",
-        "x": _list(x),
+        **(_grid(x) if even else {"x": _list(x)}),
         "y": _list(y),
         "name": name,
         "xaxis": f"x{n}",
@@ -101,10 +119,10 @@ def svaj(k: Dict[str, Any], cursor_deg: float = 0.0) -> Dict[str, Any]:
     layout["margin"]["t"] = 40
     x = k["theta_deg"]
     data = [
-        _line(x, k["lift"], "lift", 1, color=BLUE),
-        _line(x, k["velocity"], "velocity", 2, color=BLUE),
-        _line(x, k["acceleration"], "acceleration", 3, color=BLUE),
-        _line(x, k["jerk"], "jerk", 4, color=BLUE),
+        _line(x, k["lift"], "lift", 1, True, color=BLUE),
+        _line(x, k["velocity"], "velocity", 2, True, color=BLUE),
+        _line(x, k["acceleration"], "acceleration", 3, True, color=BLUE),
+        _line(x, k["jerk"], "jerk", 4, True, color=BLUE),
     ]
     return {"data": data, "layout": layout}
 
@@ -129,7 +147,86 @@ def follower_at(k: Dict[str, Any], cursor_deg: float) -> Dict[str, Any]:
     return {"x": _list(x), "y": _list(y), "contact": [float(sx), float(sy)]}
 
 
-def profile(k: Dict[str, Any], cursor_deg: float = 0.0, colour_by: str = "pressure_angle") -> Dict[str, Any]:
+#: Colour classes of the profile's outline (a line per class draws in a fraction of the time of a
+#: marker per point).
+CLASSES = 12
+
+
+def _coloured_outline(x, y, value) -> List[Dict[str, Any]]:
+    """The outline x, y coloured by `value` (deg) on Viridis: one line per class of CLASSES, each
+    joined to its neighbours' points, and a colour bar."""
+    value = np.asarray(value, dtype=float)
+    top = max(30.0, float(np.nanmax(value)) if value.size else 30.0)
+    cls = np.minimum((value / top * CLASSES).astype(int), CLASSES - 1)
+    traces = []
+    for c in range(CLASSES):
+        mine = cls == c
+        keep = mine | np.roll(mine, 1)  # the next point too: no gap where the class changes
+        if not mine.any():
+            continue
+        lo, hi = top * c / CLASSES, top * (c + 1) / CLASSES
+        # Only this class's runs of points, a null between runs (a gap): no array of nulls to send.
+        gaps = np.flatnonzero(np.diff(keep.astype(int)) == -1) + 1
+        idx = np.flatnonzero(keep)
+        xs, ys = np.asarray(x, dtype=float)[idx], np.asarray(y, dtype=float)[idx]
+        breaks = np.searchsorted(idx, gaps[gaps < len(keep)])
+        xs, ys = np.insert(xs, breaks, np.nan), np.insert(ys, breaks, np.nan)
+        traces.append(
+            {
+                "type": "scatter",
+                "mode": "lines",
+                "x": _list(xs),
+                "y": _list(ys),
+                "name": f"|α| {lo:.0f}-{hi:.0f}°",
+                "showlegend": False,
+                "hovertemplate": f"|α| {lo:.1f} to {hi:.1f}°<extra></extra>",
+                "line": {"width": 3, "color": _viridis((c + 0.5) / CLASSES)},
+            }
+        )
+    traces.append(  # the colour bar, on two invisible points
+        {
+            "type": "scatter",
+            "mode": "markers",
+            "x": [None, None],
+            "y": [None, None],
+            "name": "cam surface",
+            "hoverinfo": "skip",
+            "marker": {
+                "color": [0.0, top],
+                "colorscale": "Viridis",
+                "cmin": 0.0,
+                "cmax": top,
+                "colorbar": {"title": {"text": "|α| (deg)"}, "thickness": 12},
+            },
+        }
+    )
+    return traces
+
+
+_VIRIDIS = (
+    "#440154",
+    "#482878",
+    "#3e4989",
+    "#31688e",
+    "#26828e",
+    "#1f9e89",
+    "#35b779",
+    "#6ece58",
+    "#b5de2b",
+    "#fde725",
+)
+
+
+def _viridis(t: float) -> str:
+    """Viridis at t in [0, 1], interpolated between its ten published stops."""
+    t = min(max(t, 0.0), 1.0) * (len(_VIRIDIS) - 1)
+    i = min(int(t), len(_VIRIDIS) - 2)
+    a, b = _VIRIDIS[i], _VIRIDIS[i + 1]
+    rgb = [round(int(a[j : j + 2], 16) * (1 - (t - i)) + int(b[j : j + 2], 16) * (t - i)) for j in (1, 3, 5)]
+    return "#" + "".join(f"{v:02x}" for v in rgb)
+
+
+def profile(k: Dict[str, Any], cursor_deg: float = 0.0) -> Dict[str, Any]:
     """The cam in its own frame, its surface coloured by |pressure angle| (deg), the pitch curve, and
     the follower at the cursor."""
     p = k["profile"]
@@ -142,13 +239,13 @@ def profile(k: Dict[str, Any], cursor_deg: float = 0.0, colour_by: str = "pressu
         "xaxis": _axis("x (mm)", scaleanchor="y", scaleratio=1),
         "yaxis": _axis("y (mm)"),
         "legend": {"orientation": "h", "y": -0.12, "yanchor": "top"},
+        "modebar": {"orientation": "v"},
         "meta": {"cursor_axes": []},
     }
     if p is None:
         layout["title"]["text"] = "a barrel cam: no plate profile (see the developed groove: camfollower figures)"
         return {"data": [], "layout": layout}
     colour = np.abs(k["pressure_angle_deg"])
-    hover = [f"θ = {t:.1f}°, |α| = {a:.1f}°" for t, a in zip(k["theta_deg"], colour)]
     f = follower_at(k, cursor_deg)
     data = [
         {
@@ -160,23 +257,7 @@ def profile(k: Dict[str, Any], cursor_deg: float = 0.0, colour_by: str = "pressu
             "line": {"color": GREY, "width": 1, "dash": "dash"},
             "hoverinfo": "skip",
         },
-        {
-            "type": "scatter",
-            "mode": "markers",
-            "x": _list(p["surface_x"]),
-            "y": _list(p["surface_y"]),
-            "name": "cam surface",
-            "text": hover,
-            "hoverinfo": "text",
-            "marker": {
-                "size": 4,
-                "color": _list(colour),
-                "colorscale": "Viridis",
-                "cmin": 0.0,
-                "cmax": max(30.0, float(np.nanmax(colour)) if colour.size else 30.0),
-                "colorbar": {"title": {"text": "|α| (deg)"}, "thickness": 12},
-            },
-        },
+        *_coloured_outline(p["surface_x"], p["surface_y"], colour),
         {
             "type": "scatter",
             "mode": "lines",
@@ -220,10 +301,10 @@ def geometry(k: Dict[str, Any], cursor_deg: float = 0.0, max_pressure_angle_deg:
     limit = 10.0 * k["base_radius_mm"] if k["base_radius_mm"] > 0 else np.inf
     rho = np.where(np.abs(rho) <= limit, rho, np.nan)  # near-straight flanks: a gap, not a plateau
     data = [
-        _line(x, k["pressure_angle_deg"], "pressure angle", 1, color=BLUE),
+        _line(x, k["pressure_angle_deg"], "pressure angle", 1, True, color=BLUE),
         _line([0, 360], [max_pressure_angle_deg] * 2, f"limit ±{max_pressure_angle_deg:g}°", 1, color=RED, dash="dash"),
         _line([0, 360], [-max_pressure_angle_deg] * 2, "", 1, color=RED, dash="dash"),
-        _line(x, rho, "surface radius (gap beyond ±10 r_b)", 2, color=BLUE),
+        _line(x, rho, "surface radius (gap beyond ±10 r_b)", 2, True, color=BLUE),
         _line([0, 360], [0, 0], "0: cusp / undercut", 2, color=RED, dash="dash"),
     ]
     data[2]["showlegend"] = False
@@ -287,6 +368,7 @@ def response(r: Dict[str, Any], rpm: float, cursor_deg: float = 0.0, label: str 
             "y": 1.13,
             "showarrow": False,
             "xanchor": "left",
+            "align": "left",
             "font": {"size": 11, "color": GREY},
         }
     ]
@@ -350,7 +432,8 @@ def margin(
         "xaxis": _axis("camshaft speed (rpm)", range=[lo - 0.02 * (hi - lo), hi + 0.02 * (hi - lo)]),
         "yaxis": _axis("min contact force (N)"),
         "shapes": shapes,
-        "legend": {"orientation": "h", "y": -0.2, "yanchor": "top", "x": 0},
+        "legend": {"orientation": "h", "y": -0.25, "yanchor": "top", "x": 0},
+        "modebar": {"orientation": "v"},
         "meta": {"cursor_axes": []},
     }
     return {"data": data, "layout": layout}

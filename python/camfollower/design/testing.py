@@ -94,10 +94,12 @@ def element(browser, dom_id: str):
 
 
 def figure_data(browser, graph: str) -> List[Dict[str, Any]]:
-    """The traces a graph on the page draws (x, y, name ...), as Plotly holds them."""
+    """The traces a graph on the page draws (name, x, y), as Plotly holds them (an evenly spaced x sent
+    as x0 and dx made an array)."""
     return browser.execute_script(
         "const gd = document.querySelector('#' + arguments[0] + ' .js-plotly-plot');"
-        "return gd && gd.data ? gd.data.map(t => ({name: t.name, x: t.x, y: t.y})) : null;",
+        "return gd && gd.data ? gd.data.map(t => ({name: t.name, y: t.y,"
+        "  x: t.x || (t.y ? t.y.map((_, i) => t.x0 + t.dx * i) : null)})) : null;",
         graph,
     )
 
@@ -122,21 +124,41 @@ def wait(predicate, timeout: float = 30.0, what: str = "the page") -> Any:
     raise TimeoutError(f"{what} did not happen within {timeout:g} s (last: {last!r})")
 
 
+def open_page(browser, url: str, timeout: float = 60.0) -> None:
+    """Load the page and wait until its first design is drawn in all four figures (Dash loads the
+    plotting code after the page: a figure's element is replaced once)."""
+    browser.get(url)
+    wait(lambda: computed(browser).get("computed", 0) >= 1, timeout, "the first drawing")
+    wait(
+        lambda: browser.execute_script(
+            "return ['fig-svaj','fig-profile','fig-geometry','fig-response'].every(id => {"
+            "  const gd = document.querySelector('#' + id + ' .js-plotly-plot');"
+            "  return gd && gd.data && gd.data.length > 0 && gd._fullLayout; });"
+        ),
+        timeout,
+        "the four figures",
+    )
+
+
 def watch_redraws(browser) -> None:
-    """Record, per graph, when Plotly last finished drawing it (performance.now(), ms)."""
+    """Record, per graph, when Plotly first finished drawing it after ``window.__drawn`` was emptied
+    (performance.now(), ms): the redraw an edit caused, not the background's later ones."""
     browser.execute_script(
         "window.__drawn = window.__drawn || {};"
         "for (const id of ['fig-svaj','fig-profile','fig-geometry','fig-response']) {"
         "  const gd = document.querySelector('#' + id + ' .js-plotly-plot');"
         "  if (gd && !gd.__watched) { gd.__watched = true;"
-        "    gd.on('plotly_afterplot', () => { window.__drawn[id] = performance.now(); }); } }"
+        "    gd.on('plotly_afterplot', () => { if (!(id in window.__drawn)) window.__drawn[id] = performance.now(); });"
+        " } }"
     )
 
 
 def edit(browser, path: str, text: str, timeout: float = 30.0) -> Dict[str, Any]:
     """Type `text` into the field at `path` and press Enter; wait for the page to redraw. Returns the
-    server's timings and ``latency_ms``: from the key press to the last of the four figures drawn
-    (in the browser's clock)."""
+    server's timings and ``latency_ms``: from the key press to the last figure drawn (in the
+    browser's clock) to the last figure's first drawing. A figure the edit did not change (the profile
+    when only the speed changed) is not drawn again: the redraw is over when no other figure has been
+    drawn for ``QUIET`` seconds."""
     from selenium.webdriver.common.keys import Keys
 
     before = computed(browser).get("computed", 0)
@@ -147,11 +169,22 @@ def edit(browser, path: str, text: str, timeout: float = 30.0) -> Dict[str, Any]
     t0 = browser.execute_script("window.__drawn = {}; return performance.now();")
     box.send_keys(Keys.ENTER)
     wait(lambda: computed(browser).get("computed", 0) > before, timeout, f"the redraw after {path} = {text!r}")
-    drawn = wait(
-        lambda: (lambda d: d if d and len(d) == 4 else None)(browser.execute_script("return window.__drawn;")),
-        timeout,
-        "the four figures' redraw",
-    )
+    end = time.monotonic() + timeout
+    last, since = None, time.monotonic()
+    while time.monotonic() < end:
+        drawn = browser.execute_script("return Object.assign({}, window.__drawn);")
+        if drawn != last:
+            last, since = drawn, time.monotonic()
+        elif drawn and time.monotonic() - since > QUIET:
+            break
+        time.sleep(0.02)
+    else:
+        raise TimeoutError(f"no figure was drawn again within {timeout:g} s of {path} = {text!r}")
     out = computed(browser)
-    out["latency_ms"] = max(drawn.values()) - t0
+    out["latency_ms"] = max(last.values()) - t0
+    out["figures_drawn"] = sorted(last)
     return out
+
+
+#: Seconds without a figure drawn after which a redraw is over (edit).
+QUIET = 0.3
