@@ -326,3 +326,12 @@ def test_document_round_trip_and_field_paths():
     paths = ["contact[0].follower.base_radius", "contact[0].follower.roller_radius", "camshaft.speed"]
     assert D.field_of_message("<dict>: contact[0]: ... must exceed roller_radius = 0.02 m", paths) == paths[1]
     assert D.field_of_message("<dict>: camshaft.speed: must be in ...", paths) == paths[2]
+    assert (
+        D.field_of_message("<dict>: contact[0]: the pressure angle reaches 90.2 deg at theta = 3 deg", paths)
+        == paths[0]
+    )
+    segments = ["program.feed.segments[0].end", "program.feed.segments[1].end", "program.feed.segments[1].h"]
+    message = (
+        "<dict>: program.feed.segments: segments[1] spans -0.52 rad (-30 deg): span ... must be at least 1e-06 rad"
+    )
+    assert D.field_of_message(message, segments) == segments[1]

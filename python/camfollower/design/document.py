@@ -404,11 +404,16 @@ def build(data: Dict[str, Any], base_dir: str) -> Config:
     return config_from_dict(data, base_dir)
 
 
+#: A table's message that names no key of it: the field whose change is the usual remedy.
+_REMEDIES = (("pressure angle", "base_radius"), ("cusp", "base_radius"))
+
+
 def field_of_message(message: str, paths: List[str]) -> Optional[str]:
     """The field an error message is about: the longest field path the message names (``<dict>:
     contact[0].follower.base_radius: ...``); a message about a whole table (``contact[0]: ... the cam
     profile undercuts ... must exceed roller_radius``) goes to the field of that table whose key it
-    names first, else to the table's first field."""
+    names first, a segment that does not fit (``segments[2] spans ...``) to where it ends, a pressure
+    angle reaching 90 deg or a cusp to the base radius, else to the table's first field."""
     m = re.match(r"(?:<dict>: )?([A-Za-z0-9_.\[\]-]+): ", message)
     named = m[1] if m else ""
     hits = [p for p in paths if named == p or named.startswith(p + ".") or named.startswith(p + "[")]
@@ -423,6 +428,14 @@ def field_of_message(message: str, paths: List[str]) -> Optional[str]:
             found.append((hit.start(), p))
     if found:
         return min(found)[1]
+    segment = re.search(r"\bsegments\[(\d+)\]", rest)
+    if segment and f"{named}[{segment[1]}].end" in paths:  # a segment that does not fit: where it ends
+        return f"{named}[{segment[1]}].end"
+    for phrase, key in _REMEDIES:
+        if phrase in rest:
+            for p in inside:
+                if p.endswith(f".{key}"):
+                    return p
     if inside:
         return inside[0]
     if named.startswith("program.") or named.startswith("preset.program"):
