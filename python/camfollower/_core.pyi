@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['ArmTurn', 'BarrelArmRoller', 'BarrelRoller', 'BoundaryContinuity', 'CamEccentricity', 'ContinuityReport', 'CouplerLinkage', 'Elastic', 'Groove', 'LineContact', 'MAX_CAMSHAFT_SPEED', 'MAX_PART_LENGTH', 'MAX_POINTS', 'METHODS', 'MIN_CAMSHAFT_SPEED', 'Mechanism', 'MechanismBuilder', 'MotionLaw', 'MotionProgram', 'OscillatingFlat', 'OscillatingRoller', 'Parameters', 'PeakCoefficients', 'ProfileError', 'RUNGE_KUTTA_DEFAULT_TOLERANCE', 'Segment', 'SolverSettings', 'SpeedModulation', 'SpeedProgram', 'SpeedRamp', 'TranslatingFlat', 'TranslatingRoller', 'barrel_groove', 'cam_outline', 'check_output_target', 'length_units', 'paper_preset', 'realistic_damping_ratio', 'valve_train_parameter_units', 'valve_train_preset', 'write_barrel_groove_csv', 'write_cam_csv', 'write_file_atomically']
+__all__: list[str] = ['ArmTurn', 'BarrelArmRoller', 'BarrelRoller', 'BoundaryContinuity', 'CamEccentricity', 'ContinuityReport', 'CouplerLinkage', 'Elastic', 'Groove', 'LineContact', 'MAX_CAMSHAFT_SPEED', 'MAX_PART_LENGTH', 'MAX_POINTS', 'METHODS', 'MIN_CAMSHAFT_SPEED', 'Mechanism', 'MechanismBuilder', 'MotionLaw', 'MotionProgram', 'OscillatingFlat', 'OscillatingRoller', 'Parameters', 'PeakCoefficients', 'ProfileError', 'RUNGE_KUTTA_DEFAULT_TOLERANCE', 'SHOOTING_MAX_STATE_SIZE', 'SPARSE_BACKEND_THRESHOLD', 'Segment', 'SolverSettings', 'SpeedModulation', 'SpeedProgram', 'SpeedRamp', 'TranslatingFlat', 'TranslatingRoller', 'barrel_groove', 'cam_outline', 'check_output_target', 'length_units', 'paper_preset', 'realistic_damping_ratio', 'valve_train_parameter_units', 'valve_train_preset', 'write_barrel_groove_csv', 'write_cam_csv', 'write_file_atomically']
 class PeakCoefficients:
     """
     Peaks of |V|, |A|, |J| of a normalized law.
@@ -1714,5 +1714,7 @@ MAX_POINTS: int = 10000000
 METHODS: dict  # name -> (order, summary), from the C++ method table
 MIN_CAMSHAFT_SPEED: float = 1e-06
 RUNGE_KUTTA_DEFAULT_TOLERANCE: float = 1e-06
+SHOOTING_MAX_STATE_SIZE: int = 400  # 2n: the largest state shooting's dense monodromy takes
+SPARSE_BACKEND_THRESHOLD: int = 100  # DOFs from which linear_solver 'auto' runs the sparse backend
 __version__: str = '0.1.0'
 realistic_damping_ratio: float = 0.03

@@ -143,7 +143,9 @@ def periodic_steady_state(
     Raises RuntimeError with the mismatch history when the shooting does not converge (a response
     that is not periodic: contact loss with chatter, period doubling), unless ``fallback="transient"``:
     then the transient route (``simulate(settle=True)`` to ``transient_tolerance``) answers and the
-    orbit says ``method="transient"`` (``converged`` False if it never settled either).
+    orbit says ``method="transient"`` (``converged`` False if it never settled either). A model too
+    large for shooting's dense monodromy (2n > ``_core.SHOOTING_MAX_STATE_SIZE``) goes the transient
+    route at once with ``fallback="transient"`` (without it: ValueError).
     """
     period = getattr(system, "period", None)
     if period is None:
@@ -170,6 +172,9 @@ def periodic_steady_state(
             raise ValueError(f"guess has {len(guess.q)} DOFs, the system {n}")
         q0, v0 = guess.q, guess.v
         monodromy = guess.monodromy if guess.monodromy.size else None
+    if fallback == "transient" and 2 * len(system.dof_names) > _core.SHOOTING_MAX_STATE_SIZE:
+        # Too large for shooting's dense monodromy (2n revolutions each): the transient route answers.
+        return _transient(system, settings.fields(), None, transient_tolerance, transient_max_revolutions)
     raw = _core._shoot(
         system,
         settings,
@@ -235,8 +240,10 @@ _DIVERGED = 1000.0
 
 
 def _transient(
-    system, scheme: Dict[str, Any], failed: PeriodicOrbit, tolerance: float, max_revolutions: int
+    system, scheme: Dict[str, Any], failed: Optional[PeriodicOrbit], tolerance: float, max_revolutions: int
 ) -> PeriodicOrbit:
+    """The state a settled transient run reaches (``failed``: the shooting that did not converge, or
+    None when none was tried)."""
     r = simulate(
         system,
         revolutions=1,
@@ -260,19 +267,19 @@ def _transient(
     return PeriodicOrbit(
         q=q,
         v=v,
-        period=failed.period,
+        period=float(system.period),
         converged=bool(settle.get("settled", False)),
         mismatch=float(settle.get("change", math.nan)),
         iterations=0,
         monodromies=0,
-        revolutions=failed.revolutions + float(settle.get("revolutions", 0)) + 1.0,
+        revolutions=(failed.revolutions if failed else 0.0) + float(settle.get("revolutions", 0)) + 1.0,
         multipliers=np.zeros(0, dtype=complex),
         monodromy=np.zeros((0, 0)),
         monodromy_at_orbit=False,
         history=tuple(settle.get("history", ())),
-        dof_names=failed.dof_names,
-        q_scale=failed.q_scale,
-        v_scale=failed.v_scale,
+        dof_names=tuple(system.dof_names),
+        q_scale=failed.q_scale if failed else max(float(np.max(np.abs(r.q))), 1e-9),
+        v_scale=failed.v_scale if failed else max(float(np.max(np.abs(r.v))), 1e-9),
         method="transient",
         scheme=scheme,
     )

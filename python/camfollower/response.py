@@ -18,6 +18,7 @@ from typing import Any, Dict, Optional, Sequence
 
 import numpy as np
 
+from . import _core
 from .periodic import PeriodicOrbit, periodic_steady_state
 from .simulation import METHOD
 
@@ -43,7 +44,10 @@ def study_scheme(system, steps: int) -> Dict[str, Any]:
     phase: the lightly damped fast modes that ring through a whole revolution keep their phase, where
     the average-acceleration rule's period error would need ~50x the steps) when the step is within
     half its stability limit for the system's highest mode (at cam angle 0), else Newmark's average
-    acceleration (unconditionally stable)."""
+    acceleration (unconditionally stable). A model large enough for the sparse backend (linear_solver
+    'auto') gets average acceleration: that backend takes unconditionally stable schemes only."""
+    if len(getattr(system, "dof_names", ())) >= _core.SPARSE_BACKEND_THRESHOLD:
+        return {"name": METHOD.newmark, "gamma": 0.5, "beta": 0.25}
     try:
         omega_max = 2.0 * math.pi * float(np.max(system.modal_analysis(0.0)["frequencies_hz"]))
     except (AttributeError, RuntimeError, ValueError):

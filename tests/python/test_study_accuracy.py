@@ -215,3 +215,24 @@ def test_a_transient_that_diverges_is_an_error_not_a_state():
     # Finer, it is a contact-loss orbit like any other (not periodic: the transient route's answer).
     row = steady_response(m, steps_per_revolution=4096, multipliers=False, fallback="transient")
     assert row["contact_lost"] and row["min_force_N"] == 0.0
+
+
+def test_a_model_too_large_for_shooting_goes_the_transient_route():
+    """The 16-valve train (233 DOFs) is beyond shooting's dense monodromy (2n > 400) and runs on the
+    sparse backend: the studies' scheme is average acceleration there (Fox-Goodwin was picked and the
+    sparse backend refused it), and with fallback='transient' the steady state is the transient's."""
+    from camfollower import _core
+    from camfollower.config import load_config
+    from camfollower.response import study_scheme
+
+    m = load_config(Path(__file__).resolve().parents[2] / "examples" / "valve_train.toml").mechanism
+    assert 2 * len(m.dof_names) > _core.SHOOTING_MAX_STATE_SIZE
+    assert len(m.dof_names) >= _core.SPARSE_BACKEND_THRESHOLD
+    # A step within half Fox-Goodwin's stability limit, where a dense model would get Fox-Goodwin.
+    omega_max = 2.0 * math.pi * float(np.max(m.modal_analysis(0.0)["frequencies_hz"]))
+    steps = int(2.0 * m.period * omega_max / (0.5 * math.sqrt(6.0))) + 1
+    assert study_scheme(m, steps)["name"] == "newmark"
+    with pytest.raises(ValueError, match="dense monodromy"):
+        periodic_steady_state(m, time_step=m.period / 1024, multipliers=False)
+    row = steady_response(m, steps_per_revolution=1024, multipliers=False, fallback="transient")
+    assert row["method"] == "transient" and row["converged"] and not row["contact_lost"]
