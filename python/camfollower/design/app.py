@@ -36,6 +36,8 @@ MARGIN_SPEEDS = 11
 #: A model whose quick response takes longer than this (s) gets its response in the background only,
 #: so that each edit still redraws its kinematics at once (a large camshaft, a valve train).
 QUICK_BUDGET = 0.5
+#: A model with more DOFs than this starts with its response in the background (a flexible camshaft).
+HEAVY_DOFS = 40
 COOKIE = "camfollower_design_{port}"
 
 _CURSOR_JS = """
@@ -292,7 +294,11 @@ class DesignApp:
                                         dcc.Graph(id="fig-profile", config={"displaylogo": False}),
                                         dcc.Graph(id="fig-response", config={"displaylogo": False}),
                                         dcc.Graph(id="fig-geometry", config={"displaylogo": False}),
-                                        dcc.Graph(id="fig-margin", config={"displaylogo": False}),
+                                        dcc.Graph(
+                                            id="fig-margin",
+                                            config={"displaylogo": False},
+                                            figure=figs.message("margin curve", "computed after each edit ..."),
+                                        ),
                                         dcc.Graph(
                                             id="fig-synthesis",
                                             config={"displaylogo": False},
@@ -502,7 +508,8 @@ class DesignApp:
         memo = self.jobs.tab(tab).memo
         quick = None
         response_figure = no
-        if memo.get("quick_seconds", 0.0) <= QUICK_BUDGET and not k["check"]:
+        heavy = len(case.mechanism.dof_names) > HEAVY_DOFS  # until a refined run says what it costs
+        if memo.get("quick_seconds", QUICK_BUDGET * 2 if heavy else 0.0) <= QUICK_BUDGET and not k["check"]:
             try:
                 quick = views.response(case, state["contact"], guess=_guess(memo, case), stop_at_loss=True)
                 memo["orbit"], memo["dofs"] = quick.pop("orbit"), len(case.mechanism.dof_names)

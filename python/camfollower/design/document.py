@@ -285,7 +285,7 @@ def fields(data: Dict[str, Any], case: Config, contact: str) -> List[Field]:
 def _program_fields(data: Dict[str, Any], contact: str) -> List[Field]:
     name = program_name(data, contact)
     program = get(data, f"program.{name}") if name else None
-    group = f"Motion program '{name}'"
+    group = f"Motion program '{name}'" if name else "Motion program"
     if not isinstance(program, dict):
         return [Field("program", "program", "the preset's own (not editable here)", group, "readonly")]
     segments = program.get("segments")
