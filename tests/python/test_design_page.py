@@ -335,3 +335,60 @@ def test_document_round_trip_and_field_paths():
         "<dict>: program.feed.segments: segments[1] spans -0.52 rad (-30 deg): span ... must be at least 1e-06 rad"
     )
     assert D.field_of_message(message, segments) == segments[1]
+
+
+def test_law_and_emptied_fields_never_leave_the_design_stuck():
+    """A dwell made a rise gets a lift to edit, a rise made a dwell takes its dwells along, and a key
+    without a default cannot be emptied: each step builds, or is refused without changing the design."""
+    data = load_config(EXAMPLES / "translating_roller.toml").data
+    a = D.set_value(data, "program.feed.segments[0].law", "cycloidal")
+    assert a["program"]["feed"]["segments"][0]["h"] == 0  # its start level: a lift to type, not a gap
+    config_from_dict(a, str(EXAMPLES))
+    b = D.set_value(data, "program.feed.segments[1].law", "dwell")
+    assert "h" not in b["program"]["feed"]["segments"][1]
+    assert b["program"]["feed"]["segments"][2]["h"] == 0  # the dwell after it, at the new level
+    config_from_dict(b, str(EXAMPLES))
+    c = D.set_value(
+        D.set_value(b, "program.feed.segments[1].law", "modified_sine"), "program.feed.segments[1].h", "12 mm"
+    )
+    assert config_from_dict(c, str(EXAMPLES)).builder.contacts[0]["program"].max_lift() == pytest.approx(0.012)
+    with pytest.raises(ValueError, match=r"segments\[1\]\.h: give a value"):
+        D.set_value(data, "program.feed.segments[1].h", "")
+    assert "preload" not in D.set_value(data, "spring[1].preload", "")["spring"][1]  # optional: its default
+
+
+def test_a_grooved_cam_draws_both_flanks_and_a_config_without_contact_is_refused(folder):
+    case = load_config(EXAMPLES / "grooved_cam.toml")
+    r = V.response(case, steps_per_revolution=2048)
+    assert r["outer_force"] is not None and np.max(r["outer_force"]) > 0  # the outer flank carries load
+    # The roller is free only where it touches neither flank: never where either carries load, and on
+    # less of the revolution than the lifting flank alone is unloaded.
+    assert not np.any(r["lost"] & ((r["force"] > 0) | (r["outer_force"] > 0)))
+    assert r["lost"].mean() < np.mean(r["force"] <= 0)
+    (folder / "no_contact.toml").write_text(
+        '[camshaft]\nspeed = 600\n\n[[dof]]\nname = "m"\nmass = 1.0\n\n[[spring]]\nname = "k"\na = "m"\nstiffness = 1000.0\n'
+    )
+    with pytest.raises(ValueError, match="no cam contact"):
+        DesignApp(str(folder / "no_contact.toml"), root=str(folder))
+    page = DesignApp(str(folder / "cam.toml"), root=str(folder))
+    assert "no cam contact" in _file_action(page, "open", "no_contact.toml", page.initial)
+
+
+def test_synthesize_then_use_the_lift(folder, browser):
+    """The synthesis action: its before/after overlay, then the synthesized lift put in the design and
+    drawn (the SVAJ is the new program's, as the library evaluates it)."""
+    with T.running_page(str(folder / "cam.toml"), root=str(folder)) as (page, url):
+        T.open_page(browser, url)
+        T.element(browser, "synthesize").click()
+        T.wait(lambda: "synthesis done" in T.element(browser, "bg-status").text, 240, "the synthesis")
+        overlay = {t["name"]: t for t in T.figure_data(browser, "fig-synthesis")}
+        assert {"before (design's lift)", "after (synthesized)"} <= set(overlay)
+        drawn = T.computed(browser)["computed"]
+        T.element(browser, "use-synthesis").click()
+        T.wait(lambda: T.computed(browser).get("computed", 0) > drawn, 60, "the redraw with the new lift")
+        assert "lift table" in T.element(browser, "form").text
+        (tab,) = page.jobs._tabs.values()  # the one tab this test opened
+        synthesized = tab.memo["synthesized"]
+        theta = np.linspace(0.0, 2.0 * math.pi, V.ANGLES)
+        lift, _ = _trace(browser, "fig-svaj", "lift")
+        _same(lift, _lift_mm(synthesized, theta))

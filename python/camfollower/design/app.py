@@ -136,6 +136,11 @@ class DesignApp:
         data = doc_.with_program_written_out(data, case)
         case = doc_.build(data, str(base))
         names = doc_.contact_names(case)
+        if not names:
+            raise ValueError(
+                f"{source or 'the design'}: the mechanism has no cam contact: nothing to design on this page "
+                "(add a [[contact]], docs/config.md)"
+            )
         return self._state(data, base, source, digest, names, names[0] if names else None, case)
 
     def _state(self, data, base, source, digest, names, contact, case) -> Dict[str, Any]:
@@ -155,10 +160,12 @@ class DesignApp:
     # -----------------------------------------------------------------------------------------------
     # Layout
 
-    def _form(self, state: Dict[str, Any], case) -> List[Any]:
+    def _form(self, state: Dict[str, Any], case, errors: Optional[Dict[str, str]] = None) -> List[Any]:
+        """The fields of `state`'s document by group (`errors`: messages to show at once)."""
         dash = _dash()
         html, dcc = dash.html, dash.dcc
-        fields = doc_.fields(state["data"], case, state["contact"]) if case is not None and state["contact"] else []
+        errors = errors or {}
+        fields = doc_.fields(state["data"], case, state["contact"]) if state["contact"] else []
         groups: Dict[str, List[Any]] = {}
         for f in fields:
             fid = {"type": "field", "path": f.path}
@@ -174,7 +181,7 @@ class DesignApp:
                 [
                     html.Label(f.label, title=f"{f.path} ({f.unit})" if f.unit else f.path),
                     control,
-                    html.Div(id={"type": "error", "path": f.path}, className="field-error"),
+                    html.Div(errors.get(f.path, ""), id={"type": "error", "path": f.path}, className="field-error"),
                 ],
                 className="field",
             )
@@ -192,6 +199,7 @@ class DesignApp:
                 dcc.Store(id="tab", data=uuid.uuid4().hex),
                 dcc.Store(id="doc", data=state),
                 dcc.Store(id="seen", data=-1),
+                dcc.Store(id="reload", data=0),
                 dcc.Interval(id="poll", interval=300, disabled=True),
                 html.Div(
                     [
@@ -264,7 +272,7 @@ class DesignApp:
                                         html.Button("Use the synthesized lift", id="use-synthesis", n_clicks=0),
                                         html.Div(id="synthesis-message", className="message"),
                                     ],
-                                    open=False,
+                                    open=True,
                                     className="group",
                                 ),
                             ],
@@ -358,11 +366,12 @@ class DesignApp:
             Output("computed", "children"),
             Input({"type": "field", "path": ALL}, "value"),
             Input("contact", "value"),
+            Input("reload", "data"),
             State("doc", "data"),
             State("cursor", "value"),
             State("tab", "data"),
         )
-        def edit(values, contact, state, cursor, tab):
+        def edit(values, contact, _reload, state, cursor, tab):
             values = {i["id"]["path"]: v for i, v in zip(ctx.inputs_list[0], values)}
             ids = [o["id"]["path"] for o in ctx.outputs_list[1]]  # every field's error slot, read-only ones too
             return self.edit(state, values, ctx.triggered_id, contact, cursor or 0.0, tab, ids)
@@ -477,7 +486,10 @@ class DesignApp:
                 changed = path
         elif trigger == "contact" and contact != state["contact"]:
             changed = "contact"
-        if changed is None and state.get("computed"):
+        # A new document (Open, a synthesized lift) is drawn whatever the fields say; so is one whose
+        # last edit was refused (the same text typed again is tried again).
+        again = trigger == "reload" or state.get("refused")
+        if changed is None and state.get("computed") and not again:
             raise dash.exceptions.PreventUpdate
         if changed == "contact":
             state["contact"] = contact
@@ -487,17 +499,17 @@ class DesignApp:
                 state["data"] = doc_.set_value(state["data"], changed, values[changed])
             except ValueError as e:
                 errors[changed] = str(e)
-                return self._refused(state, errors, ids, f"not updated: {e}")
+                return self._refused(state, errors, ids, f"not updated: {e}", tab)
         try:
             case = self._case(state)
+            k = views.kinematics(case, state["contact"])
         except ValueError as e:
-            where = doc_.field_of_message(str(e), ids) or changed
-            if where in errors:
-                errors[where] = _clean(str(e))
-            self.jobs.start(tab, [], status="")
-            return self._refused(state, errors, ids, f"not updated: {_clean(str(e))}")
+            state = self._restructured(state)  # a law or type that was refused still brings its fields
+            where = doc_.field_of_message(str(e), state["paths"]) or changed
+            errors[where] = _clean(str(e))
+            return self._refused(state, errors, ids, f"not updated: {_clean(str(e))}", tab)
+        state["refused"] = False
         t_build = time.perf_counter()
-        k = views.kinematics(case, state["contact"])
         if k["check"]:
             where = doc_.field_of_message(f"follower: {k['check']}", ids) or _geometry_field(k["check"], ids) or changed
             if where in errors:
@@ -569,9 +581,27 @@ class DesignApp:
             _json(timing),
         )
 
-    def _refused(self, state, errors, ids, status):
+    def _refused(self, state, errors, ids, status, tab):
+        """The edit's answer when the design cannot be built: the message at its field, the figures
+        left as they are (the status says so), no background work."""
         no = _dash().no_update
-        return (state, [errors.get(p, "") for p in ids], no, no, no, no, status, True, no)
+        state["refused"] = True
+        self.jobs.start(tab, [], status="nothing computed: the design has an error (see the field it names)")
+        status += " (the figures show the last design that worked)"
+        if state["paths"] != ids:  # other fields now (a law, a type): a new form, the message in it
+            _dash().set_props("form", {"children": self._form(state, None, errors)})
+            return (state, [no] * len(ids), no, no, no, no, status, False, no)
+        return (state, [errors.get(p, "") for p in ids], no, no, no, no, status, False, no)
+
+    def _restructured(self, state):
+        """`state` with its form rebuilt (in the browser too) when its data now has other fields than
+        the form shows: a law or follower type changed, even if the design cannot be built."""
+        fields = doc_.fields(state["data"], None, state["contact"])
+        paths = [f.path for f in fields]
+        if paths == state["paths"]:
+            return state
+        state = dict(state, paths=paths, shown={f.path: f.value for f in fields})
+        return state
 
     # -----------------------------------------------------------------------------------------------
     # Background: refine, margin curve, first contact loss
@@ -597,6 +627,8 @@ class DesignApp:
             results["response"] = r
             # What a quick steady state would cost this model (decides the next edit's route).
             memo["quick_seconds"] = r["seconds"] * views.QUICK_STEPS / r["summary"]["steps_per_revolution"]
+            if grooved:
+                return f"response refined to {r['summary']['accuracy']:.1e} of peak (a grooved cam: no margin curve)"
             results["margin_speeds"] = speeds
             results["margin_rows"] = []
             return f"response refined to {r['summary']['accuracy']:.1e} of peak; margin curve ..."
@@ -627,7 +659,9 @@ class DesignApp:
                 results["jump"] = {"rpm": None, "message": _clean(str(e))}
                 return _clean(str(e))
 
-        steps = [refine] + [at(s) for s in speeds] + [first_loss]
+        grooved = views.contact_of(case, contact).get("groove") is not None
+        # A form-closed (grooved) cam has no margin against contact loss to scan.
+        steps = [refine] + ([] if grooved else [at(s) for s in speeds] + [first_loss])
         self.jobs.start(tab, steps, status="refining the response ...")
         del quick
 
@@ -647,7 +681,9 @@ class DesignApp:
         except ValueError:
             pass
         if "response" in res and rpm is not None:
-            response = figs.response(res["response"], rpm, cursor, label=", refined")
+            reached = res["response"]["summary"].get("accuracy_reached", True)
+            label = ", refined" if reached else f", NOT refined to {views.REFINED_ACCURACY:g}: the finest step allowed"
+            response = figs.response(res["response"], rpm, cursor, label=label)
         margin = no
         if "margin_speeds" in res:
             margin = figs.margin(res.get("margin_rows", []), res["margin_speeds"], res.get("jump"))
@@ -655,7 +691,7 @@ class DesignApp:
         if "synthesis" in res:
             s = res["synthesis"]
             synthesis = figs.overlay(s["before"], s["after"], s["rpm"], s)
-        status = snap["status"] + (" ..." if snap["busy"] else "")
+        status = snap["status"] + (" ..." if snap["busy"] and not snap["status"].endswith("...") else "")
         return response, margin, synthesis, status, not snap["busy"], snap["version"]
 
     # -----------------------------------------------------------------------------------------------
@@ -680,13 +716,14 @@ class DesignApp:
             if trigger == "open":
                 path = files_.inside(self.root, config_name, "open", files_.CONFIG_SUFFIX)
                 new = self._document(str(path))
-                new["computed"] = 0
+                new["computed"] = state.get("computed", 0)  # the count of drawings goes on (reload redraws)
                 case = doc_.build(new["data"], new["base_dir"])
                 dash = _dash()
                 dash.set_props("doc", {"data": new})
                 dash.set_props("form", {"children": self._form(new, case)})
                 dash.set_props("contact", {"options": new["contacts"], "value": new["contact"]})
                 dash.set_props("source", {"children": str(path)})
+                dash.set_props("reload", {"data": time.time()})
                 return f"opened {path}"
             return self._export(trigger, export_name, state)
         except (ValueError, OSError, RuntimeError) as e:
@@ -745,8 +782,10 @@ class DesignApp:
             new = self._state(
                 data, state["base_dir"], state["source"], state["digest"], state["contacts"], state["contact"], case
             )
+            new["computed"] = state.get("computed", 0)
             dash.set_props("doc", {"data": new})
             dash.set_props("form", {"children": self._form(new, case)})
+            dash.set_props("reload", {"data": time.time()})
             return (
                 f"program '{name}' replaced by the synthesized lift (its segments are now spline tables)",
                 dash.no_update,

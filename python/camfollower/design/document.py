@@ -47,6 +47,7 @@ _FOLLOWER_KEYS = ("base_radius", "roller_radius", "offset", "face_angle", "arm_l
 _CONTACT_KEYS = ("stiffness", "roller_width", "exponent", "damping_factor")
 #: The paper preset's parameters the page offers, by group (docs/model.md has them all).
 PAPER_FOLLOWER = ("base_radius", "roller_radius", "offset")
+PAPER_LENGTHS = PAPER_FOLLOWER + ("spring_preload_deflection",)
 PAPER_MECHANISM = (
     "spring_stiffness",
     "spring_preload_deflection",
@@ -159,31 +160,34 @@ def set_value(data: Dict[str, Any], path: str, text: Any) -> Dict[str, Any]:
             node[k] = {}
         node = node[k]
     last = keys[-1]
+    empty = text is None or str(text).strip() == ""
+    if empty and not _optional(keys):
+        raise ValueError(f"{path}: give a value (this key has no default)")
     if isinstance(last, int):  # an element of an array (a pivot's x or y)
         node[last] = parse(text)
         return out
     if last == "law":
-        _set_law(node, str(text))
+        _set_law(out, keys, str(text))
     elif last == "type" and keys[-2] == "follower":
         _set_follower_type(node, str(text))
-    elif str(text).strip() == "":
+    elif empty:
         node.pop(last, None)
     else:
         old = node.get(last)
         node[last] = parse(text)
         if last == "h" and len(keys) >= 3 and keys[-3] == "segments":
-            _dwells_follow(out, keys, old)
+            _dwells_follow(out, keys, old, node[last])
     return out
 
 
-def _dwells_follow(data: Dict[str, Any], keys: List[Key], old: Any) -> None:
-    """The dwells right after a segment whose end lift changed keep its level: an explicit ``h`` there
-    that held the old level takes the new one (a dwell's h must equal the level it starts at)."""
+def _dwells_follow(data: Dict[str, Any], keys: List[Key], old: Any, new: Any) -> None:
+    """The dwells right after a segment whose end lift changed from `old` to `new` keep its level: an
+    explicit ``h`` there that held the old level takes the new one (a dwell's h must equal the level
+    it starts at)."""
     segments = data
     for k in keys[:-2]:
         segments = segments[k]
     i = int(keys[-2])
-    new = segments[i]["h"]
     for seg in segments[i + 1 :]:
         if seg.get("law") != "dwell":
             break
@@ -191,10 +195,37 @@ def _dwells_follow(data: Dict[str, Any], keys: List[Key], old: Any) -> None:
             seg["h"] = new
 
 
-def _set_law(segment: Dict[str, Any], law: str) -> None:
+def _optional(keys: List[Key]) -> bool:
+    """Keys an empty field may remove, their default then applying: the preset's parameters, a
+    spring's preload and damping, a follower's offsets and face angle."""
+    last = keys[-1]
+    if keys[:2] == ["preset", "parameters"]:
+        return True
+    if keys[0] == "spring" and last in ("preload", "damping"):
+        return True
+    return len(keys) >= 2 and keys[-2] == "follower" and last in ("offset", "face_angle", "face_offset")
+
+
+def _level_before(segments: List[Dict[str, Any]], i: int, program: Dict[str, Any]) -> Any:
+    """The lift where segment `i` starts (as the file writes it): the last end lift before it."""
+    for seg in reversed(segments[:i]):
+        if "h" in seg:
+            return seg["h"]
+    return program.get("start_h", 0.0)
+
+
+def _set_law(data: Dict[str, Any], keys: List[Key], law: str) -> None:
+    """A segment's law; a dwell drops its lift (it keeps its level), a rise or return from a dwell
+    starts with the level it had (its lift then to be typed), and the dwells after it follow."""
     if law not in LAWS:
         raise ValueError(f"law must be one of {', '.join(LAWS)}, got {law!r}")
-    old = segment.get("law")
+    program = data
+    for k in keys[:-3]:
+        program = program[k]
+    segments = program["segments"]
+    i = int(keys[-2])
+    segment = segments[i]
+    old, old_h = segment.get("law"), segment.get("h")
     segment["law"] = law
     for k in ("b", "c", "d"):
         if law != "sine_constant_cosine":
@@ -204,8 +235,28 @@ def _set_law(segment: Dict[str, Any], law: str) -> None:
     if old == "polynomial":
         for k in ("start_derivatives", "end_derivatives", "interior_theta", "interior_h"):
             segment.pop(k, None)
+    level = _level_before(segments, i, program)
     if law == "dwell":
         segment.pop("h", None)  # a dwell keeps the level it starts at
+        if old_h is not None:
+            _dwells_follow(data, keys[:-1] + ["h"], old_h, level)
+    elif "h" not in segment:
+        segment["h"] = level
+
+
+def _metres(value: Any) -> Optional[float]:
+    """A length as the config writes it (a bare number in m, or "<number> <length unit>") in m."""
+    v = parse(value) if value is not None else None
+    if isinstance(v, float):
+        return v
+    if isinstance(v, str):
+        number, _, unit = v.partition(" ")
+        factor = _core.length_units().get(unit.strip())
+        try:
+            return float(number) * factor if factor else None
+        except ValueError:
+            return None
+    return None
 
 
 def _set_follower_type(follower: Dict[str, Any], kind: str) -> None:
@@ -214,18 +265,17 @@ def _set_follower_type(follower: Dict[str, Any], kind: str) -> None:
     if kind not in allowed:
         raise ValueError(f"type: a {old} follower may become one of {', '.join(allowed)} (the lift keeps its meaning)")
     follower["type"] = kind
-    base = parse(follower.get("base_radius", 0.04))
+    base = _metres(follower.get("base_radius")) or 0.04
     if kind.endswith("_flat"):
         for k in ("roller_radius", "arm_length"):
             follower.pop(k, None)
-    if kind == "translating_roller":
+    if kind.endswith("_roller"):  # a roller a quarter of the base radius: a start to edit
         follower.pop("face_angle", None)
-        follower.setdefault("roller_radius", 0.25 * base if isinstance(base, float) else 0.01)
-    if kind == "oscillating_roller":
         follower.pop("face_offset", None)
-        follower.setdefault("roller_radius", 0.25 * base if isinstance(base, float) else 0.01)
-        pivot = [parse(x) for x in follower.get("pivot", [0.1, 0.0])]
-        if all(isinstance(x, float) for x in pivot):
+        follower.setdefault("roller_radius", 0.25 * base)
+    if kind == "oscillating_roller":  # the arm reaching the cam centre from the pivot: a start to edit
+        pivot = [_metres(x) for x in follower.get("pivot", [])]
+        if len(pivot) == 2 and None not in pivot:
             follower.setdefault("arm_length", math.hypot(*pivot))
 
 
@@ -345,7 +395,7 @@ def _preset_fields(data: Dict[str, Any], case: Config) -> List[Field]:
         return Field(
             f"preset.parameters.{name}",
             name.replace("_", " "),
-            shown(given.get(name, float(getattr(defaults, name))), "mm" if name in PAPER_FOLLOWER else ""),
+            shown(given.get(name, float(getattr(defaults, name))), "mm" if name in PAPER_LENGTHS else ""),
             group,
             unit=unit,
         )

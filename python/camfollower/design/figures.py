@@ -51,6 +51,7 @@ def _cursor_shapes(axes: Sequence[str], cursor_deg: float) -> List[Dict[str, Any
     return [
         {
             "type": "line",
+            "name": "cursor",  # the page's cursor script replaces the shapes of this name
             "xref": ax,
             "yref": f"{ax.replace('x', 'y')} domain",
             "x0": cursor_deg,
@@ -315,7 +316,7 @@ def response(r: Dict[str, Any], rpm: float, cursor_deg: float = 0.0, label: str 
     """The flexible response at the camshaft's speed: the follower's acceleration against the rigid
     one, the contact force with contact loss shaded, and the residual vibration in the dwells."""
     u = r["unit"]
-    titles = [f"acceleration ({u}/s²)", "contact force (N)", f"residual ({'µm' if u == 'm' else 'µrad'})"]
+    titles = [f"accel. ({u}/s²)", "force (N)", f"residual ({'µm' if u == 'm' else 'µrad'})"]
     layout = _stacked(3, titles, 560, cursor_deg)
     s = r["summary"]
     layout["title"] = {
@@ -327,11 +328,13 @@ def response(r: Dict[str, Any], rpm: float, cursor_deg: float = 0.0, label: str 
     x = np.asarray(r["theta_deg"])
     lost = np.asarray(r["lost"], dtype=bool)
     data = [
-        _line(x, r["acceleration"], f"a.{r['dof']} (flexible)", 1, color=BLUE),
+        _line(x, r["acceleration"], f"follower '{r['dof']}' (flexible)", 1, color=BLUE),
         _line(x, r["rigid_acceleration"], "rigid ω²h″", 1, color="black", dash="dash", width=1),
-        _line(x, r["force"], "contact force", 2, color=BLUE),
+        _line(x, r["force"], "contact force" if r.get("outer_force") is None else "lifting flank force", 2, color=BLUE),
         _line(x, 1e6 * np.asarray(r["residual"], dtype=float), "residual vibration (dwells)", 3, color=GREEN),
     ]
+    if r.get("outer_force") is not None:  # a groove: the other flank pushes the other way
+        data.insert(3, _line(x, -np.asarray(r["outer_force"]), "outer flank force (negative)", 2, color=ORANGE))
     shapes = layout["shapes"]
     # Contact loss: shaded spans on the force plot.
     edges = np.flatnonzero(np.diff(np.concatenate(([0], lost.astype(int), [0]))))
@@ -351,7 +354,8 @@ def response(r: Dict[str, Any], rpm: float, cursor_deg: float = 0.0, label: str 
             }
         )
     if lost.any():
-        data.append(_line([None], [None], "contact lost", 2, color=RED, width=8))
+        free = "roller free in the groove" if r.get("outer_force") is not None else "contact lost"
+        data.append(_line([None], [None], free, 2, color=RED, width=8))
         data[-1]["opacity"] = 0.3
     layout["annotations"] = [
         {
@@ -441,7 +445,8 @@ def margin(
 
 def overlay(before: Dict[str, Any], after: Dict[str, Any], rpm: float, residuals: Dict[str, Any]) -> Dict[str, Any]:
     """Synthesis, before and after: the rigid acceleration of both lifts and their residual vibration."""
-    layout = _stacked(2, ["rigid acceleration", "residual (µm)"], 420, 0.0)
+    u = before["unit"]
+    layout = _stacked(2, [f"rigid accel. ({u}/s²)", f"residual ({'µm' if u == 'm' else 'µrad'})"], 460, 0.0)
     layout["title"] = {"text": f"synthesis at {rpm:.6g} rpm: before and after", "x": 0.01, "font": {"size": 14}}
     layout["margin"]["t"] = 60
     layout["annotations"] = [

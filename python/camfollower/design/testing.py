@@ -93,6 +93,26 @@ def element(browser, dom_id: str):
     return browser.find_element(By.XPATH, f"//*[@id='{dom_id}']")
 
 
+def choose(browser, path: str, value: str, timeout: float = 30.0) -> None:
+    """Pick `value` in the list of the field at `path` (a law, a follower type); wait until the page
+    answered (a redraw, or a message)."""
+    from selenium.webdriver.common.by import By
+
+    before = computed(browser).get("computed", 0)
+    status = element(browser, "status").text
+    element(browser, field_id(path)).click()
+    options = wait(lambda: browser.find_elements(By.CSS_SELECTOR, "label.dash-dropdown-option"), timeout, "the list")
+    hit = [o for o in options if o.text.strip() == value]
+    if not hit:
+        raise ValueError(f"{path}: no option {value!r} in {[o.text for o in options]}")
+    browser.execute_script("arguments[0].click();", hit[0])
+    wait(
+        lambda: computed(browser).get("computed", 0) > before or element(browser, "status").text != status,
+        timeout,
+        f"the page's answer to {path} = {value!r}",
+    )
+
+
 def figure_data(browser, graph: str) -> List[Dict[str, Any]]:
     """The traces a graph on the page draws (name, x, y), as Plotly holds them (an evenly spaced x sent
     as x0 and dx made an array)."""

@@ -126,7 +126,8 @@ def response(
     """The periodic steady state at the camshaft's speed (camfollower.response.steady_response: at
     ``steps_per_revolution`` with its accuracy estimated, or refined to ``accuracy``), as curves over
     one revolution against the contact's cam angle: the follower DOF's acceleration and the rigid
-    follower's ω²h″, the contact force and where contact is lost, and the residual vibration (the DOF
+    follower's ω²h″, the contact force and where contact is lost (a groove: ``outer_force``, the other
+    flank's, and lost where the roller touches neither), and the residual vibration (the DOF
     less its quasi-static path) in the dwells. ``summary`` is the study's row without its arrays;
     ``orbit`` the orbit (a warm start for the next design); ``seconds`` what it took.
     ``stop_at_loss``: a response that loses contact and does not settle is not chased further (as
@@ -157,6 +158,11 @@ def response(
     a = np.asarray(rec[f"a.{dof}"])[1:][order]
     force = np.asarray(rec[f"{name}.force"])[1:][order]
     touching = np.asarray(rec[f"{name}.in_contact"])[1:][order] > 0.5
+    grooved = c.get("groove") is not None
+    outer = None
+    if grooved:  # form-closed: the roller leaves the cam only when it touches neither flank
+        outer = np.asarray(rec[f"{name}.outer_force"])[1:][order]
+        touching |= np.asarray(rec[f"{name}.outer_in_contact"])[1:][order] > 0.5
     q = np.asarray(rec[f"q.{dof}"])[1:][order]
     program = c["program"]
     in_dwell = np.zeros(cam.size, dtype=bool)
@@ -166,9 +172,9 @@ def response(
     if in_dwell.any():
         qs = _response._quasi_static(m, dof, np.mod(shaft[order], 2.0 * math.pi))
         residual[in_dwell] = (q - qs)[in_dwell]
-    x, (a_e, f_e, lost_e, r_e) = _envelope(
-        np.degrees(cam), [a, force, (~touching).astype(float), residual], RESPONSE_POINTS
-    )
+    curves = [a, force, (~touching).astype(float), residual] + ([outer] if grooved else [])
+    x, drawn = _envelope(np.degrees(cam), curves, RESPONSE_POINTS)
+    a_e, f_e, lost_e, r_e = drawn[:4]
     rigid = m.omega**2 * np.asarray(program.evaluate(np.radians(x))["d2h"])
     summary = {k: v for k, v in row.items() if k not in ("dwells", "harmonics")}
     return {
@@ -176,6 +182,7 @@ def response(
         "acceleration": a_e,
         "rigid_acceleration": rigid,
         "force": f_e,
+        "outer_force": drawn[4] if grooved else None,
         "lost": lost_e > 0.5,
         "residual": r_e,
         "dof": dof,
