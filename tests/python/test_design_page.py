@@ -118,7 +118,7 @@ def test_page_edits_and_draws_the_librarys_numbers(folder, browser):
         rigid, _ = _trace(browser, "fig-response", "rigid ω²h″")
         # At the drawn angles (7 digits of 360 deg): the acceleration moves by its slope times 4e-5 deg.
         _same(rigid, omega**2 * np.asarray(c["program"].evaluate(np.radians(force_x))["d2h"]), 1e-5)
-        margin = T.figure_data(browser, "fig-margin")[0]
+        margin = next(t for t in T.figure_data(browser, "fig-margin") if t["name"] == "min contact force")
         assert len(margin["x"]) == 11 and min(margin["x"]) == pytest.approx(375.0)
 
         # 3. An undercut: a 30 mm roller on the 40 mm base circle with the rise squeezed into 40 deg.

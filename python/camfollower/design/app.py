@@ -653,7 +653,13 @@ class DesignApp:
                     warnings.simplefilter("always")
                     j = jump_speed(case.mechanism, (speeds[0], speeds[-1]), contact=contact)
                 notes = "".join(f"; {w.message}" for w in caught)
-                results["jump"] = {"rpm": float(j.rpm), "message": notes}
+                results["jump"] = {
+                    "rpm": float(j.rpm),
+                    "message": notes,
+                    # Every speed the search ran: a dip narrower than the margin curve's spacing shows.
+                    "scan": [_row_json(r) for r in j.margin],
+                    "windows": [[w.start_rpm, w.end_rpm] for w in j.windows],
+                }
                 return f"first contact loss at {j.rpm:.5g} rpm (the jump-speed search){notes}"
             except ValueError as e:
                 results["jump"] = {"rpm": None, "message": _clean(str(e))}

@@ -411,9 +411,36 @@ def margin(
             "marker": {"color": RED, "size": 10, "symbol": "x"},
         },
     ]
+    scan = [r for r in (jump or {}).get("scan", []) if "min_force_N" in r]
+    if scan:  # the jump-speed search's own speeds, dips included
+        data.insert(
+            0,
+            {
+                "type": "scatter",
+                "mode": "markers",
+                "x": [r["rpm"] for r in scan],
+                "y": [r["min_force_N"] for r in scan],
+                "name": "the jump-speed search's speeds",
+                "marker": {"color": GREY, "size": 4},
+            },
+        )
     shapes = [
         {"type": "line", "xref": "paper", "x0": 0, "x1": 1, "y0": 0, "y1": 0, "line": {"color": RED, "dash": "dash"}}
     ]
+    for start, end in (jump or {}).get("windows", []):  # contact lost over these speeds
+        shapes.append(
+            {
+                "type": "rect",
+                "yref": "paper",
+                "x0": start,
+                "x1": end if end is not None and math.isfinite(end) else hi,
+                "y0": 0,
+                "y1": 1,
+                "fillcolor": RED,
+                "opacity": 0.15,
+                "line": {"width": 0},
+            }
+        )
     if jump and jump.get("rpm") is not None:
         shapes.append(
             {
