@@ -454,12 +454,14 @@ using Dimensions = std::map<std::string, LiftDimension>;
 using Lengths = std::map<std::string, ProgramLengths>;
 
 // The lengths of `program` as written, checked against the base radius of the contact `owner` that
-// uses it (lengths.hpp): its lift levels when the follower translates (an arm angle is no length),
-// its profile errors' amplitudes and depths.
+// uses it (lengths.hpp): its lift levels when the follower translates, an arm's angles when it
+// oscillates (a bare number above a quarter turn), its profile errors' amplitudes and depths.
 void check_program_lengths(const ProgramLengths& program, double base_radius, bool translating,
                            const std::string& owner) {
-    if (translating)
-        for (const Length& h : program.levels) check_lift(h, base_radius, owner);
+    for (const Length& h : program.levels) {
+        if (translating) check_lift(h, base_radius, owner);
+        else check_arm_angle(h, owner);
+    }
     for (const auto& [L, what] : program.errors) check_small_length(L, what, base_radius, owner);
 }
 

@@ -105,6 +105,14 @@ void check_lift(const Length& lift, double base_radius, const std::string& owner
                  "10 x the base radius " + number(base_radius) + " m of " + owner);
 }
 
+void check_arm_angle(const Length& lift, const std::string& owner) {
+    if (!lift.bare || !std::isfinite(lift.value) || std::abs(lift.value) <= max_bare_arm_angle) return;
+    detail::fail(lift.where, ": the arm's lift ", number(lift.value), " rad of ", owner,
+                 " is more than a quarter turn (", number(max_bare_arm_angle), " rad): did you mean \"",
+                 number(lift.value), " deg\"? (a bare number is radians; write \"", number(lift.value),
+                 " rad\" if you mean it)");
+}
+
 void check_small_length(const Length& length, const char* what, double base_radius, const std::string& owner) {
     if (!usable(base_radius)) return;
     refuse_above(length, what, 0.1 * base_radius,

@@ -51,6 +51,12 @@ std::string offset_problem(const ContactLengths& c);
 // contact `owner` that uses it, refused at its key.
 void check_lift(const Length& lift, double base_radius, const std::string& owner);
 
+// An oscillating follower's lift (an arm angle) written as a bare number above a quarter turn: radians
+// by the config's rule, but a swing that large is the degrees of a "15" meant as "15 deg". Refused at
+// its key with the hint; written with its unit ("100 deg", "2 rad") it is taken as written.
+inline constexpr double max_bare_arm_angle = 1.5707963267948966;  // rad: pi / 2
+void check_arm_angle(const Length& lift, const std::string& owner);
+
 // A bare eccentricity radius, waviness amplitude or dent depth (`what`) above a tenth of the base radius.
 void check_small_length(const Length& length, const char* what, double base_radius, const std::string& owner);
 

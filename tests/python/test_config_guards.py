@@ -634,3 +634,21 @@ def test_bare_numbers_state_no_motion_and_load_as_before(tmp_path):
         SWING_ARM.replace('mass = "2e-4 kg m^2"', "mass = 2e-4").replace('stiffness = "20 N m/rad"', "stiffness = 20")
     )
     assert load_config(path).builder.__getstate__()["springs"][0]["stiffness"] == pytest.approx(20.0)
+
+
+def test_a_bare_arm_angle_beyond_a_quarter_turn_is_taken_for_degrees(tmp_path):
+    """An oscillating follower's lift is an arm angle, radians when bare: "h = 15" on the swing arm is a
+    15 rad (860 deg) swing, refused at its key with the degrees it means; with a unit, or a plausible
+    bare radian value, it loads."""
+    base = (EXAMPLES / "swing_arm.toml").read_text()
+    assert 'h = "15 deg" }' in base
+    path = tmp_path / "arm.toml"
+    path.write_text(base.replace('h = "15 deg" }', "h = 15 }"))  # the rise and the dwell after it
+    with pytest.raises(ValueError) as e:
+        load_config(path)
+    line = [i + 1 for i, t in enumerate(path.read_text().splitlines()) if "h = 15 }" in t][0]
+    assert str(e.value).startswith(f"{path}:{line}: program.swing.segments[1].h: the arm's lift 15 rad of contact ")
+    assert 'did you mean "15 deg"? (a bare number is radians; write "15 rad" if you mean it)' in str(e.value)
+    for h, rad in (("0.2617993877991494", 0.2617993877991494), ('"15 deg"', math.radians(15.0))):
+        path.write_text(base.replace('h = "15 deg" }', f"h = {h} }}"))
+        assert load_config(path).programs["swing"].max_lift() == pytest.approx(rad)
