@@ -379,13 +379,24 @@ def response(r: Dict[str, Any], rpm: float, cursor_deg: float = 0.0, label: str 
     return {"data": data, "layout": layout}
 
 
+def _speeds(rows: Sequence[Dict[str, Any]], name: str, mode: str, **style) -> Dict[str, Any]:
+    """The smallest contact force of `rows` (steady states) against their speed."""
+    return {
+        "type": "scatter",
+        "mode": mode,
+        "x": [r["rpm"] for r in rows],
+        "y": [r["min_force_N"] for r in rows],
+        "name": name,
+        **style,
+    }
+
+
 def margin(
     rows: Sequence[Dict[str, Any]], speeds: Sequence[float], jump: Optional[Dict[str, Any]] = None
 ) -> Dict[str, Any]:
     """Minimum contact force of the steady state against camshaft speed (computed so far), contact loss
     marked, and the first contact loss found by the jump-speed search."""
     done = [r for r in rows if "min_force_N" in r]
-    ok = [r for r in done if not r.get("contact_lost")]
     bad = [r for r in done if r.get("contact_lost")]
     lo, hi = (min(speeds), max(speeds)) if speeds else (0, 1)
     title = f"margin curve: {len(done)} of {len(speeds)} speeds"
@@ -393,37 +404,15 @@ def margin(
         title += f"; first contact loss at {jump['rpm']:.5g} rpm"
     elif jump and jump.get("message"):
         title += f"; {jump['message']}"
-    data = [
-        {
-            "type": "scatter",
-            "mode": "lines+markers",
-            "x": [r["rpm"] for r in done],
-            "y": [r["min_force_N"] for r in done],
-            "name": "min contact force",
-            "line": {"color": BLUE, "width": 1.4},
-        },
-        {
-            "type": "scatter",
-            "mode": "markers",
-            "x": [r["rpm"] for r in bad],
-            "y": [r["min_force_N"] for r in bad],
-            "name": "contact lost",
-            "marker": {"color": RED, "size": 10, "symbol": "x"},
-        },
-    ]
     scan = [r for r in (jump or {}).get("scan", []) if "min_force_N" in r]
-    if scan:  # the jump-speed search's own speeds, dips included
-        data.insert(
-            0,
-            {
-                "type": "scatter",
-                "mode": "markers",
-                "x": [r["rpm"] for r in scan],
-                "y": [r["min_force_N"] for r in scan],
-                "name": "the jump-speed search's speeds",
-                "marker": {"color": GREY, "size": 4},
-            },
-        )
+    data = [
+        # The jump-speed search's own speeds: it refines every dip, so a narrow resonance shows.
+        _speeds(
+            scan, "the jump-speed search's speeds", "markers", marker={"color": GREY, "size": 4}, showlegend=bool(scan)
+        ),
+        _speeds(done, "min contact force", "lines+markers", line={"color": BLUE, "width": 1.4}),
+        _speeds(bad, "contact lost", "markers", marker={"color": RED, "size": 10, "symbol": "x"}),
+    ]
     shapes = [
         {"type": "line", "xref": "paper", "x0": 0, "x1": 1, "y0": 0, "y1": 0, "line": {"color": RED, "dash": "dash"}}
     ]
@@ -453,7 +442,6 @@ def margin(
                 "line": {"color": RED, "width": 1.5},
             }
         )
-    del ok
     layout = {
         "height": 360,
         "margin": {"l": 70, "r": 20, "t": 40, "b": 80},
