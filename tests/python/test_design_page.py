@@ -174,6 +174,10 @@ def test_page_edits_and_draws_the_librarys_numbers(folder, browser):
         ARTIFACTS.mkdir(parents=True, exist_ok=True)
         _wait_background(browser)
         browser.save_screenshot(str(ARTIFACTS / "design_page.png"))
+        # Offline: everything the page loaded (scripts, styles, Plotly.js) came from this server.
+        loaded = browser.execute_script("return performance.getEntriesByType('resource').map(e => e.name);")
+        assert loaded and all(u.startswith(f"http://127.0.0.1:{page.port}/") for u in loaded), loaded
+        assert any("plotly" in u for u in loaded)
 
 
 def test_bad_values_are_shown_at_their_field(folder, browser):
