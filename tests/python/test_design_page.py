@@ -396,3 +396,13 @@ def test_synthesize_then_use_the_lift(folder, browser):
         theta = np.linspace(0.0, 2.0 * math.pi, V.ANGLES)
         lift, _ = _trace(browser, "fig-svaj", "lift")
         _same(lift, _lift_mm(synthesized, theta))
+
+
+def test_a_profile_check_message_goes_to_the_geometry_it_names():
+    """A follower's check (no key path in it) lands at the geometry key it names first."""
+    paths = ["camshaft.speed", "preset.parameters.base_radius", "preset.parameters.roller_radius"]
+    message = (
+        "the cam profile undercuts at theta = 75 deg: ... must exceed roller_radius = 0.03 m (enlarge base_radius)"
+    )
+    assert D.field_of_message(message, paths) == paths[2]
+    assert D.field_of_message("the cam surface has a cusp ... (enlarge base_radius ...)", paths) == paths[1]

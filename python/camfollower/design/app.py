@@ -22,7 +22,7 @@ import warnings
 from pathlib import Path
 from typing import Any, Dict, List, Optional
 
-from .. import _core, _files
+from .. import _files
 from ..config import load_config
 from . import document as doc_
 from . import figures as figs
@@ -332,7 +332,7 @@ class DesignApp:
 
     def _build(self):
         dash = _dash()
-        from dash import ALL, Input, Output, State, ctx, no_update
+        from dash import ALL, Input, Output, State, ctx
 
         app = dash.Dash(
             __name__,
@@ -430,7 +430,6 @@ class DesignApp:
         def synthesis_action(_s, _u, state, tab):
             return self.synthesis_action(ctx.triggered_id, state, tab)
 
-        del no_update
         return app
 
     # -----------------------------------------------------------------------------------------------
@@ -511,7 +510,7 @@ class DesignApp:
         state["refused"] = False
         t_build = time.perf_counter()
         if k["check"]:
-            where = doc_.field_of_message(f"follower: {k['check']}", ids) or _geometry_field(k["check"], ids) or changed
+            where = doc_.field_of_message(k["check"], ids) or changed
             if where in errors:
                 errors[where] = k["check"]
         t_kin = time.perf_counter()
@@ -553,7 +552,7 @@ class DesignApp:
             dash.set_props("form", {"children": self._form(state, case)})
         state["computed"] += 1
         if not k["check"]:
-            self._start_background(tab, case, state, quick)
+            self._start_background(tab, case, state)
         else:
             self.jobs.start(tab, [], status="")
         timing = {
@@ -615,7 +614,7 @@ class DesignApp:
         n = max(2, min(n, 41))
         return [lo + (hi - lo) * i / (n - 1) for i in range(n)]
 
-    def _start_background(self, tab, case, state, quick) -> None:
+    def _start_background(self, tab, case, state) -> None:
         contact = state["contact"]
         rpm = float(case.mechanism.camshaft_speed_rpm)
         speeds = self._margin_speeds(state, rpm)
@@ -669,7 +668,6 @@ class DesignApp:
         # A form-closed (grooved) cam has no margin against contact loss to scan.
         steps = [refine] + ([] if grooved else [at(s) for s in speeds] + [first_loss])
         self.jobs.start(tab, steps, status="refining the response ...")
-        del quick
 
     def poll(self, tab, seen, state, cursor):
         dash = _dash()
@@ -775,15 +773,12 @@ class DesignApp:
             program = memo.get("synthesized")
             if program is None:
                 return "nothing to use yet: run Synthesize first", dash.no_update
-            from ..config import program_toml
-
             name = doc_.program_name(state["data"], state["contact"])
             if not name:
                 return "this contact's program is the preset's own: it cannot be replaced here", dash.no_update
-            rotary = not doc_._translating(state["data"], state["contact"])
-            table = _core._parse_toml(program_toml(program, name, rotary=rotary).encode(), "<synthesis>")
-            data = copy.deepcopy(state["data"])
-            data["program"][name] = table["program"][name]
+            data = doc_.with_program(
+                state["data"], name, program, not doc_.translating(state["data"], state["contact"])
+            )
             case = doc_.build(data, state["base_dir"])
             new = self._state(
                 data, state["base_dir"], state["source"], state["digest"], state["contacts"], state["contact"], case
@@ -817,16 +812,11 @@ class DesignApp:
                 settings["start"] = synthesis.with_laws(own["program"], start)
             result = synthesis.synthesize(m, workers=1, **settings)
             memo["synthesized"] = result.program
-            after_case = case  # the same mechanism with the new lift, for the overlay
-            data = copy.deepcopy(state["data"])
-            name = doc_.program_name(data, contact)
-            from ..config import program_toml
-
-            rotary = not doc_._translating(data, contact)
-            data["program"][name] = _core._parse_toml(
-                program_toml(result.program, name, rotary=rotary).encode(), "<synthesis>"
-            )["program"][name]
-            after_case = doc_.build(data, state["base_dir"])
+            # The same mechanism with the new lift, for the overlay.
+            data, name = state["data"], doc_.program_name(state["data"], contact)
+            after_case = doc_.build(
+                doc_.with_program(data, name, result.program, not doc_.translating(data, contact)), state["base_dir"]
+            )
             before = views.response(case, contact, accuracy=views.REFINED_ACCURACY)
             after = views.response(after_case, contact, accuracy=views.REFINED_ACCURACY)
             before.pop("orbit"), after.pop("orbit")
@@ -858,16 +848,6 @@ def _changed(memo, figures: Dict[str, Any]) -> List[Any]:
 def _guess(memo, case):
     """The tab's last orbit as a warm start, when it fits the mechanism (the same DOFs)."""
     return memo.get("orbit") if memo.get("dofs") == len(case.mechanism.dof_names) else None
-
-
-def _geometry_field(message: str, ids: List[str]) -> Optional[str]:
-    """The follower field a profile check's message asks to change (roller_radius, base_radius)."""
-    for key in ("roller_radius", "base_radius"):
-        if key in message:
-            for p in ids:
-                if p.endswith(f".{key}"):
-                    return p
-    return None
 
 
 def _clean(message: str) -> str:

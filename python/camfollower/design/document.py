@@ -304,19 +304,25 @@ def program_name(data: Dict[str, Any], contact: str) -> Optional[str]:
     return None if i is None else data["contact"][i].get("program")
 
 
+def with_program(data: Dict[str, Any], name: str, program, rotary: bool = False) -> Dict[str, Any]:
+    """A copy of `data` whose ``[program.<name>]`` is `program` (a MotionProgram), as the config table
+    that loads back exactly (config.program_toml); ``rotary``: an arm's lift, in rad."""
+    out = copy.deepcopy(data)
+    text = program_toml(program, name, rotary=rotary)
+    out.setdefault("program", {})[name] = _core._parse_toml(text.encode(), "<program>")["program"][name]
+    return out
+
+
 def with_program_written_out(data: Dict[str, Any], case: Config) -> Dict[str, Any]:
     """The paper preset without a ``program`` of its own uses the paper's lift: written out as a
     ``[program.paper]`` table (the same program, exactly) so that its segments can be edited."""
     preset = data.get("preset")
     if not preset or preset.get("name") not in ("paper", "paper_damped") or preset.get("program"):
         return data
-    out = copy.deepcopy(data)
     name = "paper"
-    while name in out.get("program", {}):
+    while name in data.get("program", {}):
         name += "_"
-    program = case.builder.contacts[0]["program"]
-    table = _core._parse_toml(program_toml(program, name).encode(), "<program>")["program"][name]
-    out.setdefault("program", {})[name] = table
+    out = with_program(data, name, case.builder.contacts[0]["program"])
     out["preset"]["program"] = name
     return out
 
@@ -344,7 +350,7 @@ def _program_fields(data: Dict[str, Any], contact: str) -> List[Field]:
         what = f"file {program['file']}" if "file" in program else f"{n} points"
         return [Field(f"program.{name}", "whole-revolution lift table", what, group, "readonly")]
     rows: List[Field] = []
-    lift = "mm" if _translating(data, contact) else "deg"
+    lift = "mm" if translating(data, contact) else "deg"
     for i, s in enumerate(segments):
         base = f"program.{name}.segments[{i}]"
         law = s.get("law", "")
@@ -369,7 +375,7 @@ def _program_fields(data: Dict[str, Any], contact: str) -> List[Field]:
 _LIFT_UNITS = {"mm": "m, or '12 mm'", "deg": "rad, or '15 deg'"}
 
 
-def _translating(data: Dict[str, Any], contact: str) -> bool:
+def translating(data: Dict[str, Any], contact: str) -> bool:
     if "preset" in data:
         return True
     i = _data_contact(data, contact)
@@ -491,7 +497,14 @@ def field_of_message(message: str, paths: List[str]) -> Optional[str]:
     if named.startswith("program.") or named.startswith("preset.program"):
         prog = [p for p in paths if p.startswith("program.")]
         return prog[0] if prog else None
-    return None
+    # No key path (a profile check's message): the follower's geometry key it names first.
+    named_keys = []
+    for p in paths:
+        key = str(split_path(p)[-1])
+        hit = re.search(rf"\b{re.escape(key)}\b", message) if key in _FOLLOWER_KEYS + PAPER_FOLLOWER else None
+        if hit:
+            named_keys.append((hit.start(), p))
+    return min(named_keys)[1] if named_keys else None
 
 
 __all__ = [
@@ -508,5 +521,7 @@ __all__ = [
     "set_value",
     "shown",
     "split_path",
+    "translating",
+    "with_program",
     "with_program_written_out",
 ]

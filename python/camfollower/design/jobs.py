@@ -95,9 +95,6 @@ class Jobs:
                 state.status = "cancelled"
                 state.version += 1
 
-    def current(self, state: TabState, generation: int) -> bool:
-        return state.generation == generation
-
     def _run(self, state: TabState, generation: int, steps: List[Step]) -> None:
         results: Dict[str, Any] = {}  # the generation's: each step adds to it
         for step in steps:
