@@ -6,7 +6,9 @@ died out the response repeats every revolution. :func:`periodic_steady_state` fi
 Newton's method on the state at the start of a revolution (docs/studies.md): it costs a fixed number
 of revolutions (``2 n`` per monodromy matrix for ``n`` DOFs, plus one per iteration) however lightly
 damped the mechanism is, where the transient route needs as many revolutions as its slowest mode takes
-to decay. The monodromy matrix's eigenvalues (Floquet multipliers) say whether the orbit is stable and
+to decay. For the Newmark family on the dense backend the monodromy comes from the scheme's variational
+equations carried through one revolution (about three revolutions' time) instead of ``2 n``
+revolutions of finite differences. The monodromy matrix's eigenvalues (Floquet multipliers) say whether the orbit is stable and
 how it would lose stability: through -1 (period doubling), +1 (a fold: the jump) or as a complex pair.
 """
 
@@ -30,8 +32,9 @@ class PeriodicOrbit:
     ``q``, ``v``: the state (SI units per DOF) from which one revolution returns to itself within
     ``mismatch`` (displacements relative to the largest |q| on the revolution, velocities to the
     largest |v|: ``q_scale``, ``v_scale``). ``multipliers``: Floquet multipliers (complex, largest magnitude first);
-    ``monodromy``: d(q, v)(T)/d(q, v)(0), ``2n x 2n``. ``revolutions``: what finding it cost, in
-    revolutions simulated. ``method``: "shooting", or "transient" when the shooting failed and the
+    ``monodromy``: d(q, v)(T)/d(q, v)(0), ``2n x 2n``, built ``monodromy_method`` ("variational",
+    "differences", or "" when none was built). ``revolutions``: what finding it cost, in
+    revolutions simulated, of which ``variational_revolutions`` carried the step sensitivities. ``method``: "shooting", or "transient" when the shooting failed and the
     transient route was asked for as the fallback. ``scheme``: the solver settings the orbit belongs to
     (pass the orbit to :meth:`record` to get its time histories).
     """
@@ -53,6 +56,8 @@ class PeriodicOrbit:
     v_scale: float = math.nan
     method: str = "shooting"
     scheme: Dict[str, Any] = field(default_factory=dict)
+    monodromy_method: str = ""
+    variational_revolutions: float = 0.0
 
     def __repr__(self) -> str:  # the facts, not the state vectors and the 2n x 2n monodromy
         return (
@@ -103,6 +108,7 @@ class PeriodicOrbit:
             "mismatch": self.mismatch,
             "iterations": self.iterations,
             "monodromies": self.monodromies,
+            "monodromy_method": self.monodromy_method,
             "revolutions": self.revolutions,
             "spectral_radius": self.spectral_radius,
             "instability": self.instability(),
@@ -120,6 +126,7 @@ def periodic_steady_state(
     warmup_revolutions: int = 1,
     perturbation: float = 1e-6,
     multipliers: bool = True,
+    monodromy: str = "auto",
     guess: Optional[PeriodicOrbit] = None,
     fallback: Optional[str] = None,
     transient_tolerance: float = 1e-6,
@@ -138,7 +145,10 @@ def periodic_steady_state(
     or from ``guess`` (a nearby orbit, e.g. the nominal case of a tolerance study: its state and
     monodromy start the iterations, which then usually need no monodromy of their own).
     ``multipliers``: build the monodromy at the converged orbit if the last one was built elsewhere
-    (Floquet multipliers of the orbit itself; 2n revolutions), else keep the last one's.
+    (Floquet multipliers of the orbit itself), else keep the last one's. ``monodromy``: how it is built,
+    "variational" (the scheme's step sensitivities carried through one revolution: the Newmark family
+    on the dense backend), "differences" (2n revolutions of forward differences, ``perturbation``
+    relative to the revolution's scales) or "auto" (variational where available).
 
     Raises RuntimeError with the mismatch history when the shooting does not converge (a response
     that is not periodic: contact loss with chatter, period doubling), unless ``fallback="transient"``:
@@ -163,7 +173,7 @@ def periodic_steady_state(
             f"{list(SolverSettings.FIELDS)}"
         )
     settings, _ = settings_and_options(settings, None, **scheme)
-    q0 = v0 = monodromy = None
+    q0 = v0 = guess_monodromy = None
     if guess is not None:
         if not isinstance(guess, PeriodicOrbit):
             raise TypeError(f"guess must be a PeriodicOrbit, got {type(guess).__name__}")
@@ -171,7 +181,7 @@ def periodic_steady_state(
         if len(guess.q) != n:
             raise ValueError(f"guess has {len(guess.q)} DOFs, the system {n}")
         q0, v0 = guess.q, guess.v
-        monodromy = guess.monodromy if guess.monodromy.size else None
+        guess_monodromy = guess.monodromy if guess.monodromy.size else None
     if fallback == "transient" and 2 * len(system.dof_names) > _core.SHOOTING_MAX_STATE_SIZE:
         # Too large for shooting's dense monodromy (2n revolutions each): the transient route answers.
         return _transient(system, settings.fields(), None, transient_tolerance, transient_max_revolutions)
@@ -185,9 +195,10 @@ def periodic_steady_state(
         warmup_revolutions,
         perturbation,
         multipliers,
-        monodromy,
+        guess_monodromy,
         q0,
         v0,
+        monodromy,
     )
     names = tuple(system.dof_names)
     kept = settings.fields()
@@ -208,6 +219,8 @@ def periodic_steady_state(
         q_scale=float(raw["q_scale"]),
         v_scale=float(raw["v_scale"]),
         scheme=kept,
+        monodromy_method=str(raw["monodromy_method"]),
+        variational_revolutions=float(raw["variational_revolutions"]),
     )
     if orbit.converged:
         return orbit

@@ -244,11 +244,13 @@ def steady_response(
         coarse = None
         orbit = orbit_at(steps, guess, False)
     force, acc, rec = _measured(system, orbit, name, dof)
+    # The coarser orbit's force and acceleration (each orbit is recorded once).
+    coarse_measured = _measured(system, coarse, name, dof)[:2] if coarse is not None else None
     estimate, previous = math.inf, math.inf
     stalls = 0  # refinements in a row whose change did not halve
     while True:
         if coarse is not None:
-            f_c, a_c, _ = _measured(system, coarse, name, dof)
+            f_c, a_c = coarse_measured
             previous, estimate = estimate, max(_change(force, f_c), _change(acc, a_c)) / _RICHARDSON
         if target is None or estimate <= target or 2 * steps > finest:
             break
@@ -269,11 +271,11 @@ def steady_response(
             and not orbit.mismatch <= 0.25 * coarse.mismatch
         ):
             break
-        coarse, steps = orbit, 2 * steps
+        coarse, coarse_measured, steps = orbit, (force, acc), 2 * steps
         orbit = orbit_at(steps, coarse, False)
         force, acc, rec = _measured(system, orbit, name, dof)
     if multipliers and not orbit.monodromy_at_orbit and orbit.method == "shooting":
-        orbit = orbit_at(steps, orbit, True)  # the multipliers of the orbit reported (2n revolutions)
+        orbit = orbit_at(steps, orbit, True)  # the multipliers of the orbit reported
     reached = target is None or estimate <= target
     return _row(
         system,

@@ -360,6 +360,8 @@ py::dict shoot_system(const System& system, const SolverSettings& settings, cons
     d["cancelled"] = o.cancelled;
     d["iterations"] = o.iterations;
     d["monodromies"] = o.monodromies;
+    d["monodromy_method"] = o.monodromies ? monodromy_method_name(o.monodromy_method) : "";
+    d["variational_revolutions"] = o.variational_revolutions;
     d["mismatch"] = o.mismatch;
     d["history"] = o.history;
     d["q"] = o.q;
@@ -386,7 +388,8 @@ void bind_shoot(py::module_& m, Shoot shoot_fn) {
         [shoot_fn](const System& system, const SolverSettings& settings, std::optional<double> period,
                    double start_time, double tolerance, int shooting_max_iterations, int warmup_revolutions,
                    double perturbation, bool multipliers, const std::optional<Eigen::MatrixXd>& monodromy,
-                   const std::optional<Eigen::VectorXd>& q0, const std::optional<Eigen::VectorXd>& v0) {
+                   const std::optional<Eigen::VectorXd>& q0, const std::optional<Eigen::VectorXd>& v0,
+                   const std::string& monodromy_method) {
             const SolverSettings s = as_run(settings);
             ShootingOptions o;
             if (period) o.period = *period;
@@ -397,11 +400,13 @@ void bind_shoot(py::module_& m, Shoot shoot_fn) {
             o.perturbation = perturbation;
             o.multipliers = multipliers;
             if (monodromy) o.monodromy = *monodromy;
+            o.monodromy_method = monodromy_method_from_name(monodromy_method);
             return shoot_fn(system, s, o, q0, v0);
         },
         py::arg("system"), py::arg("settings"), py::arg("period"), py::arg("start_time"), py::arg("tolerance"),
         py::arg("shooting_max_iterations"), py::arg("warmup_revolutions"), py::arg("perturbation"),
         py::arg("multipliers"), py::arg("monodromy"), py::arg("q0"), py::arg("v0"),
+        py::arg("monodromy_method") = "auto",
         "Internal: camfollower.periodic_steady_state() calls this and wraps the output in a PeriodicOrbit.");
 }
 

@@ -150,6 +150,32 @@ public:
         }
     }
 
+    // X = -(A0 + (1 + alpha) U V^T)^-1 R for a block of right-hand sides (the variational equations,
+    // solver/step_sensitivity.hpp), with the tangent of the last fill_tangent(). Nothing allocated
+    // once X and the scratch have their sizes.
+    void solve_columns(int level, double one_alpha, const Eigen::MatrixXd& R, Eigen::MatrixXd& X) {
+        update_woodbury_columns(level, one_alpha);
+        const int k = uv_.rank;
+        if (s_.linear_solver == LinearSolver::dense_lu || k > max_woodbury_rank || 2 * k > n_) {
+            full_ = A0_[level];
+            if (k > 0) full_.noalias() += one_alpha * uv_.U.leftCols(k) * uv_.V.leftCols(k).transpose();
+            lu_.compute(full_);
+            X.noalias() = lu_.solve(R);
+            X = -X;
+            return;
+        }
+        X.noalias() = A0_inv_[level] * R;
+        if (k > 0) {  // Woodbury, as solve()
+            Small S = Small::Identity(k, k);
+            S.noalias() += uv_.V.leftCols(k).transpose() * Z_.leftCols(k);
+            block_.resize(uv_.capacity(), R.cols());
+            block_.topRows(k).noalias() = uv_.V.leftCols(k).transpose() * X;
+            block_.topRows(k) = S.partialPivLu().solve(block_.topRows(k));
+            X.noalias() -= Z_.leftCols(k) * block_.topRows(k);
+        }
+        X = -X;
+    }
+
     // M a = rhs.
     Vector solve_mass(const Vector& rhs) const { return system_.mass().partialPivLu().solve(rhs); }
 
@@ -202,6 +228,7 @@ private:
     Columns Z_, U_cached_;
     int cached_rank_ = 0, cached_level_ = -1;
     Vector x_;
+    Eigen::MatrixXd block_;  // V^T X of solve_columns()
     Matrix full_;
     Eigen::PartialPivLU<Matrix> lu_;
 };

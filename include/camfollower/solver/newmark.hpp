@@ -38,6 +38,7 @@
 #include "camfollower/solver/interrupt.hpp"
 #include "camfollower/solver/settings.hpp"
 #include "camfollower/solver/state.hpp"
+#include "camfollower/solver/step_sensitivity.hpp"
 
 namespace camfollower {
 
@@ -102,9 +103,27 @@ public:
         force_scale_ = std::max({1.0, Kq.cwiseAbs().maxCoeff(), s.f.cwiseAbs().maxCoeff()});
         if (control_error_) start_error_control(s);
         else linear_.check_stability_limit(s);
+        if constexpr (provides_sensitivity) {
+            if (sensitivity_) start_sensitivity(s);
+        }
         accepted(system_, s.workspace, s.q, s.v);  // path memory starts from the initial state
         events_.start(s.workspace, s.q, s.v);
         return s;
+    }
+
+    // The variational equations (solver/step_sensitivity.hpp) on the dense backend; the sparse one
+    // would refactor its matrix for every column (shooting's finite differences serve it).
+    static constexpr bool provides_sensitivity = std::is_same_v<Linear, DenseNewtonSolve<System>>;
+    // While set (non-null), start() and every accepted step carry d(q, v, a) / d(q0, v0) in
+    // *sensitivity, (q0, v0) being the state given to start(); null stops it. Sizes once per call.
+    void track_sensitivity(StepSensitivity* sensitivity) {
+        static_assert(provides_sensitivity, "the variational equations need the dense backend");
+        sensitivity_ = sensitivity;
+        if (!sensitivity) return;
+        sensitivity->resize(n_);
+        const int capacity = std::max(1, max_rank(system_));
+        sensitivity->low_rank.resize(capacity, 2 * n_);
+        sens_uvq_ = sens_uvv_ = LowRank<Vector>(n_, capacity);
     }
 
     // Highest undamped natural angular frequency (rad/s) at a state, contacts linearized (NaN when
@@ -220,14 +239,14 @@ private:
             // Skip the confirming solve when the next increment is bounded below tolerance.
             if (iterations > 0 && residual_ok && linear_.inverse_bound(level) > 0.0 &&
                 r_.norm() * linear_.inverse_bound(level) <= q_tol && linear_.tangent_is_spd())
-                return finish(s, t1, dt, false);  // s.f is already the force at (q_, v_)
+                return finish(s, t1, dt, level, false);  // s.f is already the force at (q_, v_)
             linear_.solve(level, one_alpha, r_, dq_);
             a_ += dq_ / q_step;
             ++iterations;
             if (residual_ok && dq_.cwiseAbs().maxCoeff() <= q_tol) {
                 q_ = q_pred_ + q_step * a_;
                 v_ = v_pred_ + v_step * a_;
-                return finish(s, t1, dt, true);
+                return finish(s, t1, dt, level, true);
             }
         }
         return fail_step(s);
@@ -245,9 +264,12 @@ private:
 
     // The converged iterate (q_, v_, a_): accepted, or under a tolerance refused when its error is
     // above it (the state left as it was).
-    CAMFOLLOWER_FORCE_INLINE bool finish(StateType& s, double t1, double dt, bool evaluate_force) {
+    CAMFOLLOWER_FORCE_INLINE bool finish(StateType& s, double t1, double dt, int level, bool evaluate_force) {
         if (evaluate_force) nonlinear_force(system_, s.workspace, q_, v_, s.f);
         if (control_error_ && !within_tolerance(s, dt)) return fail_step(s);
+        if constexpr (provides_sensitivity) {
+            if (sensitivity_) propagate_sensitivity(s.workspace, dt, level);
+        }
         accept(s, t1);
         return true;
     }
@@ -278,6 +300,50 @@ private:
         prepare(system_, s.t, s.workspace);
         nonlinear_force(system_, s.workspace, s.q, s.v, s.f);
         return false;
+    }
+
+    // The variational equations (solver/step_sensitivity.hpp): the start's and one accepted step's.
+    CAMFOLLOWER_NOINLINE void start_sensitivity(const StateType& s) {
+        StepSensitivity& d = *sensitivity_;
+        d.dq.setZero(), d.dv.setZero();
+        d.dq.leftCols(n_).setIdentity();
+        d.dv.rightCols(n_).setIdentity();
+        tangent_products(s.workspace, s.q, s.v, d.dq, d.dv, d.g);
+        d.da = Eigen::MatrixXd(linear_.mass()).partialPivLu().solve(d.g);
+        d.da = -d.da;
+    }
+    CAMFOLLOWER_NOINLINE void propagate_sensitivity(const workspace_t<System>& ws, double dt, int level) {
+        StepSensitivity& d = *sensitivity_;
+        const double alpha = p_.alpha, one_alpha = 1.0 + alpha;
+        const double q_step = p_.beta * dt * dt, v_step = p_.gamma * dt;
+        d.p = d.dq + dt * d.dv + (dt * dt * (0.5 - p_.beta)) * d.da;
+        d.w = d.dv + (dt * (1.0 - p_.gamma)) * d.da;
+        tangent_products(ws, q_, v_, d.p, d.w, d.r);
+        d.r *= one_alpha;
+        if (alpha != 0.0) d.r -= alpha * d.g;
+        linear_.fill_tangent(ws, q_, v_, 1.0, p_.gamma / (p_.beta * dt));  // the Newton matrix at the step's end
+        linear_.solve_columns(level, one_alpha, d.r, d.da);
+        d.da /= q_step;
+        d.dq = d.p + q_step * d.da;
+        d.dv = d.w + v_step * d.da;
+        d.g *= alpha;
+        d.g.noalias() -= linear_.mass() * d.da;
+        d.g /= one_alpha;
+    }
+    // out = (K + F_q) xq + (C + F_v) xv, the tangent F at (q, v).
+    void tangent_products(const workspace_t<System>& ws, const Vector& q, const Vector& v, const Eigen::MatrixXd& xq,
+                          const Eigen::MatrixXd& xv, Eigen::MatrixXd& out) {
+        out.noalias() = linear_.stiffness() * xq;
+        out.noalias() += linear_.damping() * xv;
+        camfollower::tangent(system_, ws, q, v, 1.0, 0.0, sens_uvq_);
+        camfollower::tangent(system_, ws, q, v, 0.0, 1.0, sens_uvv_);
+        for (const auto* uv : {&sens_uvq_, &sens_uvv_}) {
+            const int k = uv->rank;
+            if (k == 0) continue;
+            auto vx = sensitivity_->low_rank.topRows(k);
+            vx.noalias() = uv->V.leftCols(k).transpose() * (uv == &sens_uvq_ ? xq : xv);
+            out.noalias() += uv->U.leftCols(k) * vx;
+        }
     }
 
     // Error control (a tolerance set). The steps are time_step / 2^level, level in [coarsest_level_,
@@ -409,6 +475,8 @@ private:
     Vector eq_, ev_, da_, da_old_, ef_;
     LowRank<Vector> uvq_, uvv_;
     InterruptPoll interrupt_;
+    StepSensitivity* sensitivity_ = nullptr;  // variational equations while shooting builds a monodromy
+    LowRank<Vector> sens_uvq_, sens_uvv_;     // their tangent, dF/dq and dF/dv apart
     double force_scale_ = 1.0;
     double norm_M_ = 0.0, norm_C_ = 0.0, norm_K_ = 0.0;  // infinity norms, for the rounding floor
     // Scratch, sized once: nothing is allocated inside the time loop.

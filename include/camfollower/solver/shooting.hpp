@@ -4,25 +4,28 @@
 // fixed point of the one-revolution map Phi of the time-stepping scheme,
 //     R(z) = Phi(z) - z = 0,   (dPhi/dz - I) dz = -R(z),
 // instead of simulating revolutions until the transient has died out (solver/settle.hpp). The
-// monodromy matrix dPhi/dz is built by forward differences (one revolution per state component, 2n
-// in all); it is reused while the iterations converge quickly (chord iterations: one revolution each)
-// and rebuilt when they do not; four Newton steps in a row that do not halve the best mismatch end
-// the search (not periodic, or a tolerance below the rounding floor). Its eigenvalues are the
-// Floquet multipliers of the orbit: all inside the unit circle for a stable orbit; one leaving
-// through -1 flags period doubling, through +1 a fold (the onset of a jump), a complex pair a
-// quasi-periodic response (the start of chatter).
+// monodromy matrix dPhi/dz comes from the scheme's variational equations carried through one
+// revolution (solver/step_sensitivity.hpp: the Newmark family on the dense backend), else from
+// forward differences (one revolution per state component, 2n in all); it is reused while the iterations converge
+// quickly (chord iterations: one revolution each) and rebuilt when they do not; four Newton steps in a row that do not
+// halve the best mismatch end the search (not periodic, or a tolerance below the rounding floor). Its eigenvalues are
+// the Floquet multipliers of the orbit: all inside the unit circle for a stable orbit; one leaving through -1 flags
+// period doubling, through +1 a fold (the onset of a jump), a complex pair a quasi-periodic response (the start of
+// chatter).
 //
 // The orbit found is the fixed point of the discrete scheme with this time step: the state a long
 // transient run with the same settings converges to, without waiting for lightly damped modes.
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <cstdint>
 #include <functional>
 #include <limits>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -30,9 +33,22 @@
 #include <Eigen/LU>
 
 #include "camfollower/error.hpp"
+#include "camfollower/solver/settings.hpp"
 #include "camfollower/solver/state.hpp"
+#include "camfollower/solver/step_sensitivity.hpp"
 
 namespace camfollower {
+
+// How shooting builds the monodromy: "variational" (one revolution carrying the step sensitivities),
+// "differences" (2n perturbed revolutions), "auto" (variational where the stepper provides it).
+enum class MonodromyMethod { automatic, variational, differences };
+inline constexpr std::array<const char*, 3> monodromy_method_names{"auto", "variational", "differences"};
+inline const char* monodromy_method_name(MonodromyMethod m) { return monodromy_method_names[std::size_t(m)]; }
+inline MonodromyMethod monodromy_method_from_name(const std::string& name) {
+    for (std::size_t k = 0; k < monodromy_method_names.size(); ++k)
+        if (name == monodromy_method_names[k]) return MonodromyMethod(k);
+    detail::fail("monodromy must be 'auto', 'variational' or 'differences', got '", name, "'");
+}
 
 struct ShootingOptions {
     double period = 0.0;      // s, one revolution; the time step must divide it
@@ -49,6 +65,7 @@ struct ShootingOptions {
     // A 2n x 2n monodromy to start the chord iterations with (a nearby orbit's, e.g. the nominal case
     // of a tolerance study); empty: built at the first iterate.
     Eigen::MatrixXd monodromy;
+    MonodromyMethod monodromy_method = MonodromyMethod::automatic;
     static constexpr int max_state_size = 400;  // 2n; the dense monodromy costs 2n revolutions
 
     void validate(int n, double dt) const {
@@ -78,16 +95,18 @@ struct ShootingOptions {
 struct PeriodicOrbit {
     bool converged = false;
     bool cancelled = false;
-    int iterations = 0;                                          // Newton / chord iterations
-    int monodromies = 0;                                         // monodromy matrices built (2n revolutions each)
-    double mismatch = std::numeric_limits<double>::quiet_NaN();  // relative, at the returned state
-    std::vector<double> history;                                 // mismatch per iterate, the first after the warm-up
-    Eigen::VectorXd q, v;                 // the orbit's state at start_time (when converged; else the last iterate)
-    double q_scale = 0.0, v_scale = 0.0;  // largest |q| (m or rad), |v| on the revolution
-    Eigen::MatrixXd monodromy;            // d(q, v)(start + T) / d(q, v)(start), 2n x 2n
-    bool monodromy_at_orbit = false;      // built at the returned state (else at an earlier iterate)
-    Eigen::VectorXcd multipliers;         // eigenvalues of the monodromy, largest magnitude first
-    double revolutions = 0.0;             // cost: revolutions simulated in all
+    int iterations = 0;   // Newton / chord iterations
+    int monodromies = 0;  // monodromy matrices built (2n revolutions each, or one variational revolution)
+    MonodromyMethod monodromy_method = MonodromyMethod::differences;  // how they were built
+    double mismatch = std::numeric_limits<double>::quiet_NaN();       // relative, at the returned state
+    std::vector<double> history;           // mismatch per iterate, the first after the warm-up
+    Eigen::VectorXd q, v;                  // the orbit's state at start_time (when converged; else the last iterate)
+    double q_scale = 0.0, v_scale = 0.0;   // largest |q| (m or rad), |v| on the revolution
+    Eigen::MatrixXd monodromy;             // d(q, v)(start + T) / d(q, v)(start), 2n x 2n
+    bool monodromy_at_orbit = false;       // built at the returned state (else at an earlier iterate)
+    Eigen::VectorXcd multipliers;          // eigenvalues of the monodromy, largest magnitude first
+    double revolutions = 0.0;              // cost: revolutions simulated in all
+    double variational_revolutions = 0.0;  // of them, those carrying the step sensitivities (~3x the cost)
     SolverStatistics stats;
 
     double spectral_radius() const {
@@ -96,6 +115,23 @@ struct PeriodicOrbit {
 };
 
 namespace detail {
+
+template <class S, class = void>
+struct provides_sensitivity : std::false_type {};
+template <class S>
+struct provides_sensitivity<S, void_t<decltype(S::provides_sensitivity)>>
+    : std::bool_constant<S::provides_sensitivity> {};
+
+template <class Stepper>
+bool variational_monodromy(MonodromyMethod requested) {
+    if (requested == MonodromyMethod::differences) return false;
+    if (requested == MonodromyMethod::variational && !provides_sensitivity<Stepper>::value)
+        fail(
+            "monodromy 'variational' needs the Newmark family ('newmark', 'fox_goodwin', 'hht') on the dense "
+            "backend (fewer than ",
+            sparse_backend_threshold, " DOFs, or linear_solver 'dense'); use 'auto' or 'differences'");
+    return provides_sensitivity<Stepper>::value;
+}
 
 // The one-revolution map of a stepper, with the scales of the revolution it ran.
 template <class Stepper>
@@ -130,7 +166,24 @@ public:
         q_max = std::max(q_max, 1e-9), v_max = std::max(v_max, v_floor_);
         ++revolutions;
     }
-    double revolutions = 0.0;
+    // The same, and J = dPhi/dz from the variational equations of the revolution.
+    void operator()(const Eigen::VectorXd& z, Eigen::VectorXd& out, Eigen::MatrixXd& J, SolverStatistics& stats,
+                    double& q_max, double& v_max) {
+        if constexpr (provides_sensitivity<Stepper>::value) {
+            struct Untrack {
+                Stepper& s;
+                ~Untrack() { s.track_sensitivity(nullptr); }
+            } untrack{stepper_};
+            stepper_.track_sensitivity(&sensitivity_);
+            (*this)(z, out, stats, q_max, v_max);
+            J = sensitivity_.state_jacobian();
+            ++variational_revolutions;
+        } else {
+            (void)z, (void)out, (void)J, (void)stats, (void)q_max, (void)v_max;
+            fail("shooting: this stepper has no variational equations");  // unreachable: variational_monodromy()
+        }
+    }
+    double revolutions = 0.0, variational_revolutions = 0.0;
 
 private:
     Stepper& stepper_;
@@ -139,6 +192,7 @@ private:
     std::uint64_t steps_;
     double v_floor_;
     Vector q_, v_;
+    StepSensitivity sensitivity_;
 };
 
 inline double scaled_mismatch(const Eigen::VectorXd& r, int n, double q_scale, double v_scale) {
@@ -172,6 +226,7 @@ PeriodicOrbit shoot(Stepper& stepper, const Eigen::VectorXd& q0, const Eigen::Ve
     if (v0.size() != n) detail::fail("shooting: initial q and v must have the same size, got ", n, " and ", v0.size());
     const int m = 2 * n;
     detail::RevolutionMap<Stepper> phi(stepper, options, n);
+    const bool variational = detail::variational_monodromy<Stepper>(options.monodromy_method);
     PeriodicOrbit orbit;
     Eigen::VectorXd z(m), fz(m), r(m), zp(m), fp(m);
     z << q0, v0;
@@ -189,9 +244,21 @@ PeriodicOrbit shoot(Stepper& stepper, const Eigen::VectorXd& q0, const Eigen::Ve
     Eigen::MatrixXd J = options.monodromy;  // dPhi/dz
     Eigen::PartialPivLU<Eigen::MatrixXd> lu;
     bool J_fresh = false;  // built at the current iterate
+    auto factor = [&] {
+        ++orbit.monodromies;
+        orbit.monodromy_method = variational ? MonodromyMethod::variational : MonodromyMethod::differences;
+        lu.compute(J - Eigen::MatrixXd::Identity(m, m));
+        J_fresh = true;
+    };
     auto build = [&](const Eigen::VectorXd& at, const Eigen::VectorXd& f_at) {
         J.resize(m, m);
         double qs2 = 0, vs2 = 0;
+        if (variational) {
+            phi(at, fp, J, orbit.stats, qs2, vs2);
+            if (stop()) return false;
+            factor();
+            return true;
+        }
         for (int j = 0; j < m; ++j) {
             const double h = options.perturbation * (j < n ? qs : vs);
             zp = at;
@@ -200,24 +267,29 @@ PeriodicOrbit shoot(Stepper& stepper, const Eigen::VectorXd& q0, const Eigen::Ve
             J.col(j) = (fp - f_at) / h;
             if (stop()) return false;
         }
-        ++orbit.monodromies;
-        lu.compute(J - Eigen::MatrixXd::Identity(m, m));
-        J_fresh = true;
+        factor();
         return true;
     };
     auto finish = [&] {
         orbit.q = z.head(n), orbit.v = z.tail(n);
         orbit.q_scale = qs, orbit.v_scale = vs;
         orbit.revolutions = phi.revolutions;
+        orbit.variational_revolutions = phi.variational_revolutions;
         if (!orbit.history.empty()) orbit.mismatch = orbit.history.back();
         return orbit;
     };
     if (orbit.cancelled) return finish();
-    phi(z, fz, orbit.stats, qs, vs);
+    if (variational && J.size() == 0) {  // no monodromy to start from: the first revolution builds it
+        J.resize(m, m);
+        phi(z, fz, J, orbit.stats, qs, vs);
+        factor();
+    } else {
+        phi(z, fz, orbit.stats, qs, vs);
+        if (J.size()) lu.compute(J - Eigen::MatrixXd::Identity(m, m));
+    }
     r = fz - z;
     double mis = detail::scaled_mismatch(r, n, qs, vs);
     orbit.history.push_back(mis);
-    if (J.size()) lu.compute(J - Eigen::MatrixXd::Identity(m, m));
     double best = mis;
     int stalls = 0;
     constexpr int max_stalls = 4;
