@@ -152,8 +152,9 @@ public:
 
     // X = -(A0 + (1 + alpha) U V^T)^-1 R for a block of right-hand sides (the variational equations,
     // solver/step_sensitivity.hpp), with the tangent of the last fill_tangent(). Nothing allocated
-    // once X and the scratch have their sizes.
-    void solve_columns(int level, double one_alpha, const Eigen::MatrixXd& R, Eigen::MatrixXd& X) {
+    // for fixed-size blocks, nor for dynamic ones once the scratch has its size.
+    template <class Block>
+    void solve_columns(int level, double one_alpha, const Block& R, Block& X) {
         update_woodbury_columns(level, one_alpha);
         const int k = uv_.rank;
         if (s_.linear_solver == LinearSolver::dense_lu || k > max_woodbury_rank || 2 * k > n_) {
@@ -165,13 +166,29 @@ public:
             return;
         }
         X.noalias() = A0_inv_[level] * R;
-        if (k > 0) {  // Woodbury, as solve()
-            Small S = Small::Identity(k, k);
-            S.noalias() += uv_.V.leftCols(k).transpose() * Z_.leftCols(k);
-            block_.resize(uv_.capacity(), R.cols());
-            block_.topRows(k).noalias() = uv_.V.leftCols(k).transpose() * X;
-            block_.topRows(k) = S.partialPivLu().solve(block_.topRows(k));
-            X.noalias() -= Z_.leftCols(k) * block_.topRows(k);
+        if (k > 0) {  // Sherman-Morrison or Woodbury, as solve(), on a k x 2n scratch y
+            auto correct = [&](auto&& y) {
+                y.noalias() = uv_.V.leftCols(k).transpose() * X;
+                if (k == 1) {
+                    y /= 1.0 + uv_.V.col(0).dot(Z_.col(0));
+                } else {
+                    Small S = Small::Identity(k, k);
+                    S.noalias() += uv_.V.leftCols(k).transpose() * Z_.leftCols(k);
+                    const Eigen::PartialPivLU<Small> lu(S);
+                    for (int c = 0; c < y.cols(); ++c) {
+                        const SmallVector column = y.col(c);
+                        y.col(c) = lu.solve(column);
+                    }
+                }
+                X.noalias() -= Z_.leftCols(k) * y;
+            };
+            if constexpr (Block::ColsAtCompileTime != Eigen::Dynamic) {
+                correct(Eigen::Matrix<double, Eigen::Dynamic, Block::ColsAtCompileTime, 0, max_woodbury_rank,
+                                      Block::ColsAtCompileTime>(k, R.cols()));
+            } else {
+                block_.resize(uv_.capacity(), R.cols());
+                correct(block_.topRows(k));
+            }
         }
         X = -X;
     }

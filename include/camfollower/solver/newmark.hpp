@@ -116,13 +116,13 @@ public:
     static constexpr bool provides_sensitivity = std::is_same_v<Linear, DenseNewtonSolve<System>>;
     // While set (non-null), start() and every accepted step carry d(q, v, a) / d(q0, v0) in
     // *sensitivity, (q0, v0) being the state given to start(); null stops it. Sizes once per call.
-    void track_sensitivity(StepSensitivity* sensitivity) {
+    using Sensitivity = StepSensitivity<Vector>;
+    void track_sensitivity(Sensitivity* sensitivity) {
         static_assert(provides_sensitivity, "the variational equations need the dense backend");
         sensitivity_ = sensitivity;
         if (!sensitivity) return;
-        sensitivity->resize(n_);
         const int capacity = std::max(1, max_rank(system_));
-        sensitivity->low_rank.resize(capacity, 2 * n_);
+        sensitivity->resize(n_, capacity);
         sens_uvq_ = sens_uvv_ = LowRank<Vector>(n_, capacity);
     }
 
@@ -304,16 +304,16 @@ private:
 
     // The variational equations (solver/step_sensitivity.hpp): the start's and one accepted step's.
     CAMFOLLOWER_NOINLINE void start_sensitivity(const StateType& s) {
-        StepSensitivity& d = *sensitivity_;
+        Sensitivity& d = *sensitivity_;
         d.dq.setZero(), d.dv.setZero();
         d.dq.leftCols(n_).setIdentity();
         d.dv.rightCols(n_).setIdentity();
         tangent_products(s.workspace, s.q, s.v, d.dq, d.dv, d.g);
-        d.da = Eigen::MatrixXd(linear_.mass()).partialPivLu().solve(d.g);
+        d.da = linear_.mass().partialPivLu().solve(d.g);
         d.da = -d.da;
     }
     CAMFOLLOWER_NOINLINE void propagate_sensitivity(const workspace_t<System>& ws, double dt, int level) {
-        StepSensitivity& d = *sensitivity_;
+        Sensitivity& d = *sensitivity_;
         const double alpha = p_.alpha, one_alpha = 1.0 + alpha;
         const double q_step = p_.beta * dt * dt, v_step = p_.gamma * dt;
         d.p = d.dq + dt * d.dv + (dt * dt * (0.5 - p_.beta)) * d.da;
@@ -331,8 +331,9 @@ private:
         d.g /= one_alpha;
     }
     // out = (K + F_q) xq + (C + F_v) xv, the tangent F at (q, v).
-    void tangent_products(const workspace_t<System>& ws, const Vector& q, const Vector& v, const Eigen::MatrixXd& xq,
-                          const Eigen::MatrixXd& xv, Eigen::MatrixXd& out) {
+    using Block = typename Sensitivity::Block;
+    void tangent_products(const workspace_t<System>& ws, const Vector& q, const Vector& v, const Block& xq,
+                          const Block& xv, Block& out) {
         out.noalias() = linear_.stiffness() * xq;
         out.noalias() += linear_.damping() * xv;
         camfollower::tangent(system_, ws, q, v, 1.0, 0.0, sens_uvq_);
@@ -475,8 +476,8 @@ private:
     Vector eq_, ev_, da_, da_old_, ef_;
     LowRank<Vector> uvq_, uvv_;
     InterruptPoll interrupt_;
-    StepSensitivity* sensitivity_ = nullptr;  // variational equations while shooting builds a monodromy
-    LowRank<Vector> sens_uvq_, sens_uvv_;     // their tangent, dF/dq and dF/dv apart
+    Sensitivity* sensitivity_ = nullptr;   // variational equations while shooting builds a monodromy
+    LowRank<Vector> sens_uvq_, sens_uvv_;  // their tangent, dF/dq and dF/dv apart
     double force_scale_ = 1.0;
     double norm_M_ = 0.0, norm_C_ = 0.0, norm_K_ = 0.0;  // infinity norms, for the rounding floor
     // Scratch, sized once: nothing is allocated inside the time loop.

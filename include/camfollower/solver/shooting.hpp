@@ -192,7 +192,7 @@ private:
     std::uint64_t steps_;
     double v_floor_;
     Vector q_, v_;
-    StepSensitivity sensitivity_;
+    StepSensitivity<Vector> sensitivity_;
 };
 
 inline double scaled_mismatch(const Eigen::VectorXd& r, int n, double q_scale, double v_scale) {

@@ -21,13 +21,20 @@
 
 namespace camfollower {
 
+// Fixed-size blocks for a fixed-size model (7 x 14 for the paper preset: Eigen multiplies them without
+// its general matrix-product machinery), dynamic otherwise.
+template <class Vector>
 struct StepSensitivity {
-    Eigen::MatrixXd dq, dv, da, g;  // n x 2n: d(q, v, a) / d(q0, v0) and G (above)
-    Eigen::MatrixXd p, w, r;        // scratch, sized once per run
-    Eigen::MatrixXd low_rank;       // rank x 2n scratch of the tangent's V^T X
+    static constexpr int rows = Vector::RowsAtCompileTime;
+    static constexpr int cols = rows == Eigen::Dynamic ? Eigen::Dynamic : 2 * rows;
+    using Block = Eigen::Matrix<double, rows, cols>;
+    Block dq, dv, da, g;                                   // n x 2n: d(q, v, a) / d(q0, v0) and G (above)
+    Block p, w, r;                                         // scratch
+    Eigen::Matrix<double, Eigen::Dynamic, cols> low_rank;  // rank x 2n scratch of the tangent's V^T X
 
-    void resize(int n) {
-        for (Eigen::MatrixXd* m : {&dq, &dv, &da, &g, &p, &w, &r}) m->resize(n, 2 * n);
+    void resize(int n, int rank_capacity) {
+        for (Block* m : {&dq, &dv, &da, &g, &p, &w, &r}) m->resize(n, 2 * n);
+        low_rank.resize(rank_capacity, 2 * n);
     }
     // d(q, v) / d(q0, v0): the monodromy after one revolution, 2n x 2n.
     Eigen::MatrixXd state_jacobian() const {
