@@ -19,7 +19,7 @@ import numpy as np
 
 from . import _core
 from .periodic import PeriodicOrbit, periodic_steady_state
-from .response import _dwells, contact_of, study_scheme
+from .response import _dwells, contact_of, scheme_settings, study_scheme
 
 #: What the objective measures on the output DOF (docs/synthesis.md).
 OBJECTIVES = {
@@ -101,7 +101,9 @@ class Dynamics:
         self.objective, self.measure = objective, measure
         self.speeds = [float(s) for s in speeds]
         self.steps = int(steps)
-        self.schemes = [study_scheme(system.with_camshaft_speed_rpm(s), self.steps)["name"] for s in self.speeds]
+        self.schemes = [
+            scheme_settings(study_scheme(system.with_camshaft_speed_rpm(s), self.steps)) for s in self.speeds
+        ]
         keep = RMS_SAMPLES if measure == "rms" else PEAK_SAMPLES
         self.decimation = max(1, self.steps // keep)
         self.evaluations = 0
@@ -115,7 +117,7 @@ class Dynamics:
         orbit = periodic_steady_state(
             system,
             time_step=system.period / self.steps,
-            method=self.schemes[index],
+            **self.schemes[index],
             guess=guess,
             multipliers=multipliers,
             warmup_revolutions=0 if guess is not None else 1,

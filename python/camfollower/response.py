@@ -39,29 +39,63 @@ _RICHARDSON = 3.0
 _FOX_GOODWIN_MARGIN = 0.5
 
 
+#: The label of the studies' scheme within Fox-Goodwin's stability margin (study_scheme).
+MATCHED_FOX_GOODWIN = "fox_goodwin_matched"
+
+
+def matched_beta(omega_dt: float) -> float:
+    """Newmark's beta (gamma = 1/2) whose discrete undamped oscillation at omega dt has the exact
+    period: cos(omega dt) = 1 - (omega dt)^2 / (2 (1 + beta (omega dt)^2)). It is 1/12 + (omega dt)^2
+    / 240 + O((omega dt)^4): Fox-Goodwin's beta plus a term of second order in the step, so every
+    other mode keeps Fox-Goodwin's fourth-order period error."""
+    w2 = omega_dt * omega_dt
+    if w2 < 1e-4:  # the closed form loses digits to cancellation: its series
+        return 1.0 / 12.0 + w2 / 240.0 + w2 * w2 / 6048.0
+    return (w2 / (2.0 * (1.0 - math.cos(omega_dt))) - 1.0) / w2
+
+
 def study_scheme(system, steps: int) -> Dict[str, Any]:
-    """The time-stepping scheme of the studies at ``steps`` per revolution: Fox-Goodwin (fourth-order
-    phase: the lightly damped fast modes that ring through a whole revolution keep their phase, where
-    the average-acceleration rule's period error would need ~50x the steps) when the step is within
-    half its stability limit for the system's highest mode (at cam angle 0), else Newmark's average
-    acceleration (unconditionally stable). A model large enough for the sparse backend (linear_solver
-    'auto') gets average acceleration: that backend takes unconditionally stable schemes only."""
+    """The time-stepping scheme of the studies at ``steps`` per revolution, as ``name`` (the label the
+    rows show), ``method``, ``gamma`` and ``beta`` (scheme_settings() gives the solver settings).
+
+    Within half of Fox-Goodwin's stability limit sqrt(6) / omega_max for the system's highest mode (at
+    cam angle 0): Fox-Goodwin **period-matched** to that mode (``fox_goodwin_matched``: Newmark with
+    gamma = 1/2 and beta = matched_beta(omega_max dt), slightly above 1/12). Fox-Goodwin's fourth-order
+    phase keeps the lightly damped fast modes that ring through a whole revolution in phase, where
+    the average-acceleration rule's period error would need ~50x the steps; matching the highest
+    mode's period removes the largest of the phase errors that remain (``matched_hz``). Beyond the
+    margin, Newmark's average acceleration (unconditionally stable). A model large enough for the
+    sparse backend (linear_solver 'auto') gets average acceleration: that backend takes
+    unconditionally stable schemes only."""
+    average = {"name": METHOD.newmark, "method": METHOD.newmark, "gamma": 0.5, "beta": 0.25}
     if len(getattr(system, "dof_names", ())) >= _core.SPARSE_BACKEND_THRESHOLD:
-        return {"name": METHOD.newmark, "gamma": 0.5, "beta": 0.25}
+        return average
     try:
         omega_max = 2.0 * math.pi * float(np.max(system.modal_analysis(0.0)["frequencies_hz"]))
     except (AttributeError, RuntimeError, ValueError):
         omega_max = math.inf
-    if system.period / steps * omega_max <= _FOX_GOODWIN_MARGIN * math.sqrt(6.0):
-        return {"name": METHOD.fox_goodwin, "gamma": 0.5, "beta": 1.0 / 12.0}
-    return {"name": METHOD.newmark, "gamma": 0.5, "beta": 0.25}
+    omega_dt = system.period / steps * omega_max
+    if omega_dt <= _FOX_GOODWIN_MARGIN * math.sqrt(6.0):
+        return {
+            "name": MATCHED_FOX_GOODWIN,
+            "method": METHOD.newmark,
+            "gamma": 0.5,
+            "beta": matched_beta(omega_dt),
+            "matched_hz": omega_max / (2.0 * math.pi),
+        }
+    return average
+
+
+def scheme_settings(scheme: Dict[str, Any]) -> Dict[str, Any]:
+    """The solver settings (method, gamma, beta) of a study_scheme()."""
+    return {"method": scheme["method"], "gamma": scheme["gamma"], "beta": scheme["beta"]}
 
 
 def _fox_goodwin_steps(system, steps: int, finest: int) -> int:
     """The first of steps, 2 steps, 4 steps, ... at which Fox-Goodwin is within its margin (else steps)."""
     n = steps
     while n <= finest:
-        if study_scheme(system, n)["name"] == METHOD.fox_goodwin:
+        if study_scheme(system, n)["name"] == MATCHED_FOX_GOODWIN:
             return n
         n *= 2
     return steps
@@ -159,8 +193,9 @@ def steady_response(
 ) -> Dict[str, Any]:
     """The periodic steady state of ``system`` at its own camshaft speed, measured on ``contact``.
 
-    **Accuracy.** The orbit is found with Newmark's average acceleration at ``steps_per_revolution``
-    (default 4096) and again at half the step, and so on, until the contact force and the follower's
+    **Accuracy.** The orbit is found with the studies' scheme (study_scheme: period-matched Fox-Goodwin
+    where it is stable with margin, else average acceleration) at ``steps_per_revolution`` (default
+    4096, or the first halving within Fox-Goodwin's margin) and again at half the step, and so on, until the contact force and the follower's
     acceleration of the finer orbit are within ``accuracy`` (default 1e-3) of their peaks: the estimate
     is the largest change between the last two orbits divided by 3 (the method is second order). Each
     finer orbit starts from the coarser one. The row says what it reached: ``accuracy`` (the estimate),
@@ -226,7 +261,7 @@ def steady_response(
             fallback=fallback,
             tolerance=tolerance,
             warmup_revolutions=0 if seed else 1,
-            method=scheme["name"],
+            **scheme_settings(study_scheme(system, steps) if scheme["name"] == MATCHED_FOX_GOODWIN else scheme),
             **search,
         )
         cost["revolutions"] += o.revolutions + 1.0  # + the recorded revolution

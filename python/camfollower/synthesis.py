@@ -37,7 +37,7 @@ from ._lift_optimizer import Limits, Optimizer, not_periodic
 from ._lift_space import LiftSpace, degree_for
 from ._synthesis_dynamics import SHOOTING_TOLERANCE, Dynamics, check_objective, with_program
 from .periodic import periodic_steady_state
-from .response import contact_of, steady_response
+from .response import contact_of, scheme_settings, steady_response, study_scheme
 
 _RPM = math.pi / 30.0  # rad/s per rpm
 
@@ -541,7 +541,7 @@ def verify(
                 time_step=s.period / (2 * steps),
                 guess=row["orbit"],
                 multipliers=False,
-                method=row["scheme"],
+                **scheme_settings(study_scheme(s, 2 * steps)),
                 tolerance=SHOOTING_TOLERANCE,
             )
             reduced, steps = _reduce(s, c, dof, finer), 2 * steps
