@@ -125,14 +125,7 @@ public:
     void solve(int level, double one_alpha, const Vector& r, Vector& dq) {
         update_woodbury_columns(level, one_alpha);
         const int k = uv_.rank;
-        if (s_.linear_solver == LinearSolver::dense_lu || k > max_woodbury_rank || 2 * k > n_) {
-            full_ = A0_[level];
-            if (k > 0) full_.noalias() += one_alpha * uv_.U.leftCols(k) * uv_.V.leftCols(k).transpose();
-            lu_.compute(full_);
-            dq.noalias() = lu_.solve(r);
-            dq = -dq;
-            return;
-        }
+        if (solved_by_lu(level, one_alpha, r, dq)) return;
         x_.noalias() = A0_inv_[level] * r;
         if (k == 0) {
             dq = -x_;
@@ -157,14 +150,7 @@ public:
     void solve_columns(int level, double one_alpha, const Block& R, Block& X) {
         update_woodbury_columns(level, one_alpha);
         const int k = uv_.rank;
-        if (s_.linear_solver == LinearSolver::dense_lu || k > max_woodbury_rank || 2 * k > n_) {
-            full_ = A0_[level];
-            if (k > 0) full_.noalias() += one_alpha * uv_.U.leftCols(k) * uv_.V.leftCols(k).transpose();
-            lu_.compute(full_);
-            X.noalias() = lu_.solve(R);
-            X = -X;
-            return;
-        }
+        if (solved_by_lu(level, one_alpha, R, X)) return;
         X.noalias() = A0_inv_[level] * R;
         if (k > 0) {  // Sherman-Morrison or Woodbury, as solve(), on a k x 2n scratch y
             auto correct = [&](auto&& y) {
@@ -217,6 +203,20 @@ public:
     }
 
 private:
+    // x = -(A0 + (1 + alpha) U V^T)^-1 r by a dense LU of the full matrix when the rank is beyond
+    // Woodbury's (or 'dense_lu' is asked); false when Woodbury applies.
+    template <class Rhs, class Out>
+    bool solved_by_lu(int level, double one_alpha, const Rhs& r, Out& x) {
+        const int k = uv_.rank;
+        if (!(s_.linear_solver == LinearSolver::dense_lu || k > max_woodbury_rank || 2 * k > n_)) return false;
+        full_ = A0_[level];
+        if (k > 0) full_.noalias() += one_alpha * uv_.U.leftCols(k) * uv_.V.leftCols(k).transpose();
+        lu_.compute(full_);
+        x.noalias() = lu_.solve(r);
+        x = -x;
+        return true;
+    }
+
     // Z = A0^-1 (1 + alpha) U for the active columns; a column is recomputed only when U changed
     // (contact directions depend on time only, so usually once per step).
     void update_woodbury_columns(int level, double one_alpha) {
