@@ -416,10 +416,14 @@ def _channel_measures(system, r, channel: str, theta: np.ndarray, cam_theta: np.
 
 __all__ = [
     "HARMONICS",
+    "MATCHED_FOX_GOODWIN",
     "MAX_STUDY_STEPS_PER_REVOLUTION",
     "STUDY_ACCURACY",
     "STUDY_STEPS_PER_REVOLUTION",
     "check_accuracy",
     "contact_of",
+    "matched_beta",
+    "scheme_settings",
     "steady_response",
+    "study_scheme",
 ]
