@@ -54,6 +54,9 @@ def matched_beta(omega_dt: float) -> float:
     return (w2 / (2.0 * (1.0 - math.cos(omega_dt))) - 1.0) / w2
 
 
+_AVERAGE_ACCELERATION = {"name": METHOD.newmark, "method": METHOD.newmark, "gamma": 0.5, "beta": 0.25}
+
+
 def study_scheme(system, steps: int) -> Dict[str, Any]:
     """The time-stepping scheme of the studies at ``steps`` per revolution, as ``name`` (the label the
     rows show), ``method``, ``gamma`` and ``beta`` (scheme_settings() gives the solver settings).
@@ -67,7 +70,7 @@ def study_scheme(system, steps: int) -> Dict[str, Any]:
     margin, Newmark's average acceleration (unconditionally stable). A model large enough for the
     sparse backend (linear_solver 'auto') gets average acceleration: that backend takes
     unconditionally stable schemes only."""
-    average = {"name": METHOD.newmark, "method": METHOD.newmark, "gamma": 0.5, "beta": 0.25}
+    average = dict(_AVERAGE_ACCELERATION)
     if len(getattr(system, "dof_names", ())) >= _core.SPARSE_BACKEND_THRESHOLD:
         return average
     try:
@@ -84,6 +87,13 @@ def study_scheme(system, steps: int) -> Dict[str, Any]:
             "matched_hz": omega_max / (2.0 * math.pi),
         }
     return average
+
+
+def scheme_at(system, steps: int, name: str) -> Dict[str, Any]:
+    """The studies' scheme ``name`` (a row's ``scheme``) at ``steps`` per revolution, for a finer orbit
+    of the same family: the period-matched Fox-Goodwin's beta depends on the step, average
+    acceleration's does not."""
+    return study_scheme(system, steps) if name == MATCHED_FOX_GOODWIN else dict(_AVERAGE_ACCELERATION)
 
 
 def scheme_settings(scheme: Dict[str, Any]) -> Dict[str, Any]:
@@ -261,7 +271,7 @@ def steady_response(
             fallback=fallback,
             tolerance=tolerance,
             warmup_revolutions=0 if seed else 1,
-            **scheme_settings(study_scheme(system, steps) if scheme["name"] == MATCHED_FOX_GOODWIN else scheme),
+            **scheme_settings(scheme_at(system, steps, scheme["name"])),
             **search,
         )
         cost["revolutions"] += o.revolutions + 1.0  # + the recorded revolution
@@ -423,6 +433,7 @@ __all__ = [
     "check_accuracy",
     "contact_of",
     "matched_beta",
+    "scheme_at",
     "scheme_settings",
     "steady_response",
     "study_scheme",

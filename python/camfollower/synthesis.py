@@ -37,7 +37,7 @@ from ._lift_optimizer import Limits, Optimizer, not_periodic
 from ._lift_space import LiftSpace, degree_for
 from ._synthesis_dynamics import SHOOTING_TOLERANCE, Dynamics, check_objective, with_program
 from .periodic import periodic_steady_state
-from .response import contact_of, scheme_settings, steady_response, study_scheme
+from .response import contact_of, scheme_at, scheme_settings, steady_response
 
 _RPM = math.pi / 30.0  # rad/s per rpm
 
@@ -541,7 +541,7 @@ def verify(
                 time_step=s.period / (2 * steps),
                 guess=row["orbit"],
                 multipliers=False,
-                **scheme_settings(study_scheme(s, 2 * steps)),
+                **scheme_settings(scheme_at(s, 2 * steps, row["scheme"])),
                 tolerance=SHOOTING_TOLERANCE,
             )
             reduced, steps = _reduce(s, c, dof, finer), 2 * steps
