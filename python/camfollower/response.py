@@ -203,10 +203,11 @@ def steady_response(
 ) -> Dict[str, Any]:
     """The periodic steady state of ``system`` at its own camshaft speed, measured on ``contact``.
 
-    **Accuracy.** The orbit is found with the studies' scheme (study_scheme: period-matched Fox-Goodwin
-    where it is stable with margin, else average acceleration) at ``steps_per_revolution`` (default
-    4096, or the first halving within Fox-Goodwin's margin) and again at half the step, and so on, until the contact force and the follower's
-    acceleration of the finer orbit are within ``accuracy`` (default 1e-3) of their peaks: the estimate
+    **Accuracy.** The orbit is found with the studies' scheme (study_scheme: period-matched
+    Fox-Goodwin where it is stable with margin, else average acceleration) at
+    ``steps_per_revolution`` (default 4096, or the first halving within Fox-Goodwin's margin) and
+    again at half the step, and so on, until the contact force and the follower's acceleration of
+    the finer orbit are within ``accuracy`` (default 1e-3) of their peaks: the estimate
     is the largest change between the last two orbits divided by 3 (the method is second order). Each
     finer orbit starts from the coarser one. The row says what it reached: ``accuracy`` (the estimate),
     ``accuracy_target``, ``accuracy_reached`` (False when ``max_steps_per_revolution`` came first: the

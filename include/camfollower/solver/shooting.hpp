@@ -6,12 +6,12 @@
 // instead of simulating revolutions until the transient has died out (solver/settle.hpp). The
 // monodromy matrix dPhi/dz comes from the scheme's variational equations carried through one
 // revolution (solver/step_sensitivity.hpp: the Newmark family on the dense backend), else from
-// forward differences (one revolution per state component, 2n in all); it is reused while the iterations converge
-// quickly (chord iterations: one revolution each) and rebuilt when they do not; four Newton steps in a row that do not
-// halve the best mismatch end the search (not periodic, or a tolerance below the rounding floor). Its eigenvalues are
-// the Floquet multipliers of the orbit: all inside the unit circle for a stable orbit; one leaving through -1 flags
-// period doubling, through +1 a fold (the onset of a jump), a complex pair a quasi-periodic response (the start of
-// chatter).
+// forward differences (one revolution per state component, 2n in all). It is reused while the
+// iterations converge quickly (chord iterations: one revolution each) and rebuilt when they do not;
+// four Newton steps in a row that do not halve the best mismatch end the search (not periodic, or a
+// tolerance below the rounding floor). Its eigenvalues are the Floquet multipliers of the orbit: all
+// inside the unit circle for a stable orbit; one leaving through -1 flags period doubling, through +1
+// a fold (the onset of a jump), a complex pair a quasi-periodic response (the start of chatter).
 //
 // The orbit found is the fixed point of the discrete scheme with this time step: the state a long
 // transient run with the same settings converges to, without waiting for lightly damped modes.
@@ -66,7 +66,7 @@ struct ShootingOptions {
     // of a tolerance study); empty: built at the first iterate.
     Eigen::MatrixXd monodromy;
     MonodromyMethod monodromy_method = MonodromyMethod::automatic;
-    static constexpr int max_state_size = 400;  // 2n; the dense monodromy costs 2n revolutions
+    static constexpr int max_state_size = 400;  // 2n: the monodromy is a dense 2n x 2n matrix
 
     void validate(int n, double dt) const {
         detail::require_positive(period, "shooting period", "(s)");
