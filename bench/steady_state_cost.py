@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """What a periodic steady state costs, side by side: the shooting's monodromy from the step
-sensitivities (one variational revolution) against forward differences (2n revolutions), and
-optionally against another installed camfollower (an earlier release) in the same run.
+sensitivities (one variational revolution) against forward differences (2n revolutions), the accuracy
+of the force and acceleration against the force alone (accuracy_of), and optionally another installed
+camfollower (an earlier release, given the force-alone criterion by patching) in the same run.
 
 For each accuracy (relative error of the contact force and follower acceleration, estimated by
 steady_response from orbits at successive step halvings), a margin curve's speeds are found one after
@@ -26,19 +27,34 @@ import sys
 import time
 
 
-def run(accuracy, speeds, monodromy):
-    """One sweep at `accuracy`; monodromy None: the installed package as it is."""
+def run(accuracy, speeds, monodromy, accuracy_of):
+    """One sweep at `accuracy` of `accuracy_of` ("force_and_acceleration" or "force"); monodromy None:
+    the installed package as it is. A package without accuracy_of (an earlier release) gets the same
+    criterion by zeroing the acceleration its estimate compares."""
     import camfollower as cf
+    import numpy as np
     from camfollower import response
 
     if monodromy is not None:
         response.periodic_steady_state = functools.partial(cf.periodic_steady_state, monodromy=monodromy)
+    options = {}
+    if accuracy_of != "force_and_acceleration":
+        if hasattr(response, "ACCURACY_OF"):
+            options["accuracy_of"] = accuracy_of
+        else:
+            measured = response._measured
+
+            def force_only(system, orbit, name, dof):
+                force, acc, rec = measured(system, orbit, name, dof)
+                return force, np.zeros_like(acc), rec
+
+            response._measured = force_only
     system = cf.presets.paper()
     rows, guess = [], None
     for rpm in speeds:
         m = system.with_camshaft_speed_rpm(rpm)
         t0 = time.perf_counter()
-        row = response.steady_response(m, accuracy=accuracy, guess=guess, multipliers=False, keep_orbit=True)
+        row = response.steady_response(m, accuracy=accuracy, guess=guess, multipliers=False, keep_orbit=True, **options)
         seconds = time.perf_counter() - t0
         guess = row["orbit"]
         rows.append(
@@ -55,8 +71,8 @@ def run(accuracy, speeds, monodromy):
 
 def _child(argv) -> int:
     """Runs one sweep in this process (for a variant on another sys.path) and prints its rows as JSON."""
-    accuracy, monodromy, speeds = float(argv[0]), argv[1], [float(s) for s in argv[2:]]
-    print(json.dumps(run(accuracy, speeds, None if monodromy == "-" else monodromy)))
+    accuracy, monodromy, accuracy_of, speeds = float(argv[0]), argv[1], argv[2], [float(s) for s in argv[3:]]
+    print(json.dumps(run(accuracy, speeds, None if monodromy == "-" else monodromy, accuracy_of)))
     return 0
 
 
@@ -70,19 +86,36 @@ def main(argv=None) -> int:
     parser.add_argument("--rounds", type=int, default=3)
     parser.add_argument("--baseline", help="a directory holding another camfollower (pip install --target DIR)")
     args = parser.parse_args(argv)
-    variants = [("finite differences", None, "differences"), ("variational", None, "variational")]
+    both, force = "force_and_acceleration", "force"
+    variants = [
+        ("finite differences, force and acceleration", None, "differences", both),
+        ("variational, force and acceleration", None, "variational", both),
+        ("variational, force alone", None, "variational", force),
+    ]
     if args.baseline:
-        variants.insert(0, (f"baseline ({args.baseline})", args.baseline, "-"))
+        variants = [
+            (f"baseline ({args.baseline}), force and acceleration", args.baseline, "-", both),
+            (f"baseline ({args.baseline}), force alone", args.baseline, "-", force),
+            *variants[1:],
+        ]
     print(f"paper preset, speeds {args.speeds} rpm; load average {os.getloadavg()[0]:.2f} (2 cores)")
     results = {}
     for _ in range(args.rounds):
         for accuracy in args.accuracy:
-            for name, path, monodromy in variants:
+            for name, path, monodromy, accuracy_of in variants:
                 env = dict(os.environ)
                 if path:
                     env["PYTHONPATH"] = path
                 out = subprocess.run(
-                    [sys.executable, __file__, "--child", str(accuracy), monodromy, *map(str, args.speeds)],
+                    [
+                        sys.executable,
+                        __file__,
+                        "--child",
+                        str(accuracy),
+                        monodromy,
+                        accuracy_of,
+                        *map(str, args.speeds),
+                    ],
                     env=env,
                     check=True,
                     capture_output=True,
@@ -96,7 +129,7 @@ def main(argv=None) -> int:
     print("|---|---|---|---|---|---|---|")
     for accuracy in args.accuracy:
         first = None
-        for name, _, _ in variants:
+        for name, *_ in variants:
             rounds = results[(accuracy, name)]
             seconds = statistics.median(statistics.median(r["seconds"] for r in rows) for rows in rounds)
             first = first or seconds

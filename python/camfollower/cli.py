@@ -634,7 +634,9 @@ def sweep(config: str, out: str, *, rpm=None, jump=None, executor=None, workers=
     closure = _closure(case, max(st["rpm"]))
     folder = _folder(config, out)
     m = case.mechanism
-    accuracy = dict(accuracy=st["accuracy"], steps_per_revolution=st["steps_per_revolution"])
+    accuracy = dict(
+        accuracy=st["accuracy"], accuracy_of=st["accuracy_of"], steps_per_revolution=st["steps_per_revolution"]
+    )
     result = sp.speed_sweep(
         m, st["rpm"], contact=st["contact"], executor=executor, workers=workers, progress=progress, **accuracy
     )
@@ -687,6 +689,7 @@ def sweep(config: str, out: str, *, rpm=None, jump=None, executor=None, workers=
         "accuracy_target": st["accuracy"]
         if st["accuracy"] is not None
         else (None if st["steps_per_revolution"] else STUDY_ACCURACY),
+        "accuracy_of": st["accuracy_of"],
         "steps_per_revolution": st["steps_per_revolution"],
         "accuracy": max(reached, default=None),
         "speeds": [{k: r.get(k) for k in columns if k in r} for r in result["rows"]],
@@ -736,6 +739,7 @@ def montecarlo(
         seed=st["seed"],
         contact=st["contact"],
         accuracy=st["accuracy"],
+        accuracy_of=st["accuracy_of"],
         steps_per_revolution=st["steps_per_revolution"],
         executor=executor,
         workers=workers,

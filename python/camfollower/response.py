@@ -25,6 +25,10 @@ from .simulation import METHOD
 #: The studies' default accuracy: estimated error of the contact force and of the follower's
 #: acceleration over the revolution, relative to their peaks.
 STUDY_ACCURACY = 1e-3
+#: What the studies' accuracy covers (steady_response's ``accuracy_of``): the contact force and the
+#: follower's acceleration (the default), or the contact force alone (margins and jump speeds: what
+#: they read). The first is the default.
+ACCURACY_OF = ("force_and_acceleration", "force")
 #: Steps per revolution the studies start from; halved steps from there until the accuracy holds.
 STUDY_STEPS_PER_REVOLUTION = 4096
 #: The finest step the accuracy search takes (steps per revolution).
@@ -164,6 +168,16 @@ def check_accuracy(accuracy, name: str = "accuracy") -> float:
     return float(accuracy)
 
 
+def check_accuracy_of(accuracy_of, name: str = "accuracy_of") -> str:
+    """What a study's accuracy covers: one of ACCURACY_OF."""
+    if accuracy_of not in ACCURACY_OF:
+        raise ValueError(
+            f"{name} must be {' or '.join(repr(a) for a in ACCURACY_OF)} (the channels the accuracy estimate "
+            f"covers), got {accuracy_of!r}"
+        )
+    return str(accuracy_of)
+
+
 def _check_steps(steps, name: str) -> int:
     if isinstance(steps, bool) or not isinstance(steps, numbers.Integral) or not 64 <= steps <= 1 << 22:
         raise ValueError(f"{name} must be an integer in [64, 4194304], got {steps!r}")
@@ -200,6 +214,7 @@ def steady_response(
     keep_orbit: bool = False,
     max_steps_per_revolution: int = MAX_STUDY_STEPS_PER_REVOLUTION,
     stop_at_loss: bool = False,
+    accuracy_of: str = ACCURACY_OF[0],
 ) -> Dict[str, Any]:
     """The periodic steady state of ``system`` at its own camshaft speed, measured on ``contact``.
 
@@ -213,7 +228,10 @@ def steady_response(
     ``accuracy_target``, ``accuracy_reached`` (False when ``max_steps_per_revolution`` came first: the
     row is then the finest orbit computed) and ``steps_per_revolution`` (of the orbit reported).
     ``steps_per_revolution`` alone (no ``accuracy``): that step, its accuracy estimated from an orbit at
-    twice the step.
+    twice the step. ``accuracy_of="force"`` makes the estimate (and so the search) cover the contact
+    force alone: a margin curve or a jump search reads nothing else, and the follower's acceleration,
+    whose fast ringing needs the finer steps, is then only as accurate as the step leaves it (the row
+    says ``accuracy_of``).
 
     Returns a flat dict (one table row): ``rpm``; the orbit's ``converged``, ``method``, ``revolutions``
     and ``steps`` (the cost: revolutions and time steps of every orbit computed), ``iterations``,
@@ -249,6 +267,7 @@ def steady_response(
         raise ValueError(f"max_steps_per_revolution ({finest}) must be >= steps_per_revolution ({start})")
     if isinstance(channels, str) or not all(isinstance(c, str) for c in channels):
         raise ValueError(f"channels must be a list of channel names, got {channels!r}")
+    with_acceleration = check_accuracy_of(accuracy_of) == "force_and_acceleration"
     c = contact_of(system, contact)
     period = system.period
     name, dof = c["name"], c["dof"]
@@ -297,7 +316,10 @@ def steady_response(
     while True:
         if coarse is not None:
             f_c, a_c = coarse_measured
-            previous, estimate = estimate, max(_change(force, f_c), _change(acc, a_c)) / _RICHARDSON
+            change = _change(force, f_c)
+            if with_acceleration:
+                change = max(change, _change(acc, a_c))
+            previous, estimate = estimate, change / _RICHARDSON
         if target is None or estimate <= target or 2 * steps > finest:
             break
         if stop_at_loss and not orbit.converged and float(np.min(force)) <= 0.0:
@@ -338,6 +360,7 @@ def steady_response(
             "accuracy": estimate,
             "accuracy_target": target if target is not None else math.nan,
             "accuracy_reached": reached,
+            "accuracy_of": accuracy_of,
             "steps_per_revolution": steps,
             "scheme": scheme["name"],
         },
@@ -426,12 +449,14 @@ def _channel_measures(system, r, channel: str, theta: np.ndarray, cam_theta: np.
 
 
 __all__ = [
+    "ACCURACY_OF",
     "HARMONICS",
     "MATCHED_FOX_GOODWIN",
     "MAX_STUDY_STEPS_PER_REVOLUTION",
     "STUDY_ACCURACY",
     "STUDY_STEPS_PER_REVOLUTION",
     "check_accuracy",
+    "check_accuracy_of",
     "contact_of",
     "matched_beta",
     "scheme_at",

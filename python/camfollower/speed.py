@@ -22,7 +22,15 @@ import numpy as np
 from . import _core
 from ._text import g
 from .executors import run_cases
-from .response import HARMONICS, STUDY_ACCURACY, check_accuracy, contact_of, steady_response
+from .response import (
+    ACCURACY_OF,
+    HARMONICS,
+    STUDY_ACCURACY,
+    check_accuracy,
+    check_accuracy_of,
+    contact_of,
+    steady_response,
+)
 
 
 def _at_speed(system, rpm: float, options: Dict[str, Any]) -> Dict[str, Any]:
@@ -72,21 +80,19 @@ def margin_curve(
     executor=None,
     workers: Optional[int] = None,
     progress: bool = True,
+    accuracy_of: str = ACCURACY_OF[0],
 ) -> List[Dict[str, Any]]:
     """The periodic steady state at each speed (one :func:`camfollower.response.steady_response` row
     per speed, in order): minimum contact force (the margin) and where, contact loss, accelerations,
     harmonics, each at ``accuracy`` (steady_response: default 1e-3 of the peak force and acceleration;
-    ``steps_per_revolution`` to fix the step instead). Speeds whose response is not periodic fall back to
+    ``steps_per_revolution`` to fix the step instead; ``accuracy_of="force"``: of the force alone). Speeds whose response is not periodic fall back to
     the transient route (``fallback``); a speed that fails altogether gives a row with ``error``. Only
     these speeds are run: :func:`margin_scan` chooses the speeds from the model's resonances."""
     speeds = _check_speeds(speeds)
     if accuracy is not None:
         check_accuracy(accuracy)
-    fn = functools.partial(
-        _at_speed,
-        system,
-        options=dict(contact=contact, accuracy=accuracy, steps_per_revolution=steps_per_revolution, fallback=fallback),
-    )
+    options = dict(contact=contact, accuracy=accuracy, steps_per_revolution=steps_per_revolution, fallback=fallback)
+    fn = functools.partial(_at_speed, system, options={**options, "accuracy_of": check_accuracy_of(accuracy_of)})
     return _rows(run_cases(fn, speeds, executor=executor, workers=workers, progress=progress, desc="speeds"), speeds)
 
 
@@ -318,10 +324,11 @@ def _scan_accuracy(accuracy: Optional[float], steps_per_revolution: Optional[int
     return max(STUDY_ACCURACY if accuracy is None else accuracy, SCAN_ACCURACY)
 
 
-def _scan_options(contact, accuracy, steps_per_revolution) -> Dict[str, Any]:
+def _scan_options(contact, accuracy, steps_per_revolution, accuracy_of) -> Dict[str, Any]:
     return dict(
         contact=contact,
         accuracy=accuracy,
+        accuracy_of=accuracy_of,
         steps_per_revolution=steps_per_revolution,
         fallback="transient",
         multipliers=False,
@@ -338,6 +345,7 @@ def _scan_range(
     contact,
     tolerance,
     accuracy,
+    accuracy_of,
     steps_per_revolution,
     resolution,
     max_evaluations,
@@ -357,7 +365,7 @@ def _scan_range(
         )
     scan = _Scan(
         system,
-        _scan_options(contact, _scan_accuracy(accuracy, steps_per_revolution), steps_per_revolution),
+        _scan_options(contact, _scan_accuracy(accuracy, steps_per_revolution), steps_per_revolution, accuracy_of),
         executor,
         workers,
         progress,
@@ -393,12 +401,14 @@ def margin_scan(
     executor="serial",
     workers: Optional[int] = None,
     progress: bool = False,
+    accuracy_of: str = ACCURACY_OF[0],
 ) -> List[Dict[str, Any]]:
     """The margin curve over ``speed_range = (lo, hi)`` rpm at the speeds the model needs: every
     resonance speed (:func:`resonance_speeds`), the midpoints between them, at most ``resolution`` rpm
     apart (default from the resonances' spacing), and every dip of the minimum contact force refined to
     ``tolerance`` (relative) or until it loses contact. steady_response rows sorted by speed (the same
-    scan :func:`jump_speed` and :func:`size_spring` run)."""
+    scan :func:`jump_speed` and :func:`size_spring` run). ``accuracy_of="force"``: the accuracy of the
+    contact force alone, all a margin reads (steady_response)."""
     lo, hi = _check_range(speed_range, tolerance, resolution, accuracy)
     scan, _, warned = _scan_range(
         system,
@@ -407,6 +417,7 @@ def margin_scan(
         contact=contact,
         tolerance=tolerance,
         accuracy=accuracy,
+        accuracy_of=check_accuracy_of(accuracy_of),
         steps_per_revolution=steps_per_revolution,
         resolution=resolution,
         max_evaluations=max_evaluations,
@@ -433,6 +444,7 @@ def jump_speed(
     executor="serial",
     workers: Optional[int] = None,
     progress: bool = False,
+    accuracy_of: str = ACCURACY_OF[0],
 ) -> JumpSpeed:
     """The jump speed: the lowest camshaft speed in ``speed_range = (lo, hi)`` rpm whose periodic steady
     state loses contact, found whatever the range.
@@ -450,7 +462,8 @@ def jump_speed(
     reached).
 
     Every speed is a :func:`camfollower.response.steady_response` at ``accuracy`` (default 1e-3 of
-    the peak force and acceleration; ``steps_per_revolution`` to fix the step instead). ValueError when
+    the peak force and acceleration; ``accuracy_of="force"``: of the force alone, all the search reads;
+    ``steps_per_revolution`` to fix the step instead). ValueError when
     the contact is already lost at ``lo`` or nowhere in the range (with the smallest margin and where).
     ``executor``/``workers`` run the scan's speeds as :func:`margin_curve` does (default serial).
     """
@@ -462,6 +475,7 @@ def jump_speed(
         contact=contact,
         tolerance=tolerance,
         accuracy=accuracy,
+        accuracy_of=check_accuracy_of(accuracy_of),
         steps_per_revolution=steps_per_revolution,
         resolution=resolution,
         max_evaluations=max_evaluations,
@@ -473,7 +487,7 @@ def jump_speed(
     coarse = scan.rows
     fine = _Scan(
         system,
-        _scan_options(contact, accuracy, steps_per_revolution),
+        _scan_options(contact, accuracy, steps_per_revolution, accuracy_of),
         executor,
         workers,
         progress,
@@ -655,6 +669,7 @@ def size_spring(
     tolerance: float = 1e-3,
     speed_range: Optional[Tuple[float, float]] = None,
     max_evaluations: int = 30,
+    accuracy_of: str = ACCURACY_OF[0],
 ) -> List[SpringSize]:
     """For each spring ``rate`` (N/m), the smallest preload (N) whose periodic response keeps at least
     ``margin`` N of contact force all round at ``rpm`` — and, given ``speed_range = (lo, rpm)``, at
@@ -663,7 +678,7 @@ def size_spring(
     spring found, and the spring is sized again at the speed where the margin is least, until the
     whole range keeps it. ``build(rate, preload)`` returns the mechanism (at any speed). The spring's
     largest force is preload + rate x the largest lift (the program's). Each response at ``accuracy``
-    (steady_response). Raises ValueError for a margin < 0, rates <= 0 or a range not ending at ``rpm``,
+    (steady_response; ``accuracy_of="force"``: of the force alone, all the sizing reads). Raises ValueError for a margin < 0, rates <= 0 or a range not ending at ``rpm``,
     RuntimeError when no preload up to 1e6 N does."""
     if not (math.isfinite(margin) and margin >= 0.0):
         raise ValueError(f"margin must be a finite force >= 0 N, got {margin}")
@@ -673,6 +688,7 @@ def size_spring(
     if not (math.isfinite(preload_guess) and preload_guess > 0):
         raise ValueError(f"preload_guess must be a finite force > 0 N, got {preload_guess}")
     rpm = _check_speeds([rpm])[0]
+    check_accuracy_of(accuracy_of)
     if speed_range is not None:
         lo, hi = _check_range(speed_range, tolerance, None, accuracy)
         if hi != rpm:
@@ -691,6 +707,7 @@ def size_spring(
                 mech,
                 contact=contact,
                 accuracy=accuracy,
+                accuracy_of=accuracy_of,
                 steps_per_revolution=steps_per_revolution,
                 fallback="transient",
                 multipliers=False,
@@ -733,6 +750,7 @@ def size_spring(
                 contact=contact,
                 tolerance=tolerance,
                 accuracy=accuracy,
+                accuracy_of=accuracy_of,
                 steps_per_revolution=steps_per_revolution,
             )
             count += len(rows)
@@ -949,6 +967,7 @@ def compare_programs(
     executor=None,
     workers: Optional[int] = None,
     progress: bool = True,
+    accuracy_of: str = ACCURACY_OF[0],
 ) -> List[Dict[str, Any]]:
     """Motion laws side by side: ``build(program)`` returns the mechanism for a MotionProgram; one
     steady_response row per named program at ``rpm`` (with ``program``: its name): margin, peak
@@ -961,7 +980,13 @@ def compare_programs(
         _program_case,
         build,
         speed,
-        dict(contact=contact, accuracy=accuracy, steps_per_revolution=steps_per_revolution, fallback="transient"),
+        dict(
+            contact=contact,
+            accuracy=accuracy,
+            accuracy_of=check_accuracy_of(accuracy_of),
+            steps_per_revolution=steps_per_revolution,
+            fallback="transient",
+        ),
     )
     out = run_cases(fn, items, executor=executor, workers=workers, progress=progress, desc="programs")
     return [o.value if o.ok else {"program": name, "error": o.error} for o, (name, _) in zip(out, items)]

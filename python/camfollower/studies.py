@@ -5,6 +5,7 @@
     rpm = [500, 750, 1000]            # or rpm_from / rpm_to / count (evenly spaced)
     jump = [1000, 2000]               # optional: the first contact loss in this speed range (rpm)
     accuracy = 1e-3                   # optional: of force and acceleration, relative to their peaks
+    accuracy_of = "force"             # optional: the accuracy of the contact force alone
     steps_per_revolution = 16384      # optional: a fixed step instead of the accuracy
     contact = "cam"                   # optional: the contact to measure (default: the first)
 
@@ -40,7 +41,7 @@ import re
 from typing import Any, Dict, Optional, Sequence
 
 from . import _core
-from .response import check_accuracy
+from .response import ACCURACY_OF, check_accuracy, check_accuracy_of
 from .speed import _MAX_RPM, _MIN_RPM
 from .tolerance import DISTRIBUTIONS, ROLLER_TOLERANCES, _check_ranges
 
@@ -171,7 +172,7 @@ def sweep_settings(table: Dict[str, Any], *, rpm=None, jump=None, path=None, con
         raise ValueError(f"{_where(path, 'sweep')}: must be a table, got {_a(table)}")
     _unknown(
         table,
-        ("rpm", "rpm_from", "rpm_to", "count", "jump", "accuracy", "steps_per_revolution", "contact"),
+        ("rpm", "rpm_from", "rpm_to", "count", "jump", "accuracy", "accuracy_of", "steps_per_revolution", "contact"),
         path,
         "sweep",
     )
@@ -218,6 +219,7 @@ def sweep_settings(table: Dict[str, Any], *, rpm=None, jump=None, path=None, con
         "jump": bracket,
         "contact": contact,
         "accuracy": _accuracy(table, path, "sweep"),
+        "accuracy_of": _accuracy_of(table, path, "sweep"),
         "steps_per_revolution": steps,
     }
 
@@ -231,6 +233,14 @@ def _accuracy(table, path, prefix) -> Optional[float]:
         return check_accuracy(accuracy, "accuracy")
     except ValueError as e:
         raise ValueError(f"{_where(path, prefix + '.accuracy')}: {str(e).removeprefix('accuracy ')}") from None
+
+
+def _accuracy_of(table, path, prefix) -> str:
+    """What the table's study accuracy covers (response.ACCURACY_OF; the first by default)."""
+    try:
+        return check_accuracy_of(table.get("accuracy_of", ACCURACY_OF[0]), "accuracy_of")
+    except ValueError as e:
+        raise ValueError(f"{_where(path, prefix + '.accuracy_of')}: {str(e).removeprefix('accuracy_of ')}") from None
 
 
 def montecarlo_settings(
@@ -251,7 +261,17 @@ def montecarlo_settings(
         raise ValueError(f"{_where(path, 'montecarlo')}: must be a table, got {_a(table)}")
     _unknown(
         table,
-        ("cases", "seed", "rpm", "roller_tolerance", "accuracy", "steps_per_revolution", "contact", "tolerance"),
+        (
+            "cases",
+            "seed",
+            "rpm",
+            "roller_tolerance",
+            "accuracy",
+            "accuracy_of",
+            "steps_per_revolution",
+            "contact",
+            "tolerance",
+        ),
         path,
         "montecarlo",
     )
@@ -310,6 +330,7 @@ def montecarlo_settings(
         "rpm": speed,
         "roller_tolerance": mode,
         "accuracy": _accuracy(table, path, "montecarlo"),
+        "accuracy_of": _accuracy_of(table, path, "montecarlo"),
         "steps_per_revolution": _int(table, "steps_per_revolution", None, 64, 1 << 22, path, "montecarlo")
         if "steps_per_revolution" in table
         else None,

@@ -44,7 +44,7 @@ import numpy as np
 
 from . import _core, _text
 from .executors import check_executor, run_cases
-from .response import check_accuracy, steady_response
+from .response import ACCURACY_OF, check_accuracy, check_accuracy_of, steady_response
 
 #: Metrics of each case kept in the table (from camfollower.response.steady_response).
 METRICS = (
@@ -809,14 +809,15 @@ def monte_carlo(
     executor=None,
     workers: Optional[int] = None,
     progress: bool = True,
+    accuracy_of: str = ACCURACY_OF[0],
 ) -> MonteCarloResult:
     """``cases`` random variants of the model ``build`` describes (module docstring), each solved to
     its periodic steady state and measured (:data:`METRICS`), on ``executor`` (camfollower.executors).
 
     ``tolerances``: {parameter: Normal | Uniform | TruncatedNormal}. The nominal model is solved first
     (its row is ``nominal``). Each case at ``accuracy`` (steady_response: default 1e-3 of the peak force
-    and acceleration; ``steps_per_revolution`` to fix the step instead); each row says the ``accuracy``
-    it reached. A case that fails (non-periodic response after the transient
+    and acceleration, ``accuracy_of="force"`` of the force alone; ``steps_per_revolution`` to fix the
+    step instead); each row says the ``accuracy`` it reached. A case that fails (non-periodic response after the transient
     fallback, a model error, a crashed worker) is kept as a row with ``ok`` False, its values, seed and
     the error.
     """
@@ -839,6 +840,7 @@ def monte_carlo(
     options = dict(
         contact=contact,
         accuracy=accuracy,
+        accuracy_of=check_accuracy_of(accuracy_of),
         steps_per_revolution=steps_per_revolution,
         fallback="transient",
         multipliers=False,

@@ -453,3 +453,20 @@ def test_a_byte_order_mark_reads_the_same_in_python_and_on_the_command_line(tmp_
             [str(CLI), "kinematics", str(tmp_path / "two.toml")], capture_output=True, text=True, timeout=120
         )
         assert run.returncode == 1 and run.stderr.strip() == f"camfollower: error: {e.value}"
+
+
+def test_a_study_table_says_what_its_accuracy_covers(tmp_path):
+    from camfollower.studies import montecarlo_settings, sweep_settings
+
+    sweep = lambda case, p: sweep_settings(case.data["sweep"], path=p)  # noqa: E731
+    path, text = _settings_error(tmp_path, '[sweep]\nrpm = [600]\naccuracy_of = "forces"\n', sweep)
+    assert text.startswith(f"{path}:{_line_of(path.read_text(), 'accuracy_of =')}: sweep.accuracy_of: must be "), text
+    assert "'force_and_acceleration' or 'force'" in text and "got 'forces'" in text
+    path.write_text(path.read_text().replace('"forces"', '"force"'))
+    assert sweep_settings(load_config(path).data["sweep"], path=path)["accuracy_of"] == "force"
+    path.write_text(path.read_text().replace('accuracy_of = "force"\n', ""))
+    assert sweep_settings(load_config(path).data["sweep"], path=path)["accuracy_of"] == "force_and_acceleration"
+    block = MC + 'distribution = "normal"\nstd = 0.1\n'
+    mc = lambda case, p: montecarlo_settings(case.data["montecarlo"], path=p)  # noqa: E731
+    path, text = _settings_error(tmp_path, block.replace("cases = 4\n", "cases = 4\naccuracy_of = 1\n"), mc)
+    assert "montecarlo.accuracy_of: must be 'force_and_acceleration' or 'force'" in text and "got 1" in text

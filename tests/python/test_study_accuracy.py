@@ -120,6 +120,34 @@ def test_steady_response_reaches_the_accuracy_it_reports(rpm, accuracy):
         assert row["force_error_N"] == pytest.approx(row["accuracy"] * np.max(np.abs(got["cam.force"])), rel=1e-9)
 
 
+@pytest.mark.parametrize("rpm", [600.0, 750.0])
+def test_the_force_alone_reaches_its_accuracy_in_fewer_steps(rpm):
+    """accuracy_of="force": the contact force of the reported orbit within the estimate against DOP853
+    (as above), whatever the starting step; the search ends no later than with the acceleration in the
+    estimate, and earlier on the paper preset at 1e-5, where the roller's ringing acceleration sets the
+    step."""
+    m = cf.presets.paper().with_camshaft_speed_rpm(rpm)
+    best = periodic_steady_state(m, time_step=m.period / 131072, gamma=0.5, beta=1 / 12, multipliers=False)
+    both = steady_response(m, accuracy=1e-5, keep_orbit=True, multipliers=False)
+    assert both["accuracy_of"] == "force_and_acceleration"
+    for start in (4096, 8192):
+        row = steady_response(
+            m, accuracy=1e-5, accuracy_of="force", steps_per_revolution=start, keep_orbit=True, multipliers=False
+        )
+        assert row["accuracy_reached"] and row["accuracy"] <= 1e-5 and row["accuracy_of"] == "force"
+        assert row["steps_per_revolution"] < both["steps_per_revolution"]
+        n = row["steps_per_revolution"]
+        ref = cf.simulate(
+            m, revolutions=1, time_step=m.period / n, method="dop853", tolerance=1e-11, initial_state=(best.q, best.v)
+        )
+        x, x_ref = np.asarray(row["orbit"].record(m)["cam.force"]), np.asarray(ref["cam.force"])
+        assert np.max(np.abs(x - x_ref)) / np.max(np.abs(x_ref)) <= max(row["accuracy"], 1e-7)
+    with pytest.raises(ValueError, match=r"accuracy_of must be 'force_and_acceleration' or 'force' .* got 'acc'"):
+        steady_response(m, accuracy=1e-3, accuracy_of="acc")
+    with pytest.raises(ValueError, match="accuracy_of must be"):
+        speed.jump_speed(m, (1000.0, 1600.0), accuracy_of="forces")
+
+
 def test_the_old_fixed_study_step_was_off_by_more_than_the_accuracy_now_reported():
     """At 4096 average-acceleration steps per revolution (the studies' old fixed scheme) the follower's
     acceleration is off by more than 1 % of its peak: the lightly damped fast mode rings with the wrong
