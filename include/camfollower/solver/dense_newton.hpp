@@ -70,7 +70,7 @@ public:
         for (int level = 0; level < levels; ++level) {
             const double dt = s_.time_step / double(1 << level);
             A0_[level] = system.mass() / (p_.beta * dt * dt) +
-                         (1.0 + p_.alpha) * (p_.gamma / (p_.beta * dt) * system.damping() + system.stiffness());
+                         (1.0 + p_.alpha) * (p_.damping_gamma / (p_.beta * dt) * system.damping() + system.stiffness());
             Aa_[level] = (p_.beta * dt * dt) * A0_[level];
             // An explicit inverse applied as one matrix-vector product beats two triangular solves for
             // the small, well-conditioned matrices of lumped models.

@@ -15,6 +15,9 @@
 // When the tangent is symmetric positive semi-definite (V = U diag(s), s >= 0) the next increment is
 // bounded by |r|_2 / lambda_min(A0) and the confirming solve is skipped: a step whose contact state
 // does not change converges in one solve. A step that fails is retried as two halves (bounded).
+// Fixed steps with gamma = 1/2 and beta < 1/4 (Fox-Goodwin) post-process the velocity to fourth order
+// (NewmarkParameters::processed): the stepper keeps the jerk at the last state and the acceleration
+// before it, and starts them from a central difference of the acceleration in time.
 #pragma once
 
 #include <algorithm>
@@ -23,6 +26,7 @@
 #include <cstring>
 #include <functional>
 #include <limits>
+#include <tuple>
 #include <type_traits>
 #include <vector>
 
@@ -75,6 +79,8 @@ public:
         norm_C_ = row_sum_norm(linear_.damping());
         norm_K_ = row_sum_norm(linear_.stiffness());
         for (Vector* v : {&q_pred_, &v_pred_, &b_, &a_, &q_, &v_, &r_, &dq_}) v->resize(n_);
+        if (p_.processed)
+            for (Vector* v : {&jerk_, &a_prev_, &jerk_next_}) v->resize(n_);
         if (control_error_) {
             for (Vector* v : {&eq_, &ev_, &da_, &da_old_, &ef_}) v->resize(n_);
             uvq_ = uvv_ = LowRank<Vector>(n_, std::max(1, max_rank(system)));
@@ -103,6 +109,7 @@ public:
         force_scale_ = std::max({1.0, Kq.cwiseAbs().maxCoeff(), s.f.cwiseAbs().maxCoeff()});
         if (control_error_) start_error_control(s);
         else linear_.check_stability_limit(s);
+        if (p_.processed) start_history(s);
         if constexpr (provides_sensitivity) {
             if (sensitivity_) start_sensitivity(s);
         }
@@ -202,9 +209,20 @@ private:
         const auto& C = linear_.damping();
         const auto& K = linear_.stiffness();
         const double t1 = s.t + dt;
+        // The velocity the forces see moves by v_step per unit of the new acceleration; the Newton
+        // matrix was formed with damping_gamma dt, the rest (a processed step of another length than
+        // the last) is added to the residual.
+        double v_step = p_.gamma * dt, v_step_excess = 0.0;
+        if (p_.processed && !history_is_of(s)) start_history(s);
         prepare(system_, t1, s.workspace);
-        q_pred_ = s.q + dt * s.v + (dt * dt * (0.5 - p_.beta)) * s.a;
-        v_pred_ = s.v + (dt * (1.0 - p_.gamma)) * s.a;
+        if (p_.processed) {
+            v_step = predict_processed(s, dt);
+            v_step_excess = v_step - p_.damping_gamma * dt;
+        } else {
+            q_pred_ = s.q + dt * s.v + (dt * dt * (0.5 - p_.beta)) * s.a;
+            v_pred_ = s.v + (dt * (1.0 - p_.gamma)) * s.a;
+        }
+        v_step_ = v_step;
         // r(a) = Aa a + b + (1 + alpha) f(q, v)
         b_.noalias() = C * v_pred_;
         b_.noalias() += K * q_pred_;
@@ -214,7 +232,7 @@ private:
             b_.noalias() -= alpha * (K * s.q);
             b_ -= alpha * s.f;
         }
-        const double v_factor = p_.gamma / (p_.beta * dt);
+        const double v_factor = v_step / (p_.beta * dt * dt);
         const double r_tol = s_.residual_tolerance * force_scale_;
         linear_.new_step();
         error_ = std::numeric_limits<double>::infinity();  // until Newton converges
@@ -222,12 +240,13 @@ private:
         // The unknown is the new acceleration (q and v follow from it): unlike q, no rounding error
         // gets amplified by 1/(beta dt^2) in the residual.
         detail::copy_vector(s.a, a_);
-        const double q_step = p_.beta * dt * dt, v_step = p_.gamma * dt;
+        const double q_step = p_.beta * dt * dt;
         for (iterations = 0; iterations < s_.max_iterations;) {
             q_ = q_pred_ + q_step * a_;
             v_ = v_pred_ + v_step * a_;
             nonlinear_force(system_, s.workspace, q_, v_, s.f);
             r_.noalias() = linear_.residual_matrix(level) * a_;
+            if (v_step_excess != 0.0) r_.noalias() += v_step_excess * (C * a_);
             r_ += b_;
             r_ += one_alpha * s.f;
             residual = r_.cwiseAbs().maxCoeff();
@@ -270,6 +289,7 @@ private:
         if constexpr (provides_sensitivity) {
             if (sensitivity_) propagate_sensitivity(s.workspace, dt, level);
         }
+        if (p_.processed) advance_history(s, t1, dt);
         accept(s, t1);
         return true;
     }
@@ -294,6 +314,62 @@ private:
         while (const Crossing c = events_.earliest(s.t, t1, path)) events_.record(c, s.workspace);
     }
 
+    // The processed velocity (NewmarkParameters::processed). With a' the jerk, the trapezoidal velocity
+    // of steps dt is vN = v + dt^2 / 12 a' (its quadrature error, by Euler-Maclaurin), so a step from s
+    // starts from vN0 = v0 + dt^2 / 12 a'0, moves the displacement as Fox-Goodwin does, and ends at
+    // v1 = vN0 + dt / 2 (a0 + a1) - dt^2 / 12 a'1, a'1 the three-point derivative through a_prev, a0,
+    // a1 (spacings h_prev_, dt). Sets q_pred_, v_pred_ (v1 less its a1 part) and the weights; returns
+    // v1's coefficient of a1.
+    double predict_processed(const StateType& s, double dt) {
+        const double w = dt * dt / 12.0, h1 = h_prev_;
+        if (h1 == dt) {
+            jerk_weights_ = {1.5 / dt, -2.0 / dt, 0.5 / dt};
+        } else {
+            jerk_weights_ = {(2.0 * dt + h1) / (dt * (h1 + dt)), -(h1 + dt) / (h1 * dt), dt / (h1 * (h1 + dt))};
+        }
+        const auto [c1, c0, cm] = jerk_weights_;
+        q_pred_ = s.q + dt * s.v + (dt * w) * jerk_ + (dt * dt * (0.5 - p_.beta)) * s.a;
+        v_pred_ = s.v + w * jerk_ + (0.5 * dt - w * c0) * s.a - (w * cm) * a_prev_;
+        return h1 == dt ? p_.damping_gamma * dt : 0.5 * dt - w * c1;
+    }
+    // After the step to t1 is accepted (s still the state before it, a_ the new acceleration).
+    void advance_history(const StateType& s, double t1, double dt) {
+        const auto [c1, c0, cm] = jerk_weights_;
+        jerk_next_ = c1 * a_ + c0 * s.a + cm * a_prev_;
+        detail::copy_vector(s.a, a_prev_);
+        detail::copy_vector(jerk_next_, jerk_);
+        h_prev_ = dt, history_t_ = t1, history_q0_ = q_[0];
+    }
+    // Whether the history is of state s (a state stepped from elsewhere restarts it).
+    bool history_is_of(const StateType& s) const {
+        return std::abs(s.t - history_t_) <= 1e-9 * s_.time_step && s.q[0] == history_q0_;
+    }
+    // The jerk at s by a central difference of the consistent acceleration along the state's Taylor
+    // line (t +- d, q +- d v, v +- d a); the acceleration one step before, a - dt a', stands in for
+    // the history a run from s does not have (its error, dt^2 a'' / 4 in the first jerk, enters v
+    // once, times dt^2 / 12).
+    CAMFOLLOWER_NOINLINE void start_history(const StateType& s) {
+        const double h = s_.time_step, d = 1e-3 * h;
+        acceleration_along(s, d, jerk_next_);
+        acceleration_along(s, -d, a_prev_);
+        jerk_ = (jerk_next_ - a_prev_) / (2.0 * d);
+        a_prev_ = s.a - h * jerk_;
+        h_prev_ = h, history_t_ = s.t, history_q0_ = s.q[0];
+    }
+    // The consistent acceleration at (s.t + d, s.q + d s.v, s.v + d s.a), into out (q_, v_, r_, b_ as
+    // scratch; s untouched).
+    void acceleration_along(const StateType& s, double d, Vector& out) {
+        workspace_t<System> ws = s.workspace;
+        prepare(system_, s.t + d, ws);
+        q_ = s.q + d * s.v;
+        v_ = s.v + d * s.a;
+        nonlinear_force(system_, ws, q_, v_, r_);
+        b_.noalias() = linear_.damping() * v_;
+        b_.noalias() += linear_.stiffness() * q_;
+        b_ += r_;
+        out = linear_.solve_mass(-b_);
+    }
+
     // A failed attempt leaves the state as it was, but for the force at the old state (HHT needs it)
     // and the workspace's time terms, both restored here.
     bool fail_step(StateType& s) {
@@ -311,21 +387,48 @@ private:
         tangent_products(s.workspace, s.q, s.v, d.dq, d.dv, d.g);
         d.da = linear_.mass().partialPivLu().solve(d.g);
         d.da = -d.da;
+        if (p_.processed) {  // the start's jerk differentiated as start_history computes it
+            const double h = s_.time_step, delta = 1e-3 * h;
+            for (const double sign : {1.0, -1.0}) {
+                workspace_t<System> ws = s.workspace;
+                prepare(system_, s.t + sign * delta, ws);
+                q_ = s.q + (sign * delta) * s.v;
+                v_ = s.v + (sign * delta) * s.a;
+                d.p = d.dq + (sign * delta) * d.dv;
+                d.w = d.dv + (sign * delta) * d.da;
+                tangent_products(ws, q_, v_, d.p, d.w, sign > 0.0 ? d.dj : d.da_prev);
+            }
+            d.r = (d.dj - d.da_prev) / (2.0 * delta);
+            d.dj = linear_.mass().partialPivLu().solve(d.r);
+            d.dj = -d.dj;
+            d.da_prev = d.da - h * d.dj;
+        }
     }
     CAMFOLLOWER_NOINLINE void propagate_sensitivity(const workspace_t<System>& ws, double dt, int level) {
         Sensitivity& d = *sensitivity_;
         const double alpha = p_.alpha, one_alpha = 1.0 + alpha;
-        const double q_step = p_.beta * dt * dt, v_step = p_.gamma * dt;
-        d.p = d.dq + dt * d.dv + (dt * dt * (0.5 - p_.beta)) * d.da;
-        d.w = d.dv + (dt * (1.0 - p_.gamma)) * d.da;
+        const double q_step = p_.beta * dt * dt, v_step = v_step_;
+        if (p_.processed) {  // predict_processed's predictors, differentiated
+            const double w = dt * dt / 12.0;
+            const auto [c1, c0, cm] = jerk_weights_;
+            (void)c1;
+            d.p = d.dq + dt * d.dv + (dt * w) * d.dj + (dt * dt * (0.5 - p_.beta)) * d.da;
+            d.w = d.dv + w * d.dj + (0.5 * dt - w * c0) * d.da - (w * cm) * d.da_prev;
+            d.dj = c0 * d.da + cm * d.da_prev;  // the new jerk's, but for the new acceleration's term
+            d.da_prev = d.da;
+        } else {
+            d.p = d.dq + dt * d.dv + (dt * dt * (0.5 - p_.beta)) * d.da;
+            d.w = d.dv + (dt * (1.0 - p_.gamma)) * d.da;
+        }
         tangent_products(ws, q_, v_, d.p, d.w, d.r);
         d.r *= one_alpha;
         if (alpha != 0.0) d.r -= alpha * d.g;
-        linear_.fill_tangent(ws, q_, v_, 1.0, p_.gamma / (p_.beta * dt));  // the Newton matrix at the step's end
+        linear_.fill_tangent(ws, q_, v_, 1.0, v_step / q_step);  // the Newton matrix at the step's end
         linear_.solve_columns(level, one_alpha, d.r, d.da);
         d.da /= q_step;
         d.dq = d.p + q_step * d.da;
         d.dv = d.w + v_step * d.da;
+        if (p_.processed) d.dj += std::get<0>(jerk_weights_) * d.da;
         d.g *= alpha;
         d.g.noalias() -= linear_.mass() * d.da;
         d.g /= one_alpha;
@@ -480,6 +583,12 @@ private:
     LowRank<Vector> sens_uvq_, sens_uvv_;  // their tangent, dF/dq and dF/dv apart
     double force_scale_ = 1.0;
     double norm_M_ = 0.0, norm_C_ = 0.0, norm_K_ = 0.0;  // infinity norms, for the rounding floor
+    // The processed velocity's history: the jerk at the last accepted state, the acceleration one step
+    // before it and that step's length; of the state at (history_t_, q[0] = history_q0_).
+    Vector jerk_, a_prev_, jerk_next_;
+    double h_prev_ = 0.0, history_t_ = std::numeric_limits<double>::quiet_NaN(), history_q0_ = 0.0;
+    std::tuple<double, double, double> jerk_weights_{0.0, 0.0, 0.0};  // of a1, a0, a_prev in the new jerk
+    double v_step_ = 0.0;  // the last attempt's velocity coefficient of the new acceleration
     // Scratch, sized once: nothing is allocated inside the time loop.
     Vector q_pred_, v_pred_, b_, a_, q_, v_, r_, dq_;
     EventWatch<System> events_{system_};

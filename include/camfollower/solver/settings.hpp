@@ -99,10 +99,19 @@ enum class Backend { automatic, dense, sparse };
 enum class SparseFactorization { automatic, klu };
 inline constexpr int sparse_backend_threshold = 100;  // DOFs; measured crossover: bench/camshaft.cpp
 
-// Newmark's gamma, beta and HHT's alpha as a method steps with them.
+// Newmark's gamma, beta and HHT's alpha as a method steps with them. `processed`: the scheme's velocity
+// is post-processed to fourth order (docs/solvers.md, "Fourth order with damping"): with gamma = 1/2
+// the displacements follow Numerov's recurrence, exact to fourth order for beta = 1/12, while the
+// trapezoidal velocity vN is off by dt^2 / 12 a' (a' the jerk); the forces and the recorded state see
+// v = vN - dt^2 / 12 a', a' from the last three accelerations. The velocity then moves by
+// damping_gamma dt per unit of the new acceleration (the Newton matrix's damping coefficient):
+// 1/2 - (1/12)(3/2) = 3/8 for the three-point jerk at equal steps.
 struct NewmarkParameters {
     double gamma = 0.5, beta = 0.25, alpha = 0.0;
+    bool processed = false;
+    double damping_gamma = 0.5;
 };
+inline constexpr double processed_damping_gamma = 3.0 / 8.0;
 
 // Largest stable step of Newmark with beta < gamma / 2 (undamped: omega_max dt < 1 / sqrt(gamma / 2 -
 // beta)), with a 10 % margin for the highest mode's variation along the motion (contact directions
@@ -198,14 +207,19 @@ inline void give_default_tolerance(SolverSettings& s) {
     if (!s.tolerance && is_runge_kutta(s.method)) s.tolerance = runge_kutta_default_tolerance;
 }
 
-// The Newmark family's gamma, beta and alpha for its method (newmark: the settings' own).
+// The Newmark family's gamma, beta and alpha for its method (newmark: the settings' own). Fixed steps
+// with gamma = 1/2 and beta < 1/4 (Fox-Goodwin and its period-matched neighbours) are processed;
+// average acceleration (the paper's rule) and HHT are not, nor steps under a tolerance.
 inline NewmarkParameters newmark_parameters(const SolverSettings& s) {
-    if (s.method == Method::fox_goodwin) return {0.5, 1.0 / 12.0, 0.0};
+    NewmarkParameters p{s.gamma, s.beta, 0.0};
+    if (s.method == Method::fox_goodwin) p = {0.5, 1.0 / 12.0, 0.0};
     if (s.method == Method::hht) {
         const double alpha = s.hht_alpha.value_or(default_hht_alpha);
-        return {0.5 - alpha, 0.25 * (1.0 - alpha) * (1.0 - alpha), alpha};
+        p = {0.5 - alpha, 0.25 * (1.0 - alpha) * (1.0 - alpha), alpha};
     }
-    return {s.gamma, s.beta, 0.0};
+    p.processed = p.gamma == 0.5 && p.alpha == 0.0 && p.beta < 0.25 && !s.tolerance;
+    p.damping_gamma = p.processed ? processed_damping_gamma : p.gamma;
+    return p;
 }
 
 // The linear-algebra choice by one name (config files, Python):

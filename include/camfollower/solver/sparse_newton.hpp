@@ -74,7 +74,8 @@ public:
         for (int level = 0; level < levels; ++level) {
             const double dt = s_.time_step / double(1 << level);
             const double one_alpha = 1.0 + p_.alpha;
-            Sparse A0 = (1.0 / (p_.beta * dt * dt)) * M + (one_alpha * p_.gamma / (p_.beta * dt)) * C + one_alpha * K;
+            Sparse A0 =
+                (1.0 / (p_.beta * dt * dt)) * M + (one_alpha * p_.damping_gamma / (p_.beta * dt)) * C + one_alpha * K;
             A0.makeCompressed();
             Aa_[level] = (p_.beta * dt * dt) * A0;
             std::vector<double>& values = a0_values_[level];

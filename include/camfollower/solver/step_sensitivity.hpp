@@ -15,6 +15,9 @@
 // own phase errors included): the monodromy is that of the discrete map shooting solves.
 // Contact losses between steps and path memory (elements with hysteresis) are not differentiated:
 // the Jacobian is then approximate, which costs Newton's iterations, not the orbit's accuracy.
+// A processed velocity (NewmarkParameters::processed) adds the jerk's and the last acceleration's
+// derivatives (dj, da_prev) to the predictors, as its step adds them to the velocity; a step of
+// another length than the last solves with the equal-step Newton matrix (approximate, as above).
 #pragma once
 
 #include <Eigen/Core>
@@ -29,11 +32,12 @@ struct StepSensitivity {
     static constexpr int cols = rows == Eigen::Dynamic ? Eigen::Dynamic : 2 * rows;
     using Block = Eigen::Matrix<double, rows, cols>;
     Block dq, dv, da, g;                                   // n x 2n: d(q, v, a) / d(q0, v0) and G (above)
+    Block dj, da_prev;                                     // a processed velocity's jerk and last acceleration
     Block p, w, r;                                         // scratch
     Eigen::Matrix<double, Eigen::Dynamic, cols> low_rank;  // rank x 2n scratch of the tangent's V^T X
 
     void resize(int n, int rank_capacity) {
-        for (Block* m : {&dq, &dv, &da, &g, &p, &w, &r}) m->resize(n, 2 * n);
+        for (Block* m : {&dq, &dv, &da, &g, &dj, &da_prev, &p, &w, &r}) m->resize(n, 2 * n);
         low_rank.resize(rank_capacity, 2 * n);
     }
     // d(q, v) / d(q0, v0): the monodromy after one revolution, 2n x 2n.
