@@ -79,6 +79,23 @@ void BM_PresetSteps(benchmark::State& state) {
 }
 BENCHMARK(BM_PresetSteps)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
+// Fox-Goodwin at T/8192 (its velocity processed to fourth order since 2026-11-30), Mechanism<7>.
+void BM_PresetFoxGoodwinSteps(benchmark::State& state) {
+    const auto model = cf::presets::paper();
+    using M = std::decay_t<decltype(model)>;
+    const double dt = model.period() / 8192.0;
+    cf::Newmark<M> stepper(model, cf::SolverSettings::named(cf::Method::fox_goodwin, dt));
+    cf::SolverStatistics stats;
+    for (auto _ : state) {
+        auto s = stepper.start(0.0, model.initial_displacement(), M::Vector::Zero());
+        for (int n = 0; n < 8192; ++n) stepper.step(s, stats);
+        benchmark::DoNotOptimize(s.q.data());
+    }
+    state.SetItemsProcessed(state.iterations() * 8192);
+    state.SetLabel("paper preset, fox_goodwin, T/8192");
+}
+BENCHMARK(BM_PresetFoxGoodwinSteps)->Unit(benchmark::kMillisecond);
+
 // The yardstick of the stepper's own overhead: a minimal hand-written Newmark (tight_newmark.hpp) on
 // the same model evaluation and step as BM_PresetSteps/0, producing the same states.
 void BM_TightSteps(benchmark::State& state) {

@@ -106,8 +106,9 @@ def simulate(
 
     ``method`` (the names: ``camfollower.METHODS``): "newmark" (the default: Newmark with ``gamma``,
     ``beta``, fixed step ``time_step``), "hht" (HHT-alpha with ``hht_alpha``: Newmark that damps the
-    highest modes; no ``tolerance``), "fox_goodwin" (Newmark with gamma = 1/2, beta = 1/12: fourth-order phase on
-    undamped linear modes, stable below dt = sqrt(6) / omega_max, refused beyond it); both given a
+    highest modes; no ``tolerance``), "fox_goodwin" (Newmark with gamma = 1/2, beta = 1/12, its velocity processed to
+    fourth order, damping included; stable below dt = sqrt(6) / omega_max,
+    refused beyond it; docs/solvers.md); both given a
     ``tolerance`` adapt their steps: ``time_step`` becomes the output interval, integrated in steps of
     time_step / 2^k (k <= ``max_halvings``, within fox_goodwin's stability limit and ``max_step``)
     chosen by each step's local error estimate (Zienkiewicz & Xie), measured like the Runge-Kutta

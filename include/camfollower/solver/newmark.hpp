@@ -15,7 +15,7 @@
 // When the tangent is symmetric positive semi-definite (V = U diag(s), s >= 0) the next increment is
 // bounded by |r|_2 / lambda_min(A0) and the confirming solve is skipped: a step whose contact state
 // does not change converges in one solve. A step that fails is retried as two halves (bounded).
-// Fixed steps with gamma = 1/2 and beta < 1/4 (Fox-Goodwin) post-process the velocity to fourth order
+// gamma = 1/2 with beta < 1/4 (Fox-Goodwin) post-processes the velocity to fourth order
 // (NewmarkParameters::processed): the stepper keeps the jerk at the last state and the acceleration
 // before it, and starts them from a central difference of the acceleration in time.
 #pragma once
@@ -222,7 +222,7 @@ private:
             q_pred_ = s.q + dt * s.v + (dt * dt * (0.5 - p_.beta)) * s.a;
             v_pred_ = s.v + (dt * (1.0 - p_.gamma)) * s.a;
         }
-        v_step_ = v_step;
+        v_step_ = v_step, v_step_excess_ = v_step_excess;
         // r(a) = Aa a + b + (1 + alpha) f(q, v)
         b_.noalias() = C * v_pred_;
         b_.noalias() += K * q_pred_;
@@ -319,11 +319,14 @@ private:
     // starts from vN0 = v0 + dt^2 / 12 a'0, moves the displacement as Fox-Goodwin does, and ends at
     // v1 = vN0 + dt / 2 (a0 + a1) - dt^2 / 12 a'1, a'1 the three-point derivative through a_prev, a0,
     // a1 (spacings h_prev_, dt). Sets q_pred_, v_pred_ (v1 less its a1 part) and the weights; returns
-    // v1's coefficient of a1.
+    // v1's coefficient of a1. The first step after start_history (h_prev_ = 0, a_prev_ holding the
+    // jerk a'0) takes a'1 = 2 (a1 - a0) / dt - a'0 instead, the trapezoidal rule's, also O(dt^2).
     double predict_processed(const StateType& s, double dt) {
         const double w = dt * dt / 12.0, h1 = h_prev_;
         if (h1 == dt) {
             jerk_weights_ = {1.5 / dt, -2.0 / dt, 0.5 / dt};
+        } else if (h1 == 0.0) {
+            jerk_weights_ = {2.0 / dt, -2.0 / dt, -1.0};
         } else {
             jerk_weights_ = {(2.0 * dt + h1) / (dt * (h1 + dt)), -(h1 + dt) / (h1 * dt), dt / (h1 * (h1 + dt))};
         }
@@ -345,16 +348,15 @@ private:
         return std::abs(s.t - history_t_) <= 1e-9 * s_.time_step && s.q[0] == history_q0_;
     }
     // The jerk at s by a central difference of the consistent acceleration along the state's Taylor
-    // line (t +- d, q +- d v, v +- d a); the acceleration one step before, a - dt a', stands in for
-    // the history a run from s does not have (its error, dt^2 a'' / 4 in the first jerk, enters v
-    // once, times dt^2 / 12).
+    // line (t +- d, q +- d v, v +- d a); no acceleration before it yet (h_prev_ = 0: a_prev_ holds the
+    // jerk for the first step's two-point rule, predict_processed).
     CAMFOLLOWER_NOINLINE void start_history(const StateType& s) {
-        const double h = s_.time_step, d = 1e-3 * h;
+        const double d = 1e-3 * s_.time_step;
         acceleration_along(s, d, jerk_next_);
         acceleration_along(s, -d, a_prev_);
         jerk_ = (jerk_next_ - a_prev_) / (2.0 * d);
-        a_prev_ = s.a - h * jerk_;
-        h_prev_ = h, history_t_ = s.t, history_q0_ = s.q[0];
+        a_prev_ = jerk_;
+        h_prev_ = 0.0, history_t_ = s.t, history_q0_ = s.q[0];
     }
     // The consistent acceleration at (s.t + d, s.q + d s.v, s.v + d s.a), into out (q_, v_, r_, b_ as
     // scratch; s untouched).
@@ -401,7 +403,7 @@ private:
             d.r = (d.dj - d.da_prev) / (2.0 * delta);
             d.dj = linear_.mass().partialPivLu().solve(d.r);
             d.dj = -d.dj;
-            d.da_prev = d.da - h * d.dj;
+            d.da_prev = d.dj;  // as start_history's a_prev_
         }
     }
     CAMFOLLOWER_NOINLINE void propagate_sensitivity(const workspace_t<System>& ws, double dt, int level) {
@@ -425,6 +427,18 @@ private:
         if (alpha != 0.0) d.r -= alpha * d.g;
         linear_.fill_tangent(ws, q_, v_, 1.0, v_step / q_step);  // the Newton matrix at the step's end
         linear_.solve_columns(level, one_alpha, d.r, d.da);
+        if (v_step_excess_ != 0.0) {
+            // A processed step of another length than the last (the first after a start, a halving):
+            // the level's matrix has damping_gamma dt C where the step has v_step C. Corrected by
+            // defect iterations, each contracting by about v_step_excess |C| / |M| (alpha = 0: g is
+            // free scratch until it is rebuilt below).
+            for (int k = 0; k < 3; ++k) {
+                d.g.noalias() = linear_.damping() * d.da;
+                d.g *= v_step_excess_ / q_step;
+                d.g += d.r;
+                linear_.solve_columns(level, one_alpha, d.g, d.da);
+            }
+        }
         d.da /= q_step;
         d.dq = d.p + q_step * d.da;
         d.dv = d.w + v_step * d.da;
@@ -588,7 +602,8 @@ private:
     Vector jerk_, a_prev_, jerk_next_;
     double h_prev_ = 0.0, history_t_ = std::numeric_limits<double>::quiet_NaN(), history_q0_ = 0.0;
     std::tuple<double, double, double> jerk_weights_{0.0, 0.0, 0.0};  // of a1, a0, a_prev in the new jerk
-    double v_step_ = 0.0;  // the last attempt's velocity coefficient of the new acceleration
+    double v_step_ = 0.0;         // the last attempt's velocity coefficient of the new acceleration
+    double v_step_excess_ = 0.0;  // its part beyond the Newton matrix's damping_gamma dt
     // Scratch, sized once: nothing is allocated inside the time loop.
     Vector q_pred_, v_pred_, b_, a_, q_, v_, r_, dq_;
     EventWatch<System> events_{system_};

@@ -42,9 +42,9 @@ struct MethodTraits {
 inline constexpr std::array<MethodTraits, 7> method_table{{
     {Method::newmark, "newmark", StepperKind::newmark, 2,
      "implicit Newmark-beta with gamma and beta (default 1/2, 1/4: average acceleration, unconditionally stable)"},
-    {Method::fox_goodwin, "fox_goodwin", StepperKind::newmark, 2,
-     "Newmark with gamma = 1/2, beta = 1/12: fourth-order phase on undamped modes, stable below dt = sqrt(6) / "
-     "omega_max"},
+    {Method::fox_goodwin, "fox_goodwin", StepperKind::newmark, 4,
+     "Newmark with gamma = 1/2, beta = 1/12, its velocity processed to fourth order (damping included); stable "
+     "below dt = sqrt(6) / omega_max"},
     {Method::hht, "hht", StepperKind::newmark, 2,
      "HHT-alpha (hht_alpha in [-1/3, 0]): Newmark that damps the highest modes, unconditionally stable"},
     {Method::dormand_prince, "dormand_prince", StepperKind::explicit_rk, 5,
@@ -207,9 +207,9 @@ inline void give_default_tolerance(SolverSettings& s) {
     if (!s.tolerance && is_runge_kutta(s.method)) s.tolerance = runge_kutta_default_tolerance;
 }
 
-// The Newmark family's gamma, beta and alpha for its method (newmark: the settings' own). Fixed steps
-// with gamma = 1/2 and beta < 1/4 (Fox-Goodwin and its period-matched neighbours) are processed;
-// average acceleration (the paper's rule) and HHT are not, nor steps under a tolerance.
+// The Newmark family's gamma, beta and alpha for its method (newmark: the settings' own). gamma = 1/2
+// with beta < 1/4 (Fox-Goodwin and its period-matched neighbours) is processed; average acceleration
+// (the paper's rule) and HHT are not.
 inline NewmarkParameters newmark_parameters(const SolverSettings& s) {
     NewmarkParameters p{s.gamma, s.beta, 0.0};
     if (s.method == Method::fox_goodwin) p = {0.5, 1.0 / 12.0, 0.0};
@@ -217,7 +217,7 @@ inline NewmarkParameters newmark_parameters(const SolverSettings& s) {
         const double alpha = s.hht_alpha.value_or(default_hht_alpha);
         p = {0.5 - alpha, 0.25 * (1.0 - alpha) * (1.0 - alpha), alpha};
     }
-    p.processed = p.gamma == 0.5 && p.alpha == 0.0 && p.beta < 0.25 && !s.tolerance;
+    p.processed = p.gamma == 0.5 && p.alpha == 0.0 && p.beta < 0.25;
     p.damping_gamma = p.processed ? processed_damping_gamma : p.gamma;
     return p;
 }
