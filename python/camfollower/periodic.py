@@ -148,7 +148,10 @@ def periodic_steady_state(
     (Floquet multipliers of the orbit itself), else keep the last one's. ``monodromy``: how it is built,
     "variational" (the scheme's step sensitivities carried through one revolution: the Newmark family
     on the dense backend), "differences" (2n revolutions of forward differences, ``perturbation``
-    relative to the revolution's scales) or "auto" (variational where available).
+    relative to the revolution's scales) or "auto" (variational where available; when a variational
+    Newton step does not halve the mismatch, the search restarts from its first iterate by differences:
+    the variational equations miss impacts within steps, e.g. a roller chattering between a groove's
+    flanks).
 
     Raises RuntimeError with the mismatch history when the shooting does not converge (a response
     that is not periodic: contact loss with chatter, period doubling), unless ``fallback="transient"``:

@@ -310,8 +310,9 @@ def test_auto_with_a_tolerance_takes_radau_where_damped_or_isolated_else_dop853(
 def test_auto_with_a_tolerance_runs_dop853_through_a_contact_loss():
     """Above the jump speed (2000 rpm) the follower leaves the cam: auto runs DOP853, value for value
     the named method's run; its events are where a tight DOP853 run locates them and its force error is
-    within 1e-6 of the peak at tolerance 1e-6 (measured 3.5e-7; Fox-Goodwin under the same tolerance:
-    3.2e-5)."""
+    within 1e-6 of the peak at tolerance 1e-6 (measured 3.5e-7). Fox-Goodwin under the same tolerance
+    is less accurate (9.1e-7 since its velocity is processed, 3.2e-5 before) in far more steps: its
+    order drops at the losses' kinks."""
     m = cf.presets.paper(cf.Parameters().replace(camshaft_speed_rpm=2000.0))
     grid = dict(revolutions=1, time_step=m.period / 2048)
     ref = cf.simulate(m, **grid, method="dop853", tolerance=1e-11)
@@ -327,8 +328,8 @@ def test_auto_with_a_tolerance_runs_dop853_through_a_contact_loss():
     err = np.max(np.abs(r["cam.force"] - ref["cam.force"])) / peak
     alone = cf.simulate(m, **grid, method="fox_goodwin", tolerance=1e-6, max_halvings=12)
     err_fg = np.max(np.abs(alone["cam.force"] - ref["cam.force"])) / peak
-    print(err, err_fg)
-    assert err < 1e-6 < err_fg
+    print(err, err_fg, r.stats["steps"], alone.stats["steps"])
+    assert err < 1e-6 and err < err_fg and alone.stats["steps"] > 10 * r.stats["steps"]
 
 
 def test_auto_with_a_tolerance_is_the_more_accurate_choice_on_the_damped_preset():

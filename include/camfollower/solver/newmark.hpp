@@ -398,6 +398,7 @@ private:
                 v_ = s.v + (sign * delta) * s.a;
                 d.p = d.dq + (sign * delta) * d.dv;
                 d.w = d.dv + (sign * delta) * d.da;
+                nonlinear_force(system_, ws, q_, v_, r_);  // the tangent is of the force evaluated last
                 tangent_products(ws, q_, v_, d.p, d.w, sign > 0.0 ? d.dj : d.da_prev);
             }
             d.r = (d.dj - d.da_prev) / (2.0 * delta);

@@ -226,7 +226,8 @@ PeriodicOrbit shoot(Stepper& stepper, const Eigen::VectorXd& q0, const Eigen::Ve
     if (v0.size() != n) detail::fail("shooting: initial q and v must have the same size, got ", n, " and ", v0.size());
     const int m = 2 * n;
     detail::RevolutionMap<Stepper> phi(stepper, options, n);
-    const bool variational = detail::variational_monodromy<Stepper>(options.monodromy_method);
+    // automatic: the variational equations while their Newton steps converge (below), then differences.
+    bool variational = detail::variational_monodromy<Stepper>(options.monodromy_method);
     PeriodicOrbit orbit;
     Eigen::VectorXd z(m), fz(m), r(m), zp(m), fp(m);
     z << q0, v0;
@@ -291,6 +292,8 @@ PeriodicOrbit shoot(Stepper& stepper, const Eigen::VectorXd& q0, const Eigen::Ve
     double mis = detail::scaled_mismatch(r, n, qs, vs);
     orbit.history.push_back(mis);
     double best = mis;
+    const Eigen::VectorXd z_first = z, fz_first = fz;  // where a switch to differences restarts
+    const double qs_first = qs, vs_first = vs, mis_first = mis;
     int stalls = 0;
     constexpr int max_stalls = 4;
     while (!(mis <= options.tolerance) && orbit.iterations < options.max_iterations) {
@@ -321,7 +324,22 @@ PeriodicOrbit shoot(Stepper& stepper, const Eigen::VectorXd& q0, const Eigen::Ve
         if (mis <= options.tolerance) break;
         // Newton steps that keep failing to improve on the best iterate: the response is not periodic
         // (or the tolerance is below the rounding floor): stop rather than spend 2n revolutions a time.
-        if (was_fresh) stalls = mis < 0.5 * best ? 0 : stalls + 1;
+        if (was_fresh) {
+            const bool improved = mis < 0.5 * best;
+            if (!improved && variational && options.monodromy_method == MonodromyMethod::automatic) {
+                // A fresh variational Newton step that did not halve the mismatch: the variational
+                // equations miss what the model does between steps (impacts, path memory; grooved
+                // cams chattering between flanks). The search restarts from its first iterate by
+                // differences, as if asked for them (the steps taken may have left the smooth part).
+                variational = false;
+                z = z_first, fz = fz_first, r = fz - z, qs = qs_first, vs = vs_first, mis = best = mis_first;
+                orbit.history.push_back(mis);
+                stalls = 0;
+                if (!build(z, fz)) return finish();
+                continue;
+            }
+            stalls = improved ? 0 : stalls + 1;
+        }
         if (stalls >= max_stalls) break;
         best = std::min(best, mis);
         // Chord iterations that do not at least quarter the mismatch: rebuild the monodromy here.

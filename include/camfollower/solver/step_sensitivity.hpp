@@ -14,7 +14,8 @@
 // start a0 = -M^-1 (C v0 + K q0 + f0): da0 = -M^-1 G0. The scheme is differentiated as it is (its
 // own phase errors included): the monodromy is that of the discrete map shooting solves.
 // Contact losses between steps and path memory (elements with hysteresis) are not differentiated:
-// the Jacobian is then approximate, which costs Newton's iterations, not the orbit's accuracy.
+// the Jacobian is then approximate, which costs Newton's iterations, not the orbit's accuracy (and
+// where it stalls them, shooting's automatic choice goes over to differences: solver/shooting.hpp).
 // A processed velocity (NewmarkParameters::processed) adds the jerk's and the last acceleration's
 // derivatives (dj, da_prev) to the predictors, as its step adds them to the velocity; a step of
 // another length than the last solves with the equal-step Newton matrix (approximate, as above).
