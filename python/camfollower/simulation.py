@@ -111,11 +111,11 @@ def simulate(
     refused beyond it; docs/solvers.md); both given a
     ``tolerance`` adapt their steps: ``time_step`` becomes the output interval, integrated in steps of
     time_step / 2^k (k <= ``max_halvings``, within fox_goodwin's stability limit and ``max_step``)
-    chosen by each step's local error estimate (Zienkiewicz & Xie), measured like the Runge-Kutta
-    methods' below. The error is controlled per step only: over a
-    revolution of the paper preset fox_goodwin's error is 0.01 to 600 times the tolerance depending on
-    the output interval, newmark's average acceleration's hundreds to thousands of times
-    (docs/solvers.md, "Error control across output intervals"); "auto" does not take them,
+    chosen by an error estimate measured like the Runge-Kutta methods' below: for fox_goodwin
+    Numerov's phase lag per radian of the cam, which keeps a revolution's error near the tolerance
+    whatever the output interval (0.001 to 0.65 times it on the paper preset); for newmark Zienkiewicz
+    & Xie's local error per step, which on a ringing mode adds up to hundreds or thousands of times
+    the tolerance (docs/solvers.md, "Error control across output intervals"),
     "dormand_prince" (explicit Runge-Kutta 5(4) with adaptive steps: each step's error, in
     displacements and velocities and in the forces it leaves, below ``tolerance`` (relative, default
     1e-6; steps no longer than ``max_step`` s if given); ``time_step`` is then the output interval, the
@@ -131,9 +131,9 @@ def simulate(
     average-acceleration newmark; with ``tolerance`` (and optionally ``max_step``), radau when the
     model's fastest modes, linearized at the start, are damped (a mode at damping ratio 0.3 or more at
     least half as fast as the fastest ringing one) or, at tolerances of 1e-7 and looser, when the
-    fastest mode rings alone, 3 or more times faster than the next (a stiff contact), else dop853
-    (above 200 DOFs: dop853); not newmark or fox_goodwin under a tolerance, whose error control is
-    per step only (docs/solvers.md, "Error control across output intervals").
+    fastest mode rings alone, 3 or more times faster than the next (a stiff contact), else
+    fox_goodwin at tolerances of 1e-5 and looser (``max_halvings`` raised to at least 12) and dop853
+    below (above 200 DOFs: dop853); never newmark under a tolerance.
     ``stats`` reports ``method`` (the one that ran), ``requested_method``, ``method_choice`` (with
     "auto": what it took and why, in words), ``evaluations``,
     ``rejected_steps`` and ``stiff_steps`` (steps bounded by stability rather than accuracy: an

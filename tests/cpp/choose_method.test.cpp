@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Method "auto" (solver/choose_method.hpp): the fastest modes' rates and damping ratios against the
 // closed form of a two-mass system, the choice under a tolerance (radau where the fastest mode is
-// damped or, at tolerances of 1e-7 and looser, rings alone; dop853 else) run exactly as the method
-// chosen, the reason in words, bad settings.
+// damped or, at tolerances of 1e-7 and looser, rings alone; else fox_goodwin at 1e-5 and looser,
+// dop853 below) run exactly as the method chosen, the reason in words, bad settings.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -83,7 +83,7 @@ TEST_CASE("The fastest ringing and damped modes: rates and damping ratios of a c
     }
 }
 
-TEST_CASE("Auto under a tolerance: radau where the fastest mode is damped or rings alone, dop853 else, run as named") {
+TEST_CASE("Auto under a tolerance: radau where the fastest mode is damped or rings alone, else fox_goodwin or dop853") {
     // zeta = 0.707: damped, radau (L-stable) steps over it.
     check_same_run(coupled(1e10, 1e5), automatic(0.01, 1e-6), "radau", 0.2);
     // zeta = 0.007: the stiff mode rings, 1.3e4 times faster than the soft one (alone): radau down to
@@ -92,13 +92,16 @@ TEST_CASE("Auto under a tolerance: radau where the fastest mode is damped or rin
     check_same_run(coupled(1e10, 1e3), automatic(1e-4, 1e-8), "dop853", 2e-3);
     check_same_run(coupled(1e10, 1e3), automatic(0.1, 1e-6), "radau", 0.2);
     // The paper preset's fastest mode is the undamped cam contact (12.0 kHz), 1.15 times the next:
-    // dop853 at every tolerance. With 3 % of critical in every element a stiffly damped mode
-    // (11.0 kHz, 0.79) is faster than half of the fastest ringing one; with the contact 100 times
-    // stiffer the contact mode (86 kHz) is 8.2 times the next.
+    // fox_goodwin at tolerances of 1e-5 and looser (with at least 12 halvings), dop853 below. With 3 % of critical in
+    // every element a stiffly damped mode (11.0 kHz, 0.79) is faster than half of the fastest ringing one; with the
+    // contact 100 times stiffer the contact mode (86 kHz) is 8.2 times the next.
     const Mechanism<presets::paper_dofs> paper = presets::paper(), damped = presets::paper_damped();
     CamFollowerParameters p;
     p.contact_stiffness *= 100.0;
     const Mechanism<presets::paper_dofs> stiff = presets::paper(p);
+    SolverSettings loose = automatic(paper.period() / 512, 1e-5);
+    loose.max_halvings = fox_goodwin_halvings;  // as auto sets it: the named run gets the same
+    check_same_run(paper, loose, "fox_goodwin", paper.period() / 16);
     check_same_run(paper, automatic(paper.period() / 512, 1e-6), "dop853", paper.period() / 16);
     check_same_run(paper, automatic(paper.period() / 512, 1e-8), "dop853", paper.period() / 16);
     check_same_run(damped, automatic(damped.period() / 512, 1e-6), "radau", damped.period() / 16);
@@ -115,7 +118,17 @@ TEST_CASE("Auto under a tolerance: radau where the fastest mode is damped or rin
     const std::string tight = simulate(stiff, automatic(stiff.period() / 512, 1e-8), o).method_choice;
     CHECK_THAT(tight, Catch::StartsWith("dop853: ") && Catch::Contains("tolerance < 1e-07"));
     const std::string ringing = simulate(paper, automatic(paper.period() / 512, 1e-6), o).method_choice;
-    CHECK_THAT(ringing, Catch::StartsWith("dop853: the fastest modes ring: ") && !Catch::Contains("tolerance <"));
+    CHECK_THAT(ringing, Catch::StartsWith("dop853: the fastest modes ring: ") &&
+                            !Catch::Contains("tolerance < 1e-07") && Catch::EndsWith("; tolerance < 1e-05"));
+    const auto fox = simulate(paper, automatic(paper.period() / 512, 1e-4), o);
+    CHECK_THAT(fox.method_choice,
+               Catch::StartsWith("fox_goodwin: the fastest modes ring: ") && Catch::EndsWith("; tolerance >= 1e-05"));
+    const State<Mechanism<presets::paper_dofs>> rest =
+        state_at(paper, 0.0, paper.initial_displacement(), paper.initial_velocity());
+    CHECK(choose_method(paper, automatic(paper.period() / 512, 1e-4), rest).settings.max_halvings == 12);
+    SolverSettings more = automatic(paper.period() / 512, 1e-4);
+    more.max_halvings = 14;
+    CHECK(choose_method(paper, more, rest).settings.max_halvings == 14);
 }
 
 TEST_CASE("Auto under a tolerance above 1e-5 bounds radau's steps by the output interval, unless max_step is set") {

@@ -77,10 +77,10 @@ def test_radau_contact_force_against_scipy_on_independent_equations(model, refer
     assert 0.5 * tolerance < err < 200 * tolerance
 
 
-# Newmark under a tolerance (docs/solvers.md): steps of the output interval / 2^k, k from each step's local
-# error estimate. Its tolerance is per step, as for the Runge-Kutta methods: Fox-Goodwin's force error over
-# the revolution is a few to some tens of times it; a 100 x tighter tolerance takes ~100^(1/3) x the steps
-# (local error ~h^3) and shrinks the error at least 10 x (second order globally).
+# Fox-Goodwin under a tolerance (docs/solvers.md): steps of the output interval / 2^k, k from the error
+# estimate, Numerov's phase lag per radian of the cam. Over the revolution its force error stays near the
+# tolerance (measured 0.23x at 1e-5, 0.48x at 1e-7); a 100 x tighter tolerance takes ~100^(1/4) x the steps
+# (the lag per radian ~h^4) and shrinks the error at least 10 x (fourth order).
 def test_fox_goodwin_under_a_tolerance_against_scipy_on_independent_equations(model, reference):
     runs = {}
     for tolerance in (1e-5, 1e-7):
@@ -99,10 +99,10 @@ def test_fox_goodwin_under_a_tolerance_against_scipy_on_independent_equations(mo
             f"fox_goodwin tolerance {tolerance:g}: contact force error {err:.2e} of the peak, {r.stats['steps']} steps, "
             f"{r.stats['rejected_steps']} rejected"
         )
-        assert 0.5 * tolerance < err < 100 * tolerance
+        assert 0.05 * tolerance < err < 3 * tolerance
         runs[tolerance] = (err, r.stats["steps"])
     assert runs[1e-7][0] < runs[1e-5][0] / 10
-    assert 0.75 * 100 ** (1 / 3) < runs[1e-7][1] / runs[1e-5][1] < 1.3 * 100 ** (1 / 3)
+    assert 0.75 * 100 ** (1 / 4) < runs[1e-7][1] / runs[1e-5][1] < 1.3 * 100 ** (1 / 4)
 
 
 def test_radau_takes_fewer_steps_where_damping_makes_the_model_stiff():
@@ -268,7 +268,9 @@ def expected_choice(m, tolerance):
         return "radau", [*damp, *ring[0]]
     isolation = ring[0][0] / ring[1][0]
     figures = [*ring[0], isolation, ring[1][0]]
-    return ("radau" if isolation >= 3 and tolerance >= 1e-7 else "dop853"), figures
+    if isolation >= 3 and tolerance >= 1e-7:
+        return "radau", figures
+    return ("fox_goodwin" if tolerance >= 1e-5 else "dop853"), figures
 
 
 STIFF_CONTACT = cf.Parameters().replace(contact_stiffness=100 * cf.Parameters().contact_stiffness)
@@ -277,6 +279,7 @@ STIFF_CONTACT = cf.Parameters().replace(contact_stiffness=100 * cf.Parameters().
 @pytest.mark.parametrize(
     "preset, tolerance, chosen",
     [
+        ("paper", 1e-5, "fox_goodwin"),
         ("paper", 1e-6, "dop853"),
         ("paper", 1e-8, "dop853"),
         ("paper_damped", 1e-6, "radau"),
@@ -284,7 +287,9 @@ STIFF_CONTACT = cf.Parameters().replace(contact_stiffness=100 * cf.Parameters().
         ("stiff_contact", 1e-8, "dop853"),
     ],
 )
-def test_auto_with_a_tolerance_takes_radau_where_damped_or_isolated_else_dop853(preset, tolerance, chosen):
+def test_auto_with_a_tolerance_takes_radau_where_damped_or_isolated_else_fox_goodwin_or_dop853(
+    preset, tolerance, chosen
+):
     m = cf.presets.paper(STIFF_CONTACT) if preset == "stiff_contact" else getattr(cf.presets, preset)()
     T = m.period
     r = cf.simulate(m, revolutions=0.25, time_step=T / 512, method="auto", tolerance=tolerance)
@@ -303,6 +308,8 @@ def test_auto_with_a_tolerance_takes_radau_where_damped_or_isolated_else_dop853(
     shown = [float(v) for pair in pairs for v in pair]
     assert shown == pytest.approx(figures, rel=1e-3, abs=1e-6)
     named = dict(method=chosen)  # tolerances <= 1e-5: radau's steps not bounded by auto
+    if chosen == "fox_goodwin":
+        named["max_halvings"] = 12  # as auto gives it
     direct = cf.simulate(m, revolutions=0.25, time_step=T / 512, tolerance=tolerance, **named)
     np.testing.assert_array_equal(r["cam.force"], direct["cam.force"])
 
@@ -311,8 +318,8 @@ def test_auto_with_a_tolerance_runs_dop853_through_a_contact_loss():
     """Above the jump speed (2000 rpm) the follower leaves the cam: auto runs DOP853, value for value
     the named method's run; its events are where a tight DOP853 run locates them and its force error is
     within 1e-6 of the peak at tolerance 1e-6 (measured 3.5e-7). Fox-Goodwin under the same tolerance
-    is less accurate (9.1e-7 since its velocity is processed, 3.2e-5 before) in far more steps: its
-    order drops at the losses' kinks."""
+    is less accurate (7.9e-7) in 20 times the steps: in flight the roller rings freely, undamped, and
+    its fourth-order phase needs far shorter steps than DOP853's eighth."""
     m = cf.presets.paper(cf.Parameters().replace(camshaft_speed_rpm=2000.0))
     grid = dict(revolutions=1, time_step=m.period / 2048)
     ref = cf.simulate(m, **grid, method="dop853", tolerance=1e-11)

@@ -3,9 +3,8 @@
 //   at a fixed time_step (no tolerance): Fox-Goodwin within its stability limit, else
 //   average-acceleration Newmark;
 //   under a tolerance: radau when the model's fastest modes are damped,
-//   or when the fastest rings alone (a stiff contact) at tolerances of 1e-7 and looser, else dop853.
-//   Not Fox-Goodwin: its per-step error control does not hold the run's error within a band of the
-//   tolerance across output intervals (docs/solvers.md, "Error control across output intervals").
+//   or when the fastest rings alone (a stiff contact) at tolerances of 1e-7 and looser; else
+//   Fox-Goodwin at tolerances of 1e-5 and looser, dop853 below.
 #pragma once
 
 #include <algorithm>
@@ -36,6 +35,12 @@ inline constexpr double isolated_mode_ratio = 3.0;
 inline constexpr double isolated_mode_tolerance = 1e-7;
 // Above this tolerance radau, when chosen, has its steps bounded by the output interval (max_step).
 inline constexpr double radau_long_step_tolerance = 1e-5;
+// Where the fastest modes ring, Fox-Goodwin (fourth order, one Newton solve per step) at tolerances
+// down to this, dop853 (eighth order, 12 evaluations per step) below (measured: docs/benchmarks.md).
+inline constexpr double fox_goodwin_tolerance = 1e-5;
+// Fox-Goodwin so chosen steps down to time_step / 2^this at least (its levels cost one factorization
+// each, at construction): the output interval alone does not bound how fine a ringing mode needs.
+inline constexpr int fox_goodwin_halvings = 12;
 // The two fastest ringing modes (damping ratio below ringing_damping_ratio) and the fastest damped
 // one (at or above it) of `system` with its contacts' tangent (stiffness and damping) at state s,
 // each complex pair counted once; a rate of 0 where there is none. Allocates (a 2n x 2n eigenvalue
@@ -100,12 +105,12 @@ struct MethodChoice {
 //  - under a tolerance: radau (L-stable: it steps over what it need not resolve) when a damped mode
 //    (damping ratio >= 0.3) is at least half as fast as the fastest ringing one, or when the fastest
 //    ringing mode is isolated_mode_ratio times faster than the next at tolerances of
-//    isolated_mode_tolerance and looser; else dop853 (order 8, no linear solves). Above 200 DOFs the
-//    spectrum is not computed: dop853. Radau chosen at a tolerance above 1e-5 gets max_step =
-//    time_step (the output interval) unless max_step is set. Fox-Goodwin under a tolerance is
-//    cheaper at loose tolerances but its error is not held across output intervals (measured on the
-//    paper preset at tolerance 1e-7: 4x the tolerance in force at output T/2048, 215x at T/16384;
-//    docs/solvers.md): auto does not take it.
+//    isolated_mode_tolerance and looser; else fox_goodwin at tolerances of fox_goodwin_tolerance and
+//    looser (its error per radian is held across output intervals, docs/solvers.md; on the paper
+//    preset at 1e-4 and 1e-5 it is twice as fast as dop853 and 40 to 80 times as accurate), dop853
+//    (order 8, no linear solves) below. Above 200 DOFs the spectrum is not computed: dop853. Radau
+//    chosen at a tolerance above 1e-5 gets max_step = time_step (the output interval) unless
+//    max_step is set; fox_goodwin gets max_halvings >= fox_goodwin_halvings.
 template <class System>
 MethodChoice choose_method(const System& system, SolverSettings s, const State<System>& start) {
     if (s.method != Method::automatic) return {s, ""};
@@ -156,12 +161,15 @@ MethodChoice choose_method(const System& system, SolverSettings s, const State<S
         return take_radau("radau: the fastest mode rings alone, a stiff spring loaded quasi-statically: " + ringing +
                           " (>= " + figure(isolated_mode_ratio) + ", tolerance >= " + figure(isolated_mode_tolerance) +
                           ")" + units);
-    s.method = Method::dop853;
-    return {s, "dop853: the fastest modes ring: " + ringing +
+    const bool loose = *s.tolerance >= fox_goodwin_tolerance;
+    s.method = loose ? Method::fox_goodwin : Method::dop853;
+    if (loose) s.max_halvings = std::max(s.max_halvings, fox_goodwin_halvings);
+    return {s, std::string(loose ? "fox_goodwin" : "dop853") + ": the fastest modes ring: " + ringing +
                    (modes.damped.rate > 0.0 ? ", the fastest damped mode (>= " + figure(ringing_damping_ratio) + ") " +
                                                   mode(modes.damped) + ", below half that rate"
                                             : ", no mode damped at " + figure(ringing_damping_ratio) + " or more") +
-                   units + (isolated ? "; tolerance < " + figure(isolated_mode_tolerance) : "")};
+                   units + (isolated ? "; tolerance < " + figure(isolated_mode_tolerance) : "") + "; tolerance " +
+                   (loose ? ">= " : "< ") + figure(fox_goodwin_tolerance)};
 }
 
 }  // namespace camfollower

@@ -28,6 +28,7 @@
 #include <limits>
 #include <tuple>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -74,7 +75,8 @@ public:
           p_(newmark_parameters(s_)),
           n_(system.size()),
           linear_(system, s_),
-          control_error_(s_.tolerance.has_value()) {
+          control_error_(s_.tolerance.has_value()),
+          numerov_(p_.processed && p_.beta == 1.0 / 12.0) {
         norm_M_ = row_sum_norm(linear_.mass());
         norm_C_ = row_sum_norm(linear_.damping());
         norm_K_ = row_sum_norm(linear_.stiffness());
@@ -83,6 +85,8 @@ public:
             for (Vector* v : {&jerk_, &a_prev_, &jerk_next_}) v->resize(n_);
         if (control_error_) {
             for (Vector* v : {&eq_, &ev_, &da_, &da_old_, &ef_}) v->resize(n_);
+            if (numerov_)
+                for (Vector* v : {&a_prev2_, &a3_, &a3_old_}) v->resize(n_);
             uvq_ = uvv_ = LowRank<Vector>(n_, std::max(1, max_rank(system)));
         }
     }
@@ -285,19 +289,19 @@ private:
     // above it (the state left as it was).
     CAMFOLLOWER_FORCE_INLINE bool finish(StateType& s, double t1, double dt, int level, bool evaluate_force) {
         if (evaluate_force) nonlinear_force(system_, s.workspace, q_, v_, s.f);
-        if (control_error_ && !within_tolerance(s, dt)) return fail_step(s);
+        bool crossed = false;  // a switching function changed sign: the step has a kink or jump inside
+        if constexpr (has_events_v<System>) crossed = events_.changed(s.workspace, q_, v_);
+        if (control_error_ && !within_tolerance(s, dt, crossed)) return fail_step(s);
         if constexpr (provides_sensitivity) {
             if (sensitivity_) propagate_sensitivity(s.workspace, dt, level);
         }
         if (p_.processed) advance_history(s, t1, dt);
-        accept(s, t1);
+        accept(s, t1, crossed);
         return true;
     }
 
-    CAMFOLLOWER_FORCE_INLINE void accept(StateType& s, double t1) {
-        if constexpr (has_events_v<System>) {
-            if (events_.changed(s.workspace, q_, v_)) record_crossings(s, t1);
-        }
+    CAMFOLLOWER_FORCE_INLINE void accept(StateType& s, double t1, bool crossed) {
+        if (crossed) record_crossings(s, t1);
         s.t = t1;
         detail::copy_vector(q_, s.q);
         detail::copy_vector(v_, s.v);
@@ -339,6 +343,10 @@ private:
     void advance_history(const StateType& s, double t1, double dt) {
         const auto [c1, c0, cm] = jerk_weights_;
         jerk_next_ = c1 * a_ + c0 * s.a + cm * a_prev_;
+        if (numerov_ && control_error_) {  // the fourth-order error estimate's third acceleration back
+            std::swap(a_prev_, a_prev2_);
+            h_prev2_ = h_prev_;
+        }
         detail::copy_vector(s.a, a_prev_);
         detail::copy_vector(jerk_next_, jerk_);
         h_prev_ = dt, history_t_ = t1, history_q0_ = q_[0];
@@ -357,15 +365,22 @@ private:
         jerk_ = (jerk_next_ - a_prev_) / (2.0 * d);
         a_prev_ = jerk_;
         h_prev_ = 0.0, history_t_ = s.t, history_q0_ = s.q[0];
+        h_prev2_ = 0.0, has_a3_old_ = false, smooth_steps_ = 0;
     }
-    // The consistent acceleration at (s.t + d, s.q + d s.v, s.v + d s.a), into out (q_, v_, r_, b_ as
-    // scratch; s untouched).
-    void acceleration_along(const StateType& s, double d, Vector& out) {
+    // The state's Taylor line at s.t + d: (q_, v_) = (s.q + d s.v, s.v + d s.a), the returned workspace
+    // prepared there and the force in r_ (s untouched). start_history and start_sensitivity difference
+    // along it.
+    workspace_t<System> along_taylor_line(const StateType& s, double d) {
         workspace_t<System> ws = s.workspace;
         prepare(system_, s.t + d, ws);
         q_ = s.q + d * s.v;
         v_ = s.v + d * s.a;
         nonlinear_force(system_, ws, q_, v_, r_);
+        return ws;
+    }
+    // The consistent acceleration on the Taylor line at s.t + d, into out (q_, v_, r_, b_ as scratch).
+    void acceleration_along(const StateType& s, double d, Vector& out) {
+        (void)along_taylor_line(s, d);
         b_.noalias() = linear_.damping() * v_;
         b_.noalias() += linear_.stiffness() * q_;
         b_ += r_;
@@ -392,13 +407,10 @@ private:
         if (p_.processed) {  // the start's jerk differentiated as start_history computes it
             const double h = s_.time_step, delta = 1e-3 * h;
             for (const double sign : {1.0, -1.0}) {
-                workspace_t<System> ws = s.workspace;
-                prepare(system_, s.t + sign * delta, ws);
-                q_ = s.q + (sign * delta) * s.v;
-                v_ = s.v + (sign * delta) * s.a;
+                // (the tangent is of the force along_taylor_line evaluated last)
+                const workspace_t<System> ws = along_taylor_line(s, sign * delta);
                 d.p = d.dq + (sign * delta) * d.dv;
                 d.w = d.dv + (sign * delta) * d.da;
-                nonlinear_force(system_, ws, q_, v_, r_);  // the tangent is of the force evaluated last
                 tangent_products(ws, q_, v_, d.p, d.w, sign > 0.0 ? d.dj : d.da_prev);
             }
             d.r = (d.dj - d.da_prev) / (2.0 * delta);
@@ -467,12 +479,12 @@ private:
 
     // Error control (a tolerance set). The steps are time_step / 2^level, level in [coarsest_level_,
     // max_halvings]: each level's Newton matrix is factored once at construction, as for the halvings,
-    // and the steps land on the output grid (no interpolation). Levels change by the error estimate:
-    // finer after a refused step (Newton's failure: one level; error e: enough levels for e 8^-m <=
-    // 1/2), one level coarser at the end of an output interval whose every step predicts <= 0.8 at
-    // twice the step. Changes are kept rare on purpose: at a constant step Fox-Goodwin's local
-    // errors largely cancel from step to step (its fourth-order phase), and each change of the step
-    // leaves one of them uncancelled (docs/solvers.md).
+    // and the steps land on the output grid (no interpolation). Levels change by the error estimate
+    // (within_tolerance): finer after a refused step (Newton's failure: one level; error e: enough
+    // levels for e 2^(-order m) <= 1/2). Coarser: with the per-step estimate one level at the end of an
+    // output interval whose every step predicts <= 0.8 at twice the step (rare on purpose: at a
+    // constant step the unprocessed rules' local errors largely cancel from step to step, and each
+    // change leaves one uncancelled); with Fox-Goodwin's fourth-order one, coarser_level().
     void start_error_control(const StateType& s) {
         scales_.start(reference_rate(system_, s, s_.time_step), s.q, s.v);
         // A run from rest at zero has no size to measure displacements against; the explicit methods
@@ -500,6 +512,8 @@ private:
                          SolverSettings::max_levels - 1, ") or shorten time_step");
         level_ = coarsest_level_;
         has_old_difference_ = false;
+        window_peak_ = window_peak_before_ = 0.0, window_steps_ = 0;
+        refused_t_ = std::numeric_limits<double>::quiet_NaN(), one_off_ = false;
     }
 
     void step_under_tolerance(StateType& s, SolverStatistics& stats) {
@@ -520,9 +534,19 @@ private:
                 stats.max_iterations_in_a_step = std::max(stats.max_iterations_in_a_step, iterations);
                 done += stride;
                 largest_error = std::max(largest_error, error_);
+                if (error_order_ == 4) {
+                    if (window_steps_ > 0 && window_steps_ % coarsen_window == 0)
+                        window_peak_before_ = window_peak_, window_peak_ = 0.0;
+                    window_peak_ = std::max(window_peak_, error_);
+                    ++window_steps_;
+                    level = coarser_level(level, done, finest);
+                } else {
+                    window_peak_ = window_peak_before_ = 0.0, window_steps_ = 0;
+                }
                 continue;
             }
             const bool newton_failed = !std::isfinite(error_);
+            if (!newton_failed && kink_suspected(s.t, level)) continue;  // retried at this level, per step
             if (level >= finest) {
                 const double dt = s_.time_step / double(1 << level);
                 if (newton_failed)
@@ -542,43 +566,131 @@ private:
                 ++level;
             } else {
                 ++stats.rejected_steps;
-                const int more = std::max(1, int(std::ceil(std::log2(2.0 * error_) / 3.0)));
+                refused_t_ = s.t, refused_level_ = level, refused_error_ = error_;
+                refused_end_ = s.t + s_.time_step / double(1 << level);
+                const int more = std::max(1, int(std::ceil(std::log2(2.0 * error_) / double(error_order_))));
                 level = std::min(finest, level + more);
             }
+            window_peak_ = window_peak_before_ = 0.0, window_steps_ = 0;
         }
-        if (level > coarsest_level_ && largest_error <= coarsen_below) --level;
+        if (window_steps_ == 0 && level > coarsest_level_ && largest_error <= coarsen_below) --level;
         level_ = level;
     }
 
-    // Zienkiewicz & Xie's local error estimate of the step from s to (q_, v_, a_), dt long, in units
-    // of the tolerance (ErrorScales: the mixed norm and the force-weighted one). With the step's
-    // acceleration difference da = a1 - a0 ~ dt a':
-    //   e_q = (beta - 1/6) dt^2 da                         (the displacement's dt^3 term)
-    //   e_v = (gamma - 1/2) dt da - dt^3 / 12 a''            (a'' from this and the last step's da)
-    // both ~dt^3, so one level coarser multiplies the error by 8.
-    bool within_tolerance(const StateType& s, double dt) {
-        da_ = a_ - s.a;
-        eq_ = ((p_.beta - 1.0 / 6.0) * dt * dt) * da_;
-        ev_ = ((p_.gamma - 0.5) * dt) * da_;
-        if (has_old_difference_) {  // a'' ~ (da / dt - da_old / dt_old) / ((dt + dt_old) / 2)
-            const double w = -dt * dt * dt / 12.0 * 2.0 / (dt + dt_old_);
-            ev_ += (w / dt) * da_;
-            ev_ -= (w / dt_old_) * da_old_;
+    // Fox-Goodwin's fourth-order estimate, after an accepted step (`done` finest steps into the
+    // output interval): the level to go on at. Its estimate follows a ringing mode's phase (it passes
+    // through zero twice a period), so the peak over the last coarsen_window to 2 coarsen_window steps
+    // at this level stands for the mode's amplitude: as many levels coarser as that peak predicts
+    // <= 0.8 at (16 x per level), as far as the steps stay on their own grid (each coarser step
+    // starts at a multiple of its length, so the output points are still hit exactly).
+    int coarser_level(int level, std::uint32_t done, int finest) {
+        if (window_steps_ < coarsen_window) return level;
+        int target = level;
+        for (double e = std::max(window_peak_, window_peak_before_) * 16.0; target > coarsest_level_ && e <= 0.8;
+             e *= 16.0)
+            --target;
+        while (target < level && done % (std::uint32_t(1) << (finest - target)) != 0) ++target;
+        if (target != level) window_peak_ = window_peak_before_ = 0.0, window_steps_ = 0;
+        return target;
+    }
+
+    // Whether the step from t just refused at `level`, within the span of a step refused at a coarser
+    // level, holds a kink or jump of the acceleration that no switching function marks (a cam
+    // program's segment boundary, a jump of the load): the fourth-order estimate then fell by less
+    // than 8 x per halving (16 x where smooth).
+    // Such an error is a one-off, not a phase that adds up over the run: the step is retried at this
+    // level with the estimate per step (one_off_), and the next two steps, whose divided differences
+    // span the kink, take the per-step one.
+    bool kink_suspected(double t, int level) {
+        if (error_order_ != 4 || one_off_ || !(t >= refused_t_ && t < refused_end_) || level <= refused_level_)
+            return false;
+        if (error_ * std::pow(8.0, level - refused_level_) <= refused_error_) return false;
+        one_off_ = true;
+        return true;
+    }
+
+    // The local error estimate of the step from s to (q_, v_, a_), dt long, in units of the tolerance
+    // (ErrorScales: the mixed norm and the force-weighted one); error_order_ says how it grows per
+    // doubling of the step (2^error_order_).
+    //  - Newmark, HHT and Fox-Goodwin's first two steps after a start (Zienkiewicz & Xie), with the
+    //    step's acceleration difference da = a1 - a0 ~ dt a', per step (order 3):
+    //      e_q = (beta - 1/6) dt^2 da                       (the displacement's dt^3 term)
+    //      e_v = (gamma - 1/2) dt da - dt^3 / 12 a''          (a'' from this and the last step's da)
+    //  - processed Fox-Goodwin (beta = 1/12 exactly: fourth order), per radian of the reference rate
+    //    (order 4): processed_error(). Other processed beta (the studies' period-matched scheme) are
+    //    second order in the displacement: the per-step estimate. Not across a switching function's sign change
+    //    (`crossed`: a contact made or lost) nor in the two steps after it, whose divided differences would span the
+    //    kink: there the error is a one-off, not a phase that adds up, and the per-step estimate applies.
+    bool within_tolerance(const StateType& s, double dt, bool crossed) {
+        const bool fourth = numerov_ && !crossed && processed_error(s, dt);
+        if (!fourth) {
+            da_ = a_ - s.a;
+            eq_ = ((p_.beta - 1.0 / 6.0) * dt * dt) * da_;
+            ev_ = ((p_.gamma - 0.5) * dt) * da_;
+            if (has_old_difference_) {  // a'' ~ (da / dt - da_old / dt_old) / ((dt + dt_old) / 2)
+                const double w = -dt * dt * dt / 12.0 * 2.0 / (dt + dt_old_);
+                ev_ += (w / dt) * da_;
+                ev_ -= (w / dt_old_) * da_old_;
+            }
         }
+        error_order_ = fourth ? 4 : 3;
         tangent(system_, s.workspace, q_, v_, 1.0, 0.0, uvq_);
         tangent(system_, s.workspace, q_, v_, 0.0, 1.0, uvv_);
         const double force = force_error(system_, uvq_, uvv_, eq_, ev_, ef_) / (*s_.tolerance * force_scale_);
         error_ = std::max(scales_.mixed(*s_.tolerance, eq_, ev_, s.q, s.v, q_, v_), force);
+        if (fourth && !one_off_) error_ /= dt * scales_.omega_ref;
         if (!(error_ <= 1.0)) {
             if (!std::isfinite(error_)) error_ = 1e10;  // refused for its error, not as Newton's failure
             return false;
         }
-        std::swap(da_, da_old_);
-        dt_old_ = dt, has_old_difference_ = true;
+        const bool one_off = std::exchange(one_off_, false);
+        if (fourth && one_off) {
+            has_a3_old_ = false, smooth_steps_ = 0;
+        } else if (fourth) {
+            std::swap(a3_, a3_old_);
+            h_a3_old_ = dt, has_a3_old_ = true;
+            has_old_difference_ = false;
+            ++smooth_steps_;
+        } else {
+            std::swap(da_, da_old_);
+            dt_old_ = dt, has_old_difference_ = true;
+            has_a3_old_ = false;
+            smooth_steps_ = crossed ? 0 : smooth_steps_ + 1;
+        }
         scales_.update(q_, v_);
         return true;
     }
+    // The processed Fox-Goodwin's error: its displacements are Numerov's, whose error on a ringing
+    // mode of amplitude A is a phase lag of (w dt)^5 / 480 A per step ((w dt)^4 / 480 A per radian of
+    // the mode), i.e. dt^5 / 480 |q'''''| = dt^5 / 480 |a'''|; its velocities lag by the same
+    // phase: dt^5 / 480 a''''. a''' from the third divided difference of the accelerations at t1,
+    // t0 and the two accepted states before (a_prev_, a_prev2_), a'''' from its change since the last
+    // step. Per radian of the reference rate (ErrorScales::omega_ref: the cam's for a camshaft-driven
+    // system), because the phase errors add up over the run instead of cancelling: a run of one
+    // revolution then ends within about 2 pi tolerances. False (no estimate: the caller falls back on
+    // the per-step one) until two steps have been accepted since the history started or a crossing.
+    bool processed_error(const StateType& s, double dt) {
+        if (smooth_steps_ < 2) return false;
+        const double at[4] = {dt, 0.0, -h_prev_, -h_prev_ - h_prev2_};
+        double w[4];
+        for (int i = 0; i < 4; ++i) {
+            double product = 1.0;
+            for (int j = 0; j < 4; ++j)
+                if (j != i) product *= at[i] - at[j];
+            w[i] = 6.0 / product;  // a''' = 3! times the third divided difference
+        }
+        a3_ = w[0] * a_ + w[1] * s.a + w[2] * a_prev_ + w[3] * a_prev2_;
+        const double lag = std::pow(dt, 5) / 480.0;
+        eq_ = lag * a3_;
+        if (has_a3_old_) {  // the two estimates are centred about half a step apart on average
+            ev_ = (lag / (0.5 * (dt + h_a3_old_))) * (a3_ - a3_old_);
+        } else {
+            ev_.setZero();
+        }
+        return true;
+    }
     static constexpr double coarsen_below = 0.1;
+    static constexpr int coarsen_window = 32;
 
     const System& system_;
     SolverSettings s_;
@@ -586,6 +698,7 @@ private:
     int n_;
     Linear linear_;
     const bool control_error_;
+    const bool numerov_;  // Fox-Goodwin processed: Numerov's displacements, the fourth-order estimate
     int coarsest_level_ = 0, level_ = 0;
     double error_ = 0.0;  // the last attempt's error in units of the tolerance (+inf: Newton failed)
     double dt_old_ = 0.0;
@@ -603,6 +716,23 @@ private:
     Vector jerk_, a_prev_, jerk_next_;
     double h_prev_ = 0.0, history_t_ = std::numeric_limits<double>::quiet_NaN(), history_q0_ = 0.0;
     std::tuple<double, double, double> jerk_weights_{0.0, 0.0, 0.0};  // of a1, a0, a_prev in the new jerk
+    // Under a tolerance, processed_error's: the acceleration two steps before the last state and that
+    // step's length, the last accepted step's a''' estimate and that step's length, and the steps
+    // accepted since the history started or the last crossing.
+    Vector a_prev2_, a3_, a3_old_;
+    double h_prev2_ = 0.0, h_a3_old_ = 0.0;
+    bool has_a3_old_ = false;
+    int smooth_steps_ = 0;
+    // The largest fourth-order estimates of the steps at this level, in blocks of coarsen_window steps
+    // (this block's and the last's), and the number of steps (step_under_tolerance).
+    double window_peak_ = 0.0, window_peak_before_ = 0.0;
+    int window_steps_ = 0;
+    // The last refused attempt's span [refused_t_, refused_end_), level and error, and whether the next
+    // attempt is estimated per step (kink_suspected).
+    double refused_t_ = std::numeric_limits<double>::quiet_NaN(), refused_end_ = 0.0, refused_error_ = 0.0;
+    int refused_level_ = 0;
+    bool one_off_ = false;
+    int error_order_ = 3;         // the last estimate's growth per doubling of the step: 2^error_order_
     double v_step_ = 0.0;         // the last attempt's velocity coefficient of the new acceleration
     double v_step_excess_ = 0.0;  // its part beyond the Newton matrix's damping_gamma dt
     // Scratch, sized once: nothing is allocated inside the time loop.
