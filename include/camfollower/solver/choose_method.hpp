@@ -114,26 +114,27 @@ struct MethodChoice {
 template <class System>
 MethodChoice choose_method(const System& system, SolverSettings s, const State<System>& start) {
     if (s.method != Method::automatic) return {s, ""};
+    // The reason starts with the method's own name (method_table), then `why`.
+    const auto take = [&s](Method method, const std::string& why) {
+        s.method = method;
+        return MethodChoice{s, method_name(method) + why};
+    };
     if (!s.tolerance) {
-        s.method = Method::newmark;
+        const std::string average = " (average acceleration): ";
         if (system.size() > 200)
-            return {s, detail::concat("newmark (average acceleration): ", system.size(),
-                                      " DOFs, above 200 the highest mode is not computed")};
+            return take(Method::newmark,
+                        detail::concat(average, system.size(), " DOFs, above 200 the highest mode is not computed"));
         const double omega = highest_angular_frequency(system, start);
         const double limit = newmark_step_limit(0.5, 1.0 / 12.0, omega);
         const std::string where = "time_step " + detail::figure(s.time_step) +
                                   " s against Fox-Goodwin's stability limit " + detail::figure(limit) +
                                   " s (highest mode " + detail::figure(omega / (2.0 * pi)) + " Hz)";
-        if (omega >= 0.0 && s.time_step <= limit) {
-            s.method = Method::fox_goodwin;
-            return {s, "fox_goodwin: " + where};
-        }
-        return {s, "newmark (average acceleration): " + where};
+        if (omega >= 0.0 && s.time_step <= limit) return take(Method::fox_goodwin, ": " + where);
+        return take(Method::newmark, average + where);
     }
-    if (system.size() > 200) {
-        s.method = Method::dop853;
-        return {s, detail::concat("dop853: ", system.size(), " DOFs, above 200 the spectrum is not computed")};
-    }
+    if (system.size() > 200)
+        return take(Method::dop853,
+                    detail::concat(": ", system.size(), " DOFs, above 200 the spectrum is not computed"));
     const FastestModes modes = fastest_modes(system, start);
     using detail::figure;
     const auto mode = [](const ModeRate& m) {
@@ -143,33 +144,34 @@ MethodChoice choose_method(const System& system, SolverSettings s, const State<S
     // Radau's error estimate misjudges a long step across the start of a rise after a dwell at
     // tolerances above 1e-5 (100x the tolerance in force, docs/solvers.md): there its steps are
     // bounded by the output interval unless max_step says otherwise.
-    const auto take_radau = [&s](const std::string& why) {
-        s.method = Method::radau;
-        if (*s.tolerance <= radau_long_step_tolerance || s.max_step > 0.0) return MethodChoice{s, why};
-        s.max_step = s.time_step;
-        return MethodChoice{s, why + "; max_step = the output interval " + figure(s.time_step) +
-                                   " s (tolerance above " + figure(radau_long_step_tolerance) + ")"};
+    const auto take_radau = [&s, &take](const std::string& why) {
+        MethodChoice choice = take(Method::radau, why);
+        if (*s.tolerance <= radau_long_step_tolerance || s.max_step > 0.0) return choice;
+        choice.settings.max_step = s.time_step;
+        choice.reason += "; max_step = the output interval " + figure(s.time_step) + " s (tolerance above " +
+                         figure(radau_long_step_tolerance) + ")";
+        return choice;
     };
     if (modes.damped.rate > 0.0 && modes.damped.rate >= 0.5 * modes.ringing.rate)
-        return take_radau("radau: the fastest modes are damped: " + mode(modes.damped) + " (>= " +
+        return take_radau(": the fastest modes are damped: " + mode(modes.damped) + " (>= " +
                           figure(ringing_damping_ratio) + "), the fastest ringing mode " + mode(modes.ringing) + units);
     const double isolation = modes.next_ringing.rate > 0.0 ? modes.ringing.rate / modes.next_ringing.rate : 0.0;
     const std::string ringing = mode(modes.ringing) + ", " + figure(isolation) + " times the next ringing mode (" +
                                 figure(modes.next_ringing.rate / (2.0 * pi)) + " Hz)";
     const bool isolated = isolation >= isolated_mode_ratio;
     if (isolated && *s.tolerance >= isolated_mode_tolerance)
-        return take_radau("radau: the fastest mode rings alone, a stiff spring loaded quasi-statically: " + ringing +
+        return take_radau(": the fastest mode rings alone, a stiff spring loaded quasi-statically: " + ringing +
                           " (>= " + figure(isolated_mode_ratio) + ", tolerance >= " + figure(isolated_mode_tolerance) +
                           ")" + units);
     const bool loose = *s.tolerance >= fox_goodwin_tolerance;
-    s.method = loose ? Method::fox_goodwin : Method::dop853;
     if (loose) s.max_halvings = std::max(s.max_halvings, fox_goodwin_halvings);
-    return {s, std::string(loose ? "fox_goodwin" : "dop853") + ": the fastest modes ring: " + ringing +
-                   (modes.damped.rate > 0.0 ? ", the fastest damped mode (>= " + figure(ringing_damping_ratio) + ") " +
-                                                  mode(modes.damped) + ", below half that rate"
-                                            : ", no mode damped at " + figure(ringing_damping_ratio) + " or more") +
-                   units + (isolated ? "; tolerance < " + figure(isolated_mode_tolerance) : "") + "; tolerance " +
-                   (loose ? ">= " : "< ") + figure(fox_goodwin_tolerance)};
+    return take(loose ? Method::fox_goodwin : Method::dop853,
+                ": the fastest modes ring: " + ringing +
+                    (modes.damped.rate > 0.0 ? ", the fastest damped mode (>= " + figure(ringing_damping_ratio) + ") " +
+                                                   mode(modes.damped) + ", below half that rate"
+                                             : ", no mode damped at " + figure(ringing_damping_ratio) + " or more") +
+                    units + (isolated ? "; tolerance < " + figure(isolated_mode_tolerance) : "") + "; tolerance " +
+                    (loose ? ">= " : "< ") + figure(fox_goodwin_tolerance));
 }
 
 }  // namespace camfollower
