@@ -14,11 +14,18 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 mode=${1:-test}
+case "$mode" in
+  study | test | compilers) ;;
+  *) echo "setup: unknown mode '$mode' (study, test or compilers)" >&2; exit 2 ;;
+esac
 
+# `setup.sh compilers`: the Debian packages the C++ build needs, and nothing else (scripts/test.sh starts
+# the sanitized build on them while the rest is fetched).
 apt_packages=(build-essential cmake ninja-build libeigen3-dev libsuitesparse-dev libspectra-dev libtomlplusplus-dev libcli11-dev catch2 libbenchmark-dev
-              ccache python3 python3-dev python3-venv)
-[ "$mode" = study ] || apt_packages+=(clang-format)  # the style test (tests/python/test_style.py)
-[ "$mode" = study ] || apt_packages+=(chromium chromium-driver)  # the design page's browser test
+              ccache)
+[ "$mode" = compilers ] || apt_packages+=(python3 python3-dev python3-venv)
+[ "$mode" != test ] || apt_packages+=(clang-format)  # the style test (tests/python/test_style.py)
+[ "$mode" != test ] || apt_packages+=(chromium chromium-driver)  # the design page's browser test
 missing=()
 for p in "${apt_packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -29,6 +36,8 @@ if [ ${#missing[@]} -gt 0 ]; then
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}" >/dev/null
 fi
+
+[ "$mode" != compilers ] || exit 0
 
 # ccache: paths relative to the clone, so another clone of the same sources hits the same entries.
 export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=1
