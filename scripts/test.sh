@@ -16,8 +16,11 @@ export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=1
 jobs=$(nproc)
 export CMAKE_BUILD_PARALLEL_LEVEL=$jobs
 # -O1 without debug information: a third of the compile time of -O1 -g; reports still name functions.
+# Without ASan's use-after-scope instrumentation (a stack object used after its block ended): a sixth
+# less compile time (321 against 266 s CPU for the paper preset's precompiled unit, compiled side by
+# side); use-after-free, overflows and leaks on heap and stack, and UBSan's checks all stay.
 cmake -S . -B build-sanitize -G Ninja -DCAMFOLLOWER_BUILD_TESTS=ON -DCAMFOLLOWER_BUILD_CLI=ON \
-      -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-O1 \
+      -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -fno-sanitize-address-use-after-scope" \
       -DCMAKE_CXX_COMPILER_LAUNCHER="$(command -v ccache || true)" \
       -DCAMFOLLOWER_SANITIZE=address,undefined -DCAMFOLLOWER_WERROR=ON >/dev/null
 build_log=build-sanitize/build.log
