@@ -8,7 +8,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 # The compilers first; then the sanitized build runs in the background while set-up fetches the rest
 # (Chromium, the Python packages: network time) and builds the Python package. Each build runs a job per
-# core: four compiles at most on two cores, under 20 GiB.
+# core (CMAKE_BUILD_PARALLEL_LEVEL reaches the package build); the largest sanitized unit takes 6 GiB.
 bash scripts/setup.sh compilers
 # ccache (installed by setup.sh) keyed on paths relative to the clone: a rebuild, or another clone of
 # the same sources on this machine, compiles only what changed.
@@ -24,7 +24,9 @@ cmake -S . -B build-sanitize -G Ninja -DCAMFOLLOWER_BUILD_TESTS=ON -DCAMFOLLOWER
       -DCMAKE_CXX_COMPILER_LAUNCHER="$(command -v ccache || true)" \
       -DCAMFOLLOWER_SANITIZE=address,undefined -DCAMFOLLOWER_WERROR=ON >/dev/null
 build_log=build-sanitize/build.log
-cmake --build build-sanitize -j "$jobs" >"$build_log" 2>&1 &
+# Ninja itself in the background (not through cmake --build), so that stopping it on a failed set-up
+# stops its compiles too.
+ninja -C build-sanitize -j "$jobs" >"$build_log" 2>&1 &
 build=$!
 trap 'kill "$build" 2>/dev/null || true' EXIT
 echo "test: building the sanitized C++ tests in the background ($build_log)"
