@@ -1467,6 +1467,13 @@ class Mechanism:
         """
         Quasi-static equilibrium at camshaft angle theta (rad).
         """
+    def step_limit(self, beta: typing.SupportsFloat | typing.SupportsIndex) -> dict:
+        """
+        Largest stable time step (s) of Newmark with gamma = 1/2 and this beta in [0, 1/4] at the
+        quasi-static equilibrium at t = 0 (contacts linearized), with the solver's 10 % margin, and the mode
+        that sets it (frequency_hz, damping_ratio); +inf at beta = 1/4. Below 1/4 the velocity is processed
+        to fourth order, and damping lowers the limit (docs/solvers.md). A fixed step above it is refused.
+        """
     def with_camshaft_speed_rpm(self, rpm: typing.SupportsFloat | typing.SupportsIndex) -> Mechanism:
         """
         The same mechanism at another camshaft speed (a new object).

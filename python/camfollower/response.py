@@ -71,7 +71,8 @@ def study_scheme(system, steps: int) -> Dict[str, Any]:
     phase keeps the lightly damped fast modes that ring through a whole revolution in phase, where
     the average-acceleration rule's period error would need ~50x the steps; matching the highest
     mode's period removes the largest of the phase errors that remain (``matched_hz``). Beyond the
-    margin, Newmark's average acceleration (unconditionally stable). A model large enough for the
+    margin, or beyond the processed velocity's limit with the model's damping (Mechanism.step_limit),
+    Newmark's average acceleration (unconditionally stable). A model large enough for the
     sparse backend (linear_solver 'auto') gets average acceleration: that backend takes
     unconditionally stable schemes only."""
     average = dict(_AVERAGE_ACCELERATION)
@@ -81,8 +82,9 @@ def study_scheme(system, steps: int) -> Dict[str, Any]:
         omega_max = 2.0 * math.pi * float(np.max(system.modal_analysis(0.0)["frequencies_hz"]))
     except (AttributeError, RuntimeError, ValueError):
         omega_max = math.inf
-    omega_dt = system.period / steps * omega_max
-    if omega_dt <= _FOX_GOODWIN_MARGIN * math.sqrt(6.0):
+    dt = system.period / steps
+    omega_dt = dt * omega_max
+    if omega_dt <= _FOX_GOODWIN_MARGIN * math.sqrt(6.0) and _damping_allows(system, dt, matched_beta(omega_dt)):
         return {
             "name": MATCHED_FOX_GOODWIN,
             "method": METHOD.newmark,
@@ -91,6 +93,14 @@ def study_scheme(system, steps: int) -> Dict[str, Any]:
             "matched_hz": omega_max / (2.0 * math.pi),
         }
     return average
+
+
+def _damping_allows(system, dt: float, beta: float) -> bool:
+    """The processed velocity of the matched scheme is stable at dt with the system's damping
+    (Mechanism.step_limit; a heavily damped mode, such as a shaft's stiffness-proportional damping,
+    lowers the limit far below sqrt(6) / omega_max)."""
+    step_limit = getattr(system, "step_limit", None)
+    return step_limit is None or dt <= step_limit(beta)["step"]
 
 
 def scheme_at(system, steps: int, name: str) -> Dict[str, Any]:

@@ -107,8 +107,8 @@ def simulate(
     ``method`` (the names: ``camfollower.METHODS``): "newmark" (the default: Newmark with ``gamma``,
     ``beta``, fixed step ``time_step``), "hht" (HHT-alpha with ``hht_alpha``: Newmark that damps the
     highest modes; no ``tolerance``), "fox_goodwin" (Newmark with gamma = 1/2, beta = 1/12, its velocity processed to
-    fourth order, damping included; stable below dt = sqrt(6) / omega_max,
-    refused beyond it; docs/solvers.md); both given a
+    fourth order, damping included; stable below dt = sqrt(6) / omega_max undamped, lower with damping
+    (Mechanism.step_limit), refused beyond it; docs/solvers.md); both given a
     ``tolerance`` adapt their steps: ``time_step`` becomes the output interval, integrated in steps of
     time_step / 2^k (k <= ``max_halvings``, within fox_goodwin's stability limit and ``max_step``)
     chosen by an error estimate measured like the Runge-Kutta methods' below: for fox_goodwin
@@ -127,7 +127,7 @@ def simulate(
     order 5, L-stable, with the same error control, ``tolerance`` and ``max_step``, simplified Newton
     on the stages (``newton_iterations``): for models stiff at the accuracy wanted, where the explicit
     methods report ``stiff_steps``; dense backend only) or "auto": without ``tolerance``, fox_goodwin
-    when ``time_step`` is within its stability limit at the start, with a 10 % margin, else
+    when ``time_step`` is within its stability limit at the start (damping included), with a 10 % margin, else
     average-acceleration newmark; with ``tolerance`` (and optionally ``max_step``), radau when the
     model's fastest modes, linearized at the start, are damped (a mode at damping ratio 0.3 or more at
     least half as fast as the fastest ringing one) or, at tolerances of 1e-7 and looser, when the

@@ -19,6 +19,7 @@
 #include "camfollower/model/mechanism_modes.hpp"
 #include "camfollower/model/presets/paper.hpp"
 #include "camfollower/model/presets/valve_train.hpp"
+#include "camfollower/solver/step_limit.hpp"
 #include "camfollower/synthesis/lift_samples.hpp"
 #include "run.hpp"
 
@@ -844,6 +845,28 @@ void bind_mechanism(py::module_& m) {
             "The DOF's static equilibrium at the shaft angles theta (rad, in [0, 2 pi]): solved at `angles`\n"
             "equally spaced angles (default every 0.5 deg) and interpolated periodically, or with angles = 0 at\n"
             "every theta (synthesis/lift_samples.hpp). RuntimeError where the mechanism has no static equilibrium.")
+        .def(
+            "step_limit",
+            [](const AnyMechanism& a, double beta) {
+                detail::require_in_range(beta, 0.0, 0.25, "beta");
+                return a.visit([&](const auto& x) {
+                    SolverSettings s;
+                    s.method = Method::newmark, s.gamma = 0.5, s.beta = beta;
+                    const NewmarkParameters p = newmark_parameters(s);
+                    const auto q = x.static_equilibrium(0.0);
+                    const StepLimit limit = step_limit(x, state_at(x, 0.0, q, decltype(q)::Zero(q.size())), p);
+                    py::dict d;
+                    d["step"] = limit.step;
+                    d["frequency_hz"] = limit.omega / (2.0 * pi);
+                    d["damping_ratio"] = limit.damping_ratio;
+                    return d;
+                });
+            },
+            py::arg("beta"),
+            "Largest stable time step (s) of Newmark with gamma = 1/2 and this beta in [0, 1/4] at the\n"
+            "quasi-static equilibrium at t = 0 (contacts linearized), with the solver's 10 % margin, and the mode\n"
+            "that sets it (frequency_hz, damping_ratio); +inf at beta = 1/4. Below 1/4 the velocity is processed\n"
+            "to fourth order, and damping lowers the limit (docs/solvers.md). A fixed step above it is refused.")
         .def("modal_analysis", &modal, py::arg("theta") = 0.0,
              "Undamped natural frequencies (Hz, ascending), mass-normalized mode shapes and the tangent stiffness at\n"
              "the quasi-static equilibrium at camshaft angle theta (rad), contacts linearized: every mode, as\n"

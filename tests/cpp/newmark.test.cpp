@@ -3,10 +3,12 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <limits>
 
 #include "camfollower/model/mechanism.hpp"
 #include "camfollower/motion/laws.hpp"
 #include "camfollower/solver/newmark.hpp"
+#include "camfollower/solver/step_limit.hpp"
 #include "driven_sdof.hpp"
 #include "linear_system_instances.hpp"
 #include "run.hpp"
@@ -236,6 +238,39 @@ TEST_CASE("beta < 1/4: a step beyond the stability limit is refused; a blow-up i
     plain.time_step = 1e-3;
     plain.max_halvings = 1;
     CHECK_THROWS_WITH(run(exploding, plain, 1.0), Catch::Contains("became non-finite"));
+}
+
+TEST_CASE("The processed velocity's step limit: closed forms, and damping lowers it") {
+    const double omega = 20.0;
+    // Undamped it is plain Newmark's, 1 / (omega sqrt(1/4 - beta)): sqrt(6) / omega for Fox-Goodwin.
+    CHECK(processed_mode_step_limit(1.0 / 12.0, omega, 0.0) == Approx(std::sqrt(6.0) / omega).epsilon(1e-5));
+    CHECK(processed_mode_step_limit(0.2, omega, 0.0) == Approx(1.0 / (omega * std::sqrt(0.05))).epsilon(1e-5));
+    // Damping alone (a = -c v): the accelerations' sawtooth a_k = (-1)^k A with vN = 0 solves the scheme
+    // when the processed velocity, vN - (3 a1 - 4 a + a_prev) / 24 = A / 3, gives a1 = -c dt A / 3 = -A.
+    CHECK(processed_mode_step_limit(1.0 / 12.0, 0.0, 50.0) == Approx(3.0 / 50.0).epsilon(1e-5));
+    double last = std::numeric_limits<double>::infinity();
+    for (double zeta : {0.0, 0.1, 0.5, 1.0, 5.0, 50.0}) {
+        INFO("damping ratio " << zeta);
+        const double limit = processed_mode_step_limit(1.0 / 12.0, omega, 2.0 * zeta * omega);
+        CHECK(limit < last);
+        CHECK(2.0 * zeta * omega * limit < 3.2);  // heavily damped: c dt of about 3, as damping alone
+        last = limit;
+    }
+    // The stepper: at damping ratio 0.5 omega dt = 2 is within Fox-Goodwin's undamped limit (2.45 with a
+    // 10 % margin: 2.2) and beyond the processed velocity's (1.65, with the margin 1.48): refused,
+    // naming the mode's damping; at 1.4 the motion decays.
+    Sdof sdof;
+    sdof.c = std::sqrt(sdof.k * sdof.m);  // damping ratio 1/2
+    const auto system = sdof.system();
+    SolverSettings s;
+    s.beta = 1.0 / 12.0;
+    REQUIRE(newmark_parameters(s).processed);
+    s.time_step = 2.0 / omega;
+    CHECK_THROWS_WITH(run(system, s, 100 * s.time_step),
+                      Catch::Contains("exceeds the stability limit") && Catch::Contains("damping ratio 0.5"));
+    s.time_step = 1.4 / omega;
+    const auto r = run(system, s, 100 * s.time_step);
+    CHECK(std::abs(r.q.back()) < 1e-3 * sdof.x0);
 }
 
 TEST_CASE("Fox-Goodwin with its processed velocity is fourth order in displacement and velocity, damped") {

@@ -18,6 +18,7 @@
 #include "camfollower/error.hpp"
 #include "camfollower/solver/settings.hpp"
 #include "camfollower/solver/state.hpp"
+#include "camfollower/solver/step_limit.hpp"
 
 namespace camfollower {
 
@@ -82,15 +83,6 @@ FastestModes fastest_modes(const System& system, const State<System>& s) {
     return out;
 }
 
-namespace detail {
-// A figure for a reason in words: 4 significant digits.
-inline std::string figure(double x) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.4g", x);
-    return text;
-}
-}  // namespace detail
-
 // The method a run with `s` uses, and why, in words (RunResult::method_choice).
 struct MethodChoice {
     SolverSettings settings;
@@ -124,12 +116,14 @@ MethodChoice choose_method(const System& system, SolverSettings s, const State<S
         if (system.size() > 200)
             return take(Method::newmark,
                         detail::concat(average, system.size(), " DOFs, above 200 the highest mode is not computed"));
-        const double omega = highest_angular_frequency(system, start);
-        const double limit = newmark_step_limit(0.5, 1.0 / 12.0, omega);
+        SolverSettings fox_goodwin = s;
+        fox_goodwin.method = Method::fox_goodwin;
+        const NewmarkParameters p = newmark_parameters(fox_goodwin);
+        const StepLimit limit = step_limit(system, start, p);
         const std::string where = "time_step " + detail::figure(s.time_step) +
-                                  " s against Fox-Goodwin's stability limit " + detail::figure(limit) +
-                                  " s (highest mode " + detail::figure(omega / (2.0 * pi)) + " Hz)";
-        if (omega >= 0.0 && s.time_step <= limit) return take(Method::fox_goodwin, ": " + where);
+                                  " s against Fox-Goodwin's stability limit " + detail::figure(limit.step) + " s (" +
+                                  step_limit_reason(limit, p) + ")";
+        if (limit.omega >= 0.0 && s.time_step <= limit.step) return take(Method::fox_goodwin, ": " + where);
         return take(Method::newmark, average + where);
     }
     if (system.size() > 200)

@@ -18,6 +18,7 @@
 #include "camfollower/error.hpp"
 #include "camfollower/solver/settings.hpp"
 #include "camfollower/solver/state.hpp"
+#include "camfollower/solver/step_limit.hpp"
 
 namespace camfollower {
 
@@ -182,18 +183,16 @@ public:
     // M a = rhs.
     Vector solve_mass(const Vector& rhs) const { return system_.mass().partialPivLu().solve(rhs); }
 
-    // beta < gamma / 2 is only conditionally stable (newmark_step_limit); omega_max from the tangent
-    // stiffness at the start.
+    // beta < gamma / 2 is only conditionally stable (step_limit: the modes of the tangent at the start,
+    // their damping included for a processed velocity).
     template <class StateType>
     void check_stability_limit(const StateType& s0) {
         if (p_.beta >= 0.5 * p_.gamma) return;
-        const double omega_max = highest_angular_frequency(s0);
-        if (!std::isfinite(omega_max)) return;
-        const double limit = newmark_step_limit(p_.gamma, p_.beta, omega_max);
-        if (s_.time_step > limit)
-            detail::fail("time_step = ", s_.time_step, " s exceeds the stability limit ", limit,
-                         " s of Newmark with beta = ", p_.beta, " < gamma / 2 (highest mode ", omega_max / (2.0 * pi),
-                         " Hz); reduce time_step, use beta = 1/4 or method 'auto'");
+        const StepLimit limit = step_limit(system_, s0, p_);
+        if (s_.time_step > limit.step)
+            detail::fail("time_step = ", s_.time_step, " s exceeds the stability limit ", limit.step,
+                         " s of Newmark with beta = ", p_.beta, " < gamma / 2 (", step_limit_reason(limit, p_),
+                         "); reduce time_step, use beta = 1/4 or method 'auto'");
     }
 
     // Highest undamped natural angular frequency (rad/s) at state s0, contacts linearized.

@@ -43,6 +43,7 @@
 #include "camfollower/solver/interrupt.hpp"
 #include "camfollower/solver/settings.hpp"
 #include "camfollower/solver/state.hpp"
+#include "camfollower/solver/step_limit.hpp"
 #include "camfollower/solver/step_sensitivity.hpp"
 
 namespace camfollower {
@@ -495,11 +496,8 @@ private:
         if (s_.max_step > 0.0) largest = std::min(largest, s_.max_step);
         const char* bound = s_.max_step > 0.0 && s_.max_step < s_.time_step ? "max_step" : "time_step";
         if (p_.beta < 0.5 * p_.gamma) {
-            const double omega_max = camfollower::highest_angular_frequency(system_, s);
-            if (std::isfinite(omega_max) && newmark_step_limit(p_.gamma, p_.beta, omega_max) < largest) {
-                largest = newmark_step_limit(p_.gamma, p_.beta, omega_max);
-                bound = "the stability limit";
-            }
+            const double limit = step_limit(system_, s, p_).step;
+            if (limit < largest) largest = limit, bound = "the stability limit";
         }
         coarsest_level_ = 0;
         while (coarsest_level_ <= s_.max_halvings &&

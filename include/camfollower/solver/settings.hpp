@@ -113,12 +113,16 @@ struct NewmarkParameters {
 };
 inline constexpr double processed_damping_gamma = 3.0 / 8.0;
 
-// Largest stable step of Newmark with beta < gamma / 2 (undamped: omega_max dt < 1 / sqrt(gamma / 2 -
-// beta)), with a 10 % margin for the highest mode's variation along the motion (contact directions
-// turn with the cam); +inf when the scheme is unconditionally stable.
+// The fraction of a conditionally stable scheme's step limit a run may use: a 10 % margin for the
+// highest mode's variation along the motion (contact directions turn with the cam).
+inline constexpr double step_limit_margin = 0.9;
+
+// Largest stable step of unprocessed Newmark with beta < gamma / 2 (undamped: omega_max dt < 1 /
+// sqrt(gamma / 2 - beta)), with step_limit_margin; +inf when the scheme is unconditionally stable. A
+// processed velocity has its own, lower with damping (solver/step_limit.hpp).
 inline double newmark_step_limit(double gamma, double beta, double omega_max) {
     if (beta >= 0.5 * gamma) return std::numeric_limits<double>::infinity();
-    return 0.9 / (omega_max * std::sqrt(0.5 * gamma - beta));
+    return step_limit_margin / (omega_max * std::sqrt(0.5 * gamma - beta));
 }
 
 // gamma and beta belong to method newmark, hht_alpha to hht: a value another method would ignore is

@@ -1,0 +1,135 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The largest stable step of a conditionally stable Newmark scheme (beta < gamma / 2) on a system,
+// damping included. Plain Newmark with gamma = 1/2 is stable below omega_max dt = 1 / sqrt(1/4 - beta)
+// whatever the damping. Its processed velocity (NewmarkParameters::processed: Fox-Goodwin and the
+// studies' period-matched scheme) is not: the jerk it subtracts comes from the last three
+// accelerations, explicitly, and through a damper it feeds back. A lightly damped mode loses a little
+// of the limit (damping ratio 0.1: omega dt < 2.26 instead of 2.45 for Fox-Goodwin), a heavily damped
+// one most of it (c dt < about 3, c = 2 zeta omega its damping rate): a stiffness-proportional
+// damping on a finely meshed shaft puts c at 10^7 / s, and Fox-Goodwin grew without bound on the
+// valve-train preset at steps well within the undamped limit (docs/solvers.md).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+
+#include <Eigen/Core>
+#include <Eigen/Eigenvalues>
+
+#include "camfollower/constants.hpp"
+#include "camfollower/error.hpp"
+#include "camfollower/solver/settings.hpp"
+#include "camfollower/solver/state.hpp"
+
+namespace camfollower {
+
+// Spectral radius of one constant step dt of processed Newmark (gamma = 1/2, beta) on a mode
+// a + c v + omega^2 q = 0 (mass-normalized; c = 2 zeta omega, 1/s), in the step's own units (dt = 1:
+// it depends on omega dt and c dt alone, and the matrix stays well scaled). The step's state is (q, vN,
+// a, a_prev), vN the trapezoidal velocity; the damping sees v = vN - dt^2 / 12 a', a' = (3 a - 4 a_prev
+// + a_prev2) / (2 dt) (docs/solvers.md, "Fourth order with damping").
+inline double processed_mode_amplification(double beta, double omega_dt, double c_dt) {
+    const double w2 = omega_dt * omega_dt, c = c_dt;
+    Eigen::Matrix4d A;
+    for (int j = 0; j < 4; ++j) {
+        const Eigen::Vector4d e = Eigen::Vector4d::Unit(j);
+        const double q = e[0], vN = e[1], a = e[2], a_prev = e[3];
+        // v1 = vN + (a + a1) / 2 - (3 a1 - 4 a + a_prev) / 24: 3/8 of the new acceleration.
+        const double rest = c * (vN + (0.5 + 1.0 / 6.0) * a - a_prev / 24.0) + w2 * (q + vN + (0.5 - beta) * a);
+        const double a1 = -rest / (1.0 + processed_damping_gamma * c + w2 * beta);
+        A.col(j) << q + vN + (0.5 - beta) * a + beta * a1, vN + 0.5 * (a + a1), a1, a;
+    }
+    return Eigen::EigenSolver<Eigen::Matrix4d>(A, false).eigenvalues().cwiseAbs().maxCoeff();
+}
+
+// The largest dt (s) at which processed Newmark (gamma = 1/2, beta < 1/4) is stable on that mode, no
+// margin; +inf for a mode without stiffness or damping. The stable steps are [0, limit]: the limit is
+// found by bisection to 1e-6 relative between a stable step and an unstable one.
+inline double processed_mode_step_limit(double beta, double omega, double c) {
+    constexpr double growth = 1e-9;  // above rounding of a unit-circle root
+    const auto stable = [&](double dt) {
+        return processed_mode_amplification(beta, omega * dt, c * dt) <= 1.0 + growth;
+    };
+    if (!(omega > 0.0) && !(c > 0.0)) return std::numeric_limits<double>::infinity();
+    // Undamped, the limit is plain Newmark's, 1 / (omega sqrt(1/4 - beta)); damping only lowers it. A
+    // mode of damping alone is stable up to c dt of about 3.
+    double hi = omega > 0.0 ? 1.0 / (omega * std::sqrt(0.25 - beta)) : 8.0 / c;
+    if (stable(hi)) return hi;
+    double lo = 0.0;
+    while (hi - lo > 1e-6 * hi) {
+        const double mid = 0.5 * (lo + hi);
+        (stable(mid) ? lo : hi) = mid;
+    }
+    return lo;
+}
+
+// The step limit of a run and the mode that sets it.
+struct StepLimit {
+    double step = std::numeric_limits<double>::infinity();  // s, with step_limit_margin
+    double omega = 0.0;                                     // rad/s, the mode's undamped angular frequency
+    double damping_ratio = 0.0;                             // the mode's c / (2 omega)
+};
+
+namespace detail {
+// A figure for a reason in words: 4 significant digits.
+inline std::string figure(double x) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.4g", x);
+    return text;
+}
+}  // namespace detail
+
+// The mode that sets `limit`, in words (error messages, method auto's reason).
+inline std::string step_limit_reason(const StepLimit& limit, const NewmarkParameters& p) {
+    const std::string hz = detail::figure(limit.omega / (2.0 * pi));
+    if (!p.processed) return "highest mode " + hz + " Hz";
+    return "velocity processed to fourth order: the mode at " + hz + " Hz with damping ratio " +
+           detail::figure(limit.damping_ratio) + " sets it";
+}
+
+// The largest stable step of Newmark with parameters p on `system` linearized at state s (contacts'
+// stiffness and damping tangents), with step_limit_margin; +inf when p is unconditionally stable.
+// Processed: the smallest of the modes' limits (processed_mode_step_limit), each mode of the
+// undamped problem (K_t, M) with its modal damping phi' C_t phi (the coupling of modes through
+// damping left out). Allocates (an n x n eigen problem with vectors); call once per run.
+template <class System>
+StepLimit step_limit(const System& system, const State<System>& s, const NewmarkParameters& p) {
+    StepLimit out;
+    if (p.beta >= 0.5 * p.gamma) return out;
+    if (!p.processed) {
+        out.omega = highest_angular_frequency(system, s);
+        if (std::isfinite(out.omega)) out.step = newmark_step_limit(p.gamma, p.beta, out.omega);
+        return out;
+    }
+    using Matrix = typename System::Matrix;
+    const int n = system.size();
+    LowRank<typename System::Vector> uvq(n, std::max(1, max_rank(system))), uvv(n, std::max(1, max_rank(system)));
+    uvq.clear(), uvv.clear();
+    tangent(system, s.workspace, s.q, s.v, 1.0, 0.0, uvq);
+    tangent(system, s.workspace, s.q, s.v, 0.0, 1.0, uvv);
+    const Matrix tq = uvq.U.leftCols(uvq.rank) * uvq.V.leftCols(uvq.rank).transpose();
+    const Matrix tv = uvv.U.leftCols(uvv.rank) * uvv.V.leftCols(uvv.rank).transpose();
+    const Matrix Kt = system.stiffness() + 0.5 * (tq + tq.transpose());
+    const Matrix Ct = system.damping() + 0.5 * (tv + tv.transpose());
+    const Eigen::GeneralizedSelfAdjointEigenSolver<Matrix> eig(Kt, system.mass());
+    if (eig.info() != Eigen::Success) return out;
+    double limit = std::numeric_limits<double>::infinity();
+    for (Eigen::Index k = 0; k < eig.eigenvalues().size(); ++k) {
+        const auto phi = eig.eigenvectors().col(k);  // mass-normalized
+        const double omega = std::sqrt(std::max(eig.eigenvalues()[k], 0.0));
+        const double c = std::max(phi.dot(Ct * phi), 0.0);
+        const double mode_limit = processed_mode_step_limit(p.beta, omega, c);
+        if (mode_limit < limit) {
+            limit = mode_limit;
+            out.omega = omega;
+            out.damping_ratio = omega > 0.0 ? 0.5 * c / omega : std::numeric_limits<double>::infinity();
+        }
+    }
+    out.step = step_limit_margin * limit;
+    return out;
+}
+
+}  // namespace camfollower
