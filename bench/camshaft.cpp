@@ -6,13 +6,16 @@
 // BM_CamshaftSteps/<cams>/<backend 0 dense, 1 sparse>: items_per_second = time steps per second;
 // counters: dofs, iterations_per_step (Newton solves), peak_rss_MiB (process high-water mark so far:
 // run one size alone, --benchmark_filter, for its own figure).
-// BM_ValveTrainRevolution/<time step, ns>: one camshaft revolution of the 16-cam valve train at 6000
-// engine rpm through simulate() (bench/valve_train_accuracy.py gives the accuracy of each step).
+// BM_ValveTrainRevolution/<time step, ns>/<method 0 newmark, 1 fox_goodwin>: one camshaft revolution of
+// the 16-cam valve train at 6000 engine rpm through simulate() (bench/valve_train_accuracy.py gives the
+// accuracy of each); side by side: --benchmark_filter=ValveTrain --benchmark_repetitions=3
+// --benchmark_enable_random_interleaving=true.
 #include <benchmark/benchmark.h>
 
 #include <sys/resource.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "camfollower/camfollower.hpp"
 #include "camfollower/model/presets/valve_train.hpp"
@@ -79,9 +82,10 @@ void BM_ValveTrainRevolution(benchmark::State& state) {
     const cf::Mechanism<> model(cf::presets::valve_train(p));
     cf::SolverSettings settings;
     settings.time_step = double(state.range(0)) * 1e-9;  // ns
+    settings.method = state.range(1) == 0 ? cf::Method::newmark : cf::Method::fox_goodwin;
     cf::RunOptions options;
     options.duration = model.period();
-    options.record.decimation = 10;
+    options.record.decimation = std::max<std::size_t>(1, std::size_t(std::lround(20e-6 / settings.time_step)));
     for (auto _ : state) {
         auto r = cf::simulate(model, settings, options);
         benchmark::DoNotOptimize(r.final_state.q.data());
@@ -89,7 +93,16 @@ void BM_ValveTrainRevolution(benchmark::State& state) {
         state.counters["steps"] = double(r.report.stats.steps);
     }
 }
-BENCHMARK(BM_ValveTrainRevolution)->Arg(2500)->Arg(5000)->Arg(10000)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_ValveTrainRevolution)
+    ->Args({312, 0})
+    ->Args({625, 0})
+    ->Args({1250, 0})
+    ->Args({2500, 0})
+    ->Args({10000, 0})
+    ->Args({625, 1})
+    ->Args({1000, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
 
 }  // namespace
 

@@ -233,6 +233,7 @@ int run(const std::string& config, std::string output) {
         std::printf(", %zu contact losses and re-contacts located", result.events.size());
         std::printf(" -> %s\n", output.c_str());
         if (!result.method_choice.empty()) std::printf("method auto took %s\n", result.method_choice.c_str());
+        if (!result.velocity_choice.empty()) std::printf("%s\n", result.velocity_choice.c_str());
     });
     return 0;
 }

@@ -507,6 +507,8 @@ def run(config: str, output=None) -> dict:
     )
     if "method_choice" in result.stats:
         print(f"method auto took {result.stats['method_choice']}")
+    if "velocity_choice" in result.stats:
+        print(result.stats["velocity_choice"])
     return summary
 
 

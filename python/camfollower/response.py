@@ -73,8 +73,8 @@ def study_scheme(system, steps: int) -> Dict[str, Any]:
     mode's period removes the largest of the phase errors that remain (``matched_hz``). Beyond the
     margin, or beyond the processed velocity's limit with the model's damping (Mechanism.step_limit),
     Newmark's average acceleration (unconditionally stable). A model large enough for the
-    sparse backend (linear_solver 'auto') gets average acceleration: that backend takes
-    unconditionally stable schemes only."""
+    sparse backend (linear_solver 'auto') gets average acceleration: that backend does not process
+    the velocity, and the trapezoidal one is second order through the dampers."""
     average = dict(_AVERAGE_ACCELERATION)
     if len(getattr(system, "dof_names", ())) >= _core.SPARSE_BACKEND_THRESHOLD:
         return average

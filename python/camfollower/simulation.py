@@ -135,7 +135,9 @@ def simulate(
     fox_goodwin at tolerances of 1e-5 and looser (``max_halvings`` raised to at least 12) and dop853
     below (above 200 DOFs: dop853); never newmark under a tolerance.
     ``stats`` reports ``method`` (the one that ran), ``requested_method``, ``method_choice`` (with
-    "auto": what it took and why, in words), ``evaluations``,
+    "auto": what it took and why, in words), ``velocity_choice`` (fox_goodwin, or newmark with gamma =
+    1/2 and beta < 1/4, that kept the trapezoidal velocity: on the sparse backend, or at a step beyond
+    the processed velocity's damped stability limit; why, in words), ``evaluations``,
     ``rejected_steps`` and ``stiff_steps`` (steps bounded by stability rather than accuracy: an
     implicit method would be cheaper there).
 

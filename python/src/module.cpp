@@ -12,8 +12,8 @@ PYBIND11_MODULE(_core, m) {
         camfollower::detail::max_part_length;  // m, largest length of a part (export's cutter radius)
     m.attr("MIN_CAMSHAFT_SPEED") = camfollower::detail::min_camshaft_speed;  // rad/s
     m.attr("MAX_CAMSHAFT_SPEED") = camfollower::detail::max_camshaft_speed;  // rad/s
-    // DOFs from which linear_solver 'auto' runs the Newmark family on the sparse backend (which takes
-    // unconditionally stable schemes only), and the largest state 2n shooting's dense monodromy takes.
+    // DOFs from which linear_solver 'auto' runs the Newmark family on the sparse backend (which keeps
+    // the trapezoidal velocity), and the largest state 2n shooting's dense monodromy takes.
     m.attr("SPARSE_BACKEND_THRESHOLD") = camfollower::sparse_backend_threshold;
     m.attr("SHOOTING_MAX_STATE_SIZE") = camfollower::ShootingOptions::max_state_size;
     camfollower::python::bind_motion(m);

@@ -57,6 +57,7 @@ struct RunOutput {
     const char* method = "";
     const char* requested_method = "";
     std::string method_choice;
+    std::string velocity_choice;
     double highest_mode_hz = 0.0;
     double final_time = 0.0;
     ContactLosses losses;
@@ -77,6 +78,7 @@ std::shared_ptr<RunOutput> output_of(const System& system, RunResult<System>&& r
     out->method = r.method;
     out->requested_method = r.requested_method;
     out->method_choice = std::move(r.method_choice);
+    out->velocity_choice = std::move(r.velocity_choice);
     out->highest_mode_hz = r.highest_mode_hz;
     out->final_time = r.final_state.t;
     out->losses = losses_of(system, r.final_state);
@@ -127,6 +129,7 @@ inline py::dict dict_of(const std::shared_ptr<RunOutput>& out) {
     stats["method"] = result.method;
     stats["requested_method"] = result.requested_method;
     if (!result.method_choice.empty()) stats["method_choice"] = result.method_choice;
+    if (!result.velocity_choice.empty()) stats["velocity_choice"] = result.velocity_choice;
     stats["evaluations"] = st.evaluations;
     stats["rejected_steps"] = st.rejected_steps;
     stats["stiff_steps"] = st.stiff_steps;

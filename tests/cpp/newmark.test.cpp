@@ -257,8 +257,9 @@ TEST_CASE("The processed velocity's step limit: closed forms, and damping lowers
         last = limit;
     }
     // The stepper: at damping ratio 0.5 omega dt = 2 is within Fox-Goodwin's undamped limit (2.45 with a
-    // 10 % margin: 2.2) and beyond the processed velocity's (1.65, with the margin 1.48): refused,
-    // naming the mode's damping; at 1.4 the motion decays.
+    // 10 % margin: 2.2) and beyond the processed velocity's (1.65, with the margin 1.48). The stepper
+    // itself refuses it, naming the mode's damping; simulate() runs it with the trapezoidal velocity
+    // (choose_velocity) and says why; at 2.5 both are refused; at 1.4 the processed velocity runs.
     Sdof sdof;
     sdof.c = std::sqrt(sdof.k * sdof.m);  // damping ratio 1/2
     const auto system = sdof.system();
@@ -266,11 +267,24 @@ TEST_CASE("The processed velocity's step limit: closed forms, and damping lowers
     s.beta = 1.0 / 12.0;
     REQUIRE(newmark_parameters(s).processed);
     s.time_step = 2.0 / omega;
-    CHECK_THROWS_WITH(run(system, s, 100 * s.time_step),
+    Newmark<LinearSystem<1>> stepper(system, s);
+    CHECK_THROWS_WITH(stepper.start(0.0, system.q0, Eigen::Matrix<double, 1, 1>::Zero()),
                       Catch::Contains("exceeds the stability limit") && Catch::Contains("damping ratio 0.5"));
+    RunOptions options;
+    options.duration = 100 * s.time_step;
+    const auto trapezoidal = simulate(system, s, options);
+    CHECK_THAT(trapezoidal.velocity_choice,
+               Catch::StartsWith("trapezoidal velocity") && Catch::Contains("damping ratio 0.5"));
+    const auto last_q = [](const Recording& r) { return r.channel(r.block(0))[r.rows - 1]; };
+    CHECK(std::abs(last_q(trapezoidal.recording)) < 1e-3 * sdof.x0);
+    s.time_step = 2.5 / omega;
+    options.duration = 100 * s.time_step;
+    CHECK_THROWS_WITH(simulate(system, s, options), Catch::Contains("exceeds the stability limit"));
     s.time_step = 1.4 / omega;
-    const auto r = run(system, s, 100 * s.time_step);
-    CHECK(std::abs(r.q.back()) < 1e-3 * sdof.x0);
+    options.duration = 100 * s.time_step;
+    const auto processed = simulate(system, s, options);
+    CHECK(processed.velocity_choice.empty());
+    CHECK(std::abs(last_q(processed.recording)) < 1e-3 * sdof.x0);
 }
 
 TEST_CASE("Fox-Goodwin with its processed velocity is fourth order in displacement and velocity, damped") {

@@ -91,15 +91,30 @@ def valve_train():
     return cf.presets.valve_train(engine_speed_rpm=6000, cylinders=1, firing_order=[1])
 
 
-def test_fox_goodwin_beyond_the_damped_limit_is_refused_and_auto_takes_average_acceleration(valve_train):
+def test_beyond_the_damped_limit_fox_goodwin_keeps_the_trapezoidal_velocity_and_says_why(valve_train):
     limit = valve_train.step_limit(FOX_GOODWIN_BETA)
+    undamped = MARGIN * math.sqrt(6.0) / (2.0 * math.pi * limit["frequency_hz"])
     step = 1e-6  # within the undamped limit (1.2 us), beyond the damped one (0.15 us)
-    assert limit["step"] < step < MARGIN * math.sqrt(6.0) / (2.0 * math.pi * limit["frequency_hz"])
-    with pytest.raises(ValueError, match=r"exceeds the stability limit .*damping ratio 4\.7"):
-        cf.simulate(valve_train, duration=1e-4, time_step=step, method="fox_goodwin", linear_solver="dense_lu")
-    r = cf.simulate(valve_train, duration=1e-4, time_step=step, method="auto", linear_solver="dense_lu")
-    assert r.stats["method"] == "newmark"
-    assert "damping ratio 4.7" in r.stats["method_choice"]
+    assert limit["step"] < step < undamped
+    runs = {
+        method: cf.simulate(valve_train, duration=2e-4, time_step=step, method=method, linear_solver="dense_lu")
+        for method in ("fox_goodwin", "auto")
+    }
+    for method, r in runs.items():
+        assert r.stats["method"] == "fox_goodwin", method
+        assert r.stats["velocity_choice"].startswith("trapezoidal velocity"), method
+        assert "damping ratio 4.7" in r.stats["velocity_choice"], method
+    # Bounded, and as accurate as average acceleration at a quarter of the step.
+    fine = cf.simulate(valve_train, duration=2e-4, time_step=step / 4, method="newmark", linear_solver="dense_lu")
+    valve = "q.c1v1.valve"
+    peak = np.abs(np.asarray(fine[valve])).max()
+    coarse = np.asarray(runs["fox_goodwin"][valve])
+    assert np.abs(coarse - np.asarray(fine[valve])[::4]).max() < 1e-3 * peak
+    # Beyond the undamped limit the step is refused.
+    with pytest.raises(ValueError, match="exceeds the stability limit"):
+        cf.simulate(
+            valve_train, duration=2e-4, time_step=1.2 * undamped, method="fox_goodwin", linear_solver="dense_lu"
+        )
 
 
 def test_fox_goodwin_within_the_damped_limit_stays_bounded(valve_train):
@@ -118,3 +133,19 @@ def test_the_studies_take_average_acceleration_beyond_the_damped_limit(valve_tra
     assert valve_train.period / 65536 > limit > valve_train.period / 262144
     assert study_scheme(valve_train, 65536)["name"] == "newmark"
     assert study_scheme(valve_train, 262144)["name"] == "fox_goodwin_matched"
+
+
+def test_the_sparse_backend_runs_fox_goodwin_with_the_trapezoidal_velocity_as_the_dense_one_does():
+    # Four cams, 119 DOFs: linear_solver 'auto' takes the sparse backend.
+    m = cf.presets.valve_train(engine_speed_rpm=6000, cylinders=2, firing_order=[1, 2])
+    step = 1e-6  # within the undamped limit (1.2 us), beyond the processed velocity's
+    sparse = cf.simulate(m, duration=2e-4, time_step=step, method="fox_goodwin")
+    dense = cf.simulate(m, duration=2e-4, time_step=step, method="fox_goodwin", linear_solver="dense_lu")
+    assert (sparse.stats["backend"], dense.stats["backend"]) == ("sparse", "dense")
+    assert "sparse backend" in sparse.stats["velocity_choice"]
+    assert dense.stats["velocity_choice"].startswith("trapezoidal velocity")
+    for name in m.contact_names:
+        force = np.asarray(dense[f"{name}.force"])
+        assert np.abs(np.asarray(sparse[f"{name}.force"]) - force).max() < 1e-6 * np.abs(force).max(), name
+    with pytest.raises(ValueError, match=r"exceeds the stability limit .*highest mode"):
+        cf.simulate(m, duration=2e-4, time_step=1.5e-6, method="fox_goodwin")

@@ -86,7 +86,8 @@ FastestModes fastest_modes(const System& system, const State<System>& s) {
 // The method a run with `s` uses, and why, in words (RunResult::method_choice).
 struct MethodChoice {
     SolverSettings settings;
-    std::string reason;  // empty when the method was named
+    std::string reason;    // empty when the method was named
+    std::string velocity;  // choose_velocity's reason: empty unless it kept the trapezoidal velocity
 };
 
 // Method "auto" made concrete for a run starting at `start`; other methods are returned as they are.
@@ -105,19 +106,21 @@ struct MethodChoice {
 //    max_step is set; fox_goodwin gets max_halvings >= fox_goodwin_halvings.
 template <class System>
 MethodChoice choose_method(const System& system, SolverSettings s, const State<System>& start) {
-    if (s.method != Method::automatic) return {s, ""};
+    if (s.method != Method::automatic) return {s, "", ""};
     // The reason starts with the method's own name (method_table), then `why`.
     const auto take = [&s](Method method, const std::string& why) {
         s.method = method;
-        return MethodChoice{s, method_name(method) + why};
+        return MethodChoice{s, method_name(method) + why, ""};
     };
     if (!s.tolerance) {
         const std::string average = " (average acceleration): ";
         if (system.size() > 200)
             return take(Method::newmark,
                         detail::concat(average, system.size(), " DOFs, above 200 the highest mode is not computed"));
+        // The trapezoidal velocity's limit (the undamped one): choose_velocity then keeps the processed
+        // velocity where that is stable too.
         SolverSettings fox_goodwin = s;
-        fox_goodwin.method = Method::fox_goodwin;
+        fox_goodwin.method = Method::fox_goodwin, fox_goodwin.process_velocity = false;
         const NewmarkParameters p = newmark_parameters(fox_goodwin);
         const StepLimit limit = step_limit(system, start, p);
         const std::string where = "time_step " + detail::figure(s.time_step) +

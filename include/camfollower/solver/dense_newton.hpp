@@ -187,12 +187,7 @@ public:
     // their damping included for a processed velocity).
     template <class StateType>
     void check_stability_limit(const StateType& s0) {
-        if (p_.beta >= 0.5 * p_.gamma) return;
-        const StepLimit limit = step_limit(system_, s0, p_);
-        if (s_.time_step > limit.step)
-            detail::fail("time_step = ", s_.time_step, " s exceeds the stability limit ", limit.step,
-                         " s of Newmark with beta = ", p_.beta, " < gamma / 2 (", step_limit_reason(limit, p_),
-                         "); reduce time_step, use beta = 1/4 or method 'auto'");
+        check_step_limit(system_, s0, p_, s_.time_step);
     }
 
     // Highest undamped natural angular frequency (rad/s) at state s0, contacts linearized.

@@ -44,7 +44,8 @@ inline constexpr std::array<MethodTraits, 7> method_table{{
      "implicit Newmark-beta with gamma and beta (default 1/2, 1/4: average acceleration, unconditionally stable)"},
     {Method::fox_goodwin, "fox_goodwin", StepperKind::newmark, 4,
      "Newmark with gamma = 1/2, beta = 1/12, its velocity processed to fourth order (damping included); stable "
-     "below dt = sqrt(6) / omega_max"},
+     "below dt = sqrt(6) / omega_max, the processed velocity lower with damping (beyond it, and on the sparse "
+     "backend, the trapezoidal velocity)"},
     {Method::hht, "hht", StepperKind::newmark, 2,
      "HHT-alpha (hht_alpha in [-1/3, 0]): Newmark that damps the highest modes, unconditionally stable"},
     {Method::dormand_prince, "dormand_prince", StepperKind::explicit_rk, 5,
@@ -152,6 +153,11 @@ struct SolverSettings {
     LinearSolver linear_solver = LinearSolver::sherman_morrison;  // dense backend: low-rank updates, or dense LU always
     Backend backend = Backend::automatic;
     SparseFactorization sparse_factorization = SparseFactorization::automatic;
+    // Newmark with gamma = 1/2 and beta < 1/4 (fox_goodwin, the studies' matched scheme): the velocity
+    // processed to fourth order (NewmarkParameters::processed). simulate() and periodic_orbit() turn it
+    // off where the processed velocity is unstable at a fixed step the trapezoidal one allows, and on the
+    // sparse backend (choose_velocity, solver/step_limit.hpp), and say so (RunResult::velocity_choice).
+    bool process_velocity = true;
     static constexpr int max_levels = 16;
 
     bool adaptive() const { return tolerance.has_value(); }
@@ -221,7 +227,7 @@ inline NewmarkParameters newmark_parameters(const SolverSettings& s) {
         const double alpha = s.hht_alpha.value_or(default_hht_alpha);
         p = {0.5 - alpha, 0.25 * (1.0 - alpha) * (1.0 - alpha), alpha};
     }
-    p.processed = p.gamma == 0.5 && p.alpha == 0.0 && p.beta < 0.25;
+    p.processed = s.process_velocity && p.gamma == 0.5 && p.alpha == 0.0 && p.beta < 0.25;
     p.damping_gamma = p.processed ? processed_damping_gamma : p.gamma;
     return p;
 }

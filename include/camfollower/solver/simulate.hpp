@@ -62,6 +62,8 @@ struct RunResult {
     const char* method = method_name(SolverSettings{}.method);  // the method that ran
     const char* requested_method = method;                      // as asked: "auto" when choose_method picked `method`
     std::string method_choice;  // with "auto": what choose_method picked and why, in words; else empty
+    // A Fox-Goodwin-type run that kept the trapezoidal velocity (choose_velocity): why; else empty.
+    std::string velocity_choice;
     // Highest natural frequency at the start (Hz, contacts linearized), for reading the step against
     // the shortest period: dense backend up to 200 DOFs only, else NaN (an eigen solve too costly).
     double highest_mode_hz = std::numeric_limits<double>::quiet_NaN();
@@ -157,15 +159,21 @@ void check_time_step(const System& system, const SolverSettings& settings, doubl
     }
 }
 
-// The settings with method "auto" made concrete for a run starting at (q0, v0), and why (choose_method).
+// The settings made concrete for a run starting at (q0, v0), and why: method "auto" (choose_method),
+// a processed velocity where it is stable (choose_velocity).
 template <class System>
 MethodChoice concrete_settings(const System& system, const SolverSettings& settings,
                                const std::optional<typename System::Vector>& q0,
                                const std::optional<typename System::Vector>& v0) {
-    if (!is_automatic(settings.method)) return {settings, ""};
+    const bool automatic = is_automatic(settings.method);
+    if (!automatic && !newmark_parameters(settings).processed) return {settings, "", ""};
     const typename System::Vector q = q0 ? *q0 : initial_displacement(system);
     const typename System::Vector v = v0 ? *v0 : initial_velocity(system);
-    return choose_method(system, settings, state_at(system, 0.0, q, v));
+    const State<System> start = state_at(system, 0.0, q, v);
+    MethodChoice choice = automatic ? choose_method(system, settings, start) : MethodChoice{settings, "", ""};
+    if (traits(choice.settings.method).stepper == StepperKind::newmark)
+        choice.velocity = choose_velocity(system, choice.settings, start, uses_sparse_backend(system, choice.settings));
+    return choice;
 }
 
 template <class System>
@@ -176,16 +184,14 @@ RunResult<System> simulate(const System& system, const SolverSettings& requested
     check_initial(system, q0, "initial q", true);
     check_initial(system, v0, "initial v", false);
     check_time_step(system, requested, options.duration);
-    if (is_automatic(requested.method)) {
-        MethodChoice choice = concrete_settings(system, requested, q0, v0);
-        RunResult<System> r = simulate(system, choice.settings, options, q0, v0);
-        r.requested_method = method_name(requested.method);
-        r.method_choice = std::move(choice.reason);
-        return r;
-    }
-    return with_stepper(system, requested, [&](auto stepper) {
-        return detail::run<typename decltype(stepper)::type>(system, requested, options, q0, v0);
+    const MethodChoice choice = concrete_settings(system, requested, q0, v0);
+    RunResult<System> r = with_stepper(system, choice.settings, [&](auto stepper) {
+        return detail::run<typename decltype(stepper)::type>(system, choice.settings, options, q0, v0);
     });
+    r.requested_method = method_name(requested.method);
+    r.method_choice = choice.reason;
+    r.velocity_choice = choice.velocity;
+    return r;
 }
 
 namespace detail {

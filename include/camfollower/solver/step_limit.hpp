@@ -132,4 +132,44 @@ StepLimit step_limit(const System& system, const State<System>& s, const Newmark
     return out;
 }
 
+// Refuses a fixed time_step beyond the step limit of p at s0 (the Newmark backends, at the start).
+template <class System>
+void check_step_limit(const System& system, const State<System>& s0, const NewmarkParameters& p, double time_step) {
+    if (p.beta >= 0.5 * p.gamma) return;
+    const StepLimit limit = step_limit(system, s0, p);
+    if (time_step > limit.step)
+        detail::fail("time_step = ", time_step, " s exceeds the stability limit ", limit.step,
+                     " s of Newmark with beta = ", p.beta, " < gamma / 2 (", step_limit_reason(limit, p),
+                     "); reduce time_step, use beta = 1/4 or method 'auto'");
+}
+
+// A Fox-Goodwin-type run (a processed velocity, NewmarkParameters::processed) made stable where it can:
+// on the sparse backend, and at a fixed step beyond the processed velocity's limit but within the
+// trapezoidal velocity's (the undamped limit), sets s.process_velocity = false (second order through
+// the dampers, Fox-Goodwin's fourth-order period error kept) and returns why; else returns "" and
+// leaves s (beyond both limits the stepper refuses the step). Under a tolerance the steps stay within
+// the processed velocity's limit instead. Allocates (step_limit); call once per run.
+template <class System>
+std::string choose_velocity(const System& system, SolverSettings& s, const State<System>& start, bool sparse) {
+    const NewmarkParameters p = newmark_parameters(s);
+    if (!p.processed) return "";
+    if (sparse) {
+        s.process_velocity = false;
+        return "trapezoidal velocity: the sparse backend does not process it (second order through the dampers)";
+    }
+    if (s.tolerance) return "";
+    const StepLimit processed = step_limit(system, start, p);
+    if (s.time_step <= processed.step) return "";
+    SolverSettings plain = s;
+    plain.process_velocity = false;
+    const NewmarkParameters q = newmark_parameters(plain);
+    const StepLimit trapezoidal = step_limit(system, start, q);
+    if (s.time_step > trapezoidal.step) return "";
+    s = plain;
+    return "trapezoidal velocity (second order through the dampers): time_step " + detail::figure(s.time_step) +
+           " s is beyond the processed velocity's stability limit " + detail::figure(processed.step) + " s (" +
+           step_limit_reason(processed, p) + ") and within the trapezoidal one's " + detail::figure(trapezoidal.step) +
+           " s (" + step_limit_reason(trapezoidal, q) + ")";
+}
+
 }  // namespace camfollower
