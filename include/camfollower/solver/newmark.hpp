@@ -495,14 +495,17 @@ private:
         double largest = s_.time_step;
         if (s_.max_step > 0.0) largest = std::min(largest, s_.max_step);
         const char* bound = s_.max_step > 0.0 && s_.max_step < s_.time_step ? "max_step" : "time_step";
-        if (p_.beta < 0.5 * p_.gamma) {
-            const double limit = step_limit(system_, s, p_).step;
-            if (limit < largest) largest = limit, bound = "the stability limit";
-        }
         coarsest_level_ = 0;
         while (coarsest_level_ <= s_.max_halvings &&
                s_.time_step / double(1 << coarsest_level_) > largest * (1.0 + 1e-12))
             ++coarsest_level_;
+        if (p_.beta < 0.5 * p_.gamma) {  // and within the stability limit (one test per level)
+            const StepLimitTest stability(system_, s, p_);
+            const int within = coarsest_level_;
+            while (coarsest_level_ <= s_.max_halvings && !stability.allows(s_.time_step / double(1 << coarsest_level_)))
+                ++coarsest_level_;
+            if (coarsest_level_ != within) largest = stability.limit().step, bound = "the stability limit";
+        }
         if (coarsest_level_ > s_.max_halvings)
             detail::fail("Newmark under a tolerance: the largest step allowed by ", bound, " (", largest,
                          " s) is below the smallest step time_step / 2^max_halvings = ",

@@ -45,13 +45,15 @@ inline double processed_mode_amplification(double beta, double omega_dt, double 
     return Eigen::EigenSolver<Eigen::Matrix4d>(A, false).eigenvalues().cwiseAbs().maxCoeff();
 }
 
+// A spectral radius above 1 + this is growth (above the rounding of a unit-circle root).
+inline constexpr double processed_growth = 1e-9;
+
 // The largest dt (s) at which processed Newmark (gamma = 1/2, beta < 1/4) is stable on that mode, no
 // margin; +inf for a mode without stiffness or damping. The stable steps are [0, limit]: the limit is
 // found by bisection to 1e-6 relative between a stable step and an unstable one.
 inline double processed_mode_step_limit(double beta, double omega, double c) {
-    constexpr double growth = 1e-9;  // above rounding of a unit-circle root
     const auto stable = [&](double dt) {
-        return processed_mode_amplification(beta, omega * dt, c * dt) <= 1.0 + growth;
+        return processed_mode_amplification(beta, omega * dt, c * dt) <= 1.0 + processed_growth;
     };
     if (!(omega > 0.0) && !(c > 0.0)) return std::numeric_limits<double>::infinity();
     // Undamped, the limit is plain Newmark's, 1 / (omega sqrt(1/4 - beta)); damping only lowers it. A
@@ -90,57 +92,95 @@ inline std::string step_limit_reason(const StepLimit& limit, const NewmarkParame
            detail::figure(limit.damping_ratio) + " sets it";
 }
 
-// The largest stable step of Newmark with parameters p on `system` linearized at state s (contacts'
-// stiffness and damping tangents), with step_limit_margin; +inf when p is unconditionally stable.
-// Processed: the smallest of the modes' limits (processed_mode_step_limit), each mode of the
-// undamped problem (K_t, M) with its modal damping phi' C_t phi (the coupling of modes through
-// damping left out). Allocates (an n x n eigen problem with vectors); call once per run.
-template <class System>
-StepLimit step_limit(const System& system, const State<System>& s, const NewmarkParameters& p) {
-    StepLimit out;
-    if (p.beta >= 0.5 * p.gamma) return out;
-    if (!p.processed) {
-        out.omega = highest_angular_frequency(system, s);
-        if (std::isfinite(out.omega)) out.step = newmark_step_limit(p.gamma, p.beta, out.omega);
-        return out;
-    }
-    using Matrix = typename System::Matrix;
-    const int n = system.size();
-    LowRank<typename System::Vector> uvq(n, std::max(1, max_rank(system))), uvv(n, std::max(1, max_rank(system)));
-    uvq.clear(), uvv.clear();
-    tangent(system, s.workspace, s.q, s.v, 1.0, 0.0, uvq);
-    tangent(system, s.workspace, s.q, s.v, 0.0, 1.0, uvv);
-    const Matrix tq = uvq.U.leftCols(uvq.rank) * uvq.V.leftCols(uvq.rank).transpose();
-    const Matrix tv = uvv.U.leftCols(uvv.rank) * uvv.V.leftCols(uvv.rank).transpose();
-    const Matrix Kt = system.stiffness() + 0.5 * (tq + tq.transpose());
-    const Matrix Ct = system.damping() + 0.5 * (tv + tv.transpose());
-    const Eigen::GeneralizedSelfAdjointEigenSolver<Matrix> eig(Kt, system.mass());
-    if (eig.info() != Eigen::Success) return out;
-    double limit = std::numeric_limits<double>::infinity();
-    for (Eigen::Index k = 0; k < eig.eigenvalues().size(); ++k) {
-        const auto phi = eig.eigenvectors().col(k);  // mass-normalized
-        const double omega = std::sqrt(std::max(eig.eigenvalues()[k], 0.0));
-        const double c = std::max(phi.dot(Ct * phi), 0.0);
-        const double mode_limit = processed_mode_step_limit(p.beta, omega, c);
-        if (mode_limit < limit) {
-            limit = mode_limit;
-            out.omega = omega;
-            out.damping_ratio = omega > 0.0 ? 0.5 * c / omega : std::numeric_limits<double>::infinity();
+// The stability of Newmark with parameters p on `system` linearized at state s (contacts' stiffness
+// and damping tangents). Processed: each mode of the undamped problem (K_t, M) with its modal damping
+// phi' C_t phi (the coupling of modes through damping left out). Allocates (an n x n eigen problem,
+// with vectors when processed); build once per run.
+class StepLimitTest {
+public:
+    template <class System>
+    StepLimitTest(const System& system, const State<System>& s, const NewmarkParameters& p) : p_(p) {
+        if (p.beta >= 0.5 * p.gamma) return;
+        if (!p.processed) {
+            omega_max_ = highest_angular_frequency(system, s);
+            return;
+        }
+        using Matrix = typename System::Matrix;
+        const int n = system.size();
+        LowRank<typename System::Vector> uvq(n, std::max(1, max_rank(system))), uvv(n, std::max(1, max_rank(system)));
+        uvq.clear(), uvv.clear();
+        tangent(system, s.workspace, s.q, s.v, 1.0, 0.0, uvq);
+        tangent(system, s.workspace, s.q, s.v, 0.0, 1.0, uvv);
+        const Matrix tq = uvq.U.leftCols(uvq.rank) * uvq.V.leftCols(uvq.rank).transpose();
+        const Matrix tv = uvv.U.leftCols(uvv.rank) * uvv.V.leftCols(uvv.rank).transpose();
+        const Matrix Kt = system.stiffness() + 0.5 * (tq + tq.transpose());
+        const Matrix Ct = system.damping() + 0.5 * (tv + tv.transpose());
+        const Eigen::GeneralizedSelfAdjointEigenSolver<Matrix> eig(Kt, system.mass());
+        if (eig.info() != Eigen::Success) return;
+        omega_.resize(eig.eigenvalues().size()), c_.resize(eig.eigenvalues().size());
+        for (Eigen::Index k = 0; k < eig.eigenvalues().size(); ++k) {
+            const auto phi = eig.eigenvectors().col(k);  // mass-normalized
+            omega_[k] = std::sqrt(std::max(eig.eigenvalues()[k], 0.0));
+            c_[k] = std::max(phi.dot(Ct * phi), 0.0);
         }
     }
-    out.step = step_limit_margin * limit;
-    return out;
+
+    // dt is within the limit (with step_limit_margin): one spectral radius per mode when processed.
+    bool allows(double dt) const {
+        if (p_.beta >= 0.5 * p_.gamma) return true;
+        if (!p_.processed) return !std::isfinite(omega_max_) || dt <= newmark_step_limit(p_.gamma, p_.beta, omega_max_);
+        for (Eigen::Index k = 0; k < omega_.size(); ++k)
+            if (!(processed_mode_amplification(p_.beta, omega_[k] * dt / step_limit_margin,
+                                               c_[k] * dt / step_limit_margin) <= 1.0 + processed_growth))
+                return false;
+        return true;
+    }
+
+    // The largest stable step, with step_limit_margin, and the mode that sets it (+inf when p is
+    // unconditionally stable); processed: a bisection per mode (processed_mode_step_limit).
+    StepLimit limit() const {
+        StepLimit out;
+        if (p_.beta >= 0.5 * p_.gamma) return out;
+        if (!p_.processed) {
+            out.omega = omega_max_;
+            if (std::isfinite(omega_max_)) out.step = newmark_step_limit(p_.gamma, p_.beta, omega_max_);
+            return out;
+        }
+        double smallest = std::numeric_limits<double>::infinity();
+        for (Eigen::Index k = 0; k < omega_.size(); ++k) {
+            const double mode_limit = processed_mode_step_limit(p_.beta, omega_[k], c_[k]);
+            if (mode_limit < smallest) {
+                smallest = mode_limit;
+                out.omega = omega_[k];
+                out.damping_ratio = omega_[k] > 0.0 ? 0.5 * c_[k] / omega_[k] : std::numeric_limits<double>::infinity();
+            }
+        }
+        out.step = step_limit_margin * smallest;
+        return out;
+    }
+
+private:
+    NewmarkParameters p_;
+    double omega_max_ = std::numeric_limits<double>::quiet_NaN();  // unprocessed: the highest mode
+    Eigen::VectorXd omega_, c_;                                    // processed: the modes, their damping
+};
+
+// The largest stable step of Newmark with parameters p on `system` linearized at state s, with
+// step_limit_margin, and the mode that sets it (StepLimitTest::limit).
+template <class System>
+StepLimit step_limit(const System& system, const State<System>& s, const NewmarkParameters& p) {
+    return StepLimitTest(system, s, p).limit();
 }
 
 // Refuses a fixed time_step beyond the step limit of p at s0 (the Newmark backends, at the start).
 template <class System>
 void check_step_limit(const System& system, const State<System>& s0, const NewmarkParameters& p, double time_step) {
-    if (p.beta >= 0.5 * p.gamma) return;
-    const StepLimit limit = step_limit(system, s0, p);
-    if (time_step > limit.step)
-        detail::fail("time_step = ", time_step, " s exceeds the stability limit ", limit.step,
-                     " s of Newmark with beta = ", p.beta, " < gamma / 2 (", step_limit_reason(limit, p),
-                     "); reduce time_step, use beta = 1/4 or method 'auto'");
+    const StepLimitTest test(system, s0, p);
+    if (test.allows(time_step)) return;
+    const StepLimit limit = test.limit();
+    detail::fail("time_step = ", time_step, " s exceeds the stability limit ", limit.step,
+                 " s of Newmark with beta = ", p.beta, " < gamma / 2 (", step_limit_reason(limit, p),
+                 "); reduce time_step, use beta = 1/4 or method 'auto'");
 }
 
 // A Fox-Goodwin-type run (a processed velocity, NewmarkParameters::processed) made stable where it can:
@@ -158,13 +198,14 @@ std::string choose_velocity(const System& system, SolverSettings& s, const State
         return "trapezoidal velocity: the sparse backend does not process it (second order through the dampers)";
     }
     if (s.tolerance) return "";
-    const StepLimit processed = step_limit(system, start, p);
-    if (s.time_step <= processed.step) return "";
+    const StepLimitTest processed_test(system, start, p);
+    if (processed_test.allows(s.time_step)) return "";
     SolverSettings plain = s;
     plain.process_velocity = false;
     const NewmarkParameters q = newmark_parameters(plain);
     const StepLimit trapezoidal = step_limit(system, start, q);
     if (s.time_step > trapezoidal.step) return "";
+    const StepLimit processed = processed_test.limit();
     s = plain;
     return "trapezoidal velocity (second order through the dampers): time_step " + detail::figure(s.time_step) +
            " s is beyond the processed velocity's stability limit " + detail::figure(processed.step) + " s (" +
